@@ -1,0 +1,32 @@
+# Set-up commands: each creates or reuses .venv and installs what it needs.
+VENV ?= .venv
+PY := $(VENV)/bin/python
+STAMP := $(VENV)/.installed
+
+.PHONY: run test lint bench clean
+
+$(PY):
+	python3 -m venv $(VENV)
+
+$(STAMP): pyproject.toml | $(PY)
+	$(PY) -m pip install -q --upgrade pip
+	$(PY) -m pip install -q -e ".[dev]"
+	touch $(STAMP)
+
+run: $(STAMP)
+	MPLBACKEND=Agg $(PY) -m rotorsim.cli run models/default.toml
+
+test: $(STAMP)
+	MPLBACKEND=Agg $(PY) -m ruff check rotorsim tests benchmarks examples
+	$(PY) -m mypy
+	MPLBACKEND=Agg $(PY) -m pytest -q
+
+lint: $(STAMP)
+	$(PY) -m ruff check rotorsim tests benchmarks examples
+	$(PY) -m mypy
+
+bench: $(STAMP)
+	$(PY) benchmarks/run_all.py
+
+clean:
+	rm -rf $(VENV) results

@@ -1,0 +1,57 @@
+"""rotorsim: rotordynamics with finite elements and nonlinear rolling-element bearings.
+
+The workflow is model -> assemble -> analyse -> save/plot::
+
+    import rotorsim as rs
+
+    steel = rs.Material(name="steel", E=211e9, G_s=81.2e9, rho=7810)
+    shaft = [rs.ShaftElement(L=0.25, idl=0.0, odl=0.05, material=steel) for _ in range(6)]
+    disks = [rs.DiskElement.from_geometry(2, steel, width=0.07, i_d=0.05, o_d=0.28)]
+    bearings = [rs.BearingElement(n=0, kxx=1e6), rs.BearingElement(n=6, kxx=1e6)]
+    rotor = rs.Rotor(shaft, disks, bearings)
+
+    modes = rs.modal(rotor, speed=0.0, num_modes=8)       # ModalResult
+    system = rs.assemble(rotor)                           # sparse M, C, G, K + DofMap
+
+All quantities are SI (m, kg, s, N, rad, rad/s). Importing rotorsim pulls in numpy and
+scipy only; plotting imports matplotlib lazily.
+"""
+
+from rotorsim.analyses.modal import modal
+from rotorsim.assembly.dof_map import DofMap
+from rotorsim.assembly.system import RotorSystem, SystemMatrices, assemble
+from rotorsim.elements.base import DOF_NAMES, ElementMatrices
+from rotorsim.elements.disk import DiskElement, PointMass
+from rotorsim.elements.linear_bearing import BearingElement
+from rotorsim.elements.shaft import ShaftElement, cowper_shear_coefficient
+from rotorsim.errors import ConvergenceError, ModelError, RotorsimError, Status
+from rotorsim.model.material import Material
+from rotorsim.model.rotor import Rotor
+from rotorsim.results.modal import ModalResult
+from rotorsim.results.orbits import Ellipse, ellipse
+
+__version__ = "0.1.0"
+
+__all__ = [
+    "DOF_NAMES",
+    "BearingElement",
+    "ConvergenceError",
+    "DiskElement",
+    "DofMap",
+    "ElementMatrices",
+    "Ellipse",
+    "Material",
+    "ModalResult",
+    "ModelError",
+    "PointMass",
+    "Rotor",
+    "RotorSystem",
+    "RotorsimError",
+    "ShaftElement",
+    "Status",
+    "SystemMatrices",
+    "assemble",
+    "cowper_shear_coefficient",
+    "ellipse",
+    "modal",
+]

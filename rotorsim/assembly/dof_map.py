@@ -1,0 +1,86 @@
+"""Numbering of the global DOFs and of the free (unconstrained) subset."""
+
+from __future__ import annotations
+
+from collections.abc import Iterable
+from dataclasses import dataclass, field
+
+import numpy as np
+from numpy.typing import NDArray
+
+from rotorsim.elements.base import DOF_NAMES, DOFS_PER_NODE
+from rotorsim.errors import ModelError
+
+IntArray = NDArray[np.int64]
+
+
+@dataclass(frozen=True, eq=False)
+class DofMap:
+    """Global DOF numbering ``6 * node + local`` and the free DOFs kept by the solvers.
+
+    Parameters
+    ----------
+    n_nodes : int
+        Number of nodes.
+    fixed : iterable of int
+        Global indices held at zero.
+
+    Examples
+    --------
+    >>> dm = DofMap(2, fixed=[2, 8])
+    >>> dm.n_free, dm.index(1, "uy"), dm.free_index(1, "uy")
+    (10, 7, 6)
+    """
+
+    n_nodes: int
+    fixed: Iterable[int] = ()
+    free: IntArray = field(init=False, repr=False)
+    full_to_free: IntArray = field(init=False, repr=False)
+
+    def __post_init__(self) -> None:
+        fixed = np.unique(np.asarray(list(self.fixed), dtype=np.int64))
+        if fixed.size and (fixed[0] < 0 or fixed[-1] >= self.ndof):
+            raise ModelError(f"fixed DOF index outside 0..{self.ndof - 1}", "DofMap")
+        object.__setattr__(self, "fixed", fixed)
+        mask = np.ones(self.ndof, dtype=bool)
+        mask[fixed] = False
+        free = np.flatnonzero(mask).astype(np.int64)
+        full_to_free = np.full(self.ndof, -1, dtype=np.int64)
+        full_to_free[free] = np.arange(free.size)
+        object.__setattr__(self, "free", free)
+        object.__setattr__(self, "full_to_free", full_to_free)
+
+    @property
+    def ndof(self) -> int:
+        return DOFS_PER_NODE * self.n_nodes
+
+    @property
+    def n_free(self) -> int:
+        return int(self.free.size)
+
+    def index(self, node: int, dof: str | int) -> int:
+        """Global index of ``dof`` (name or local number) at ``node``."""
+        local = DOF_NAMES.index(dof) if isinstance(dof, str) else int(dof)
+        if not 0 <= node < self.n_nodes:
+            raise ModelError(f"node {node} outside 0..{self.n_nodes - 1}", "DofMap")
+        if not 0 <= local < DOFS_PER_NODE:
+            raise ModelError(f"local DOF {dof!r} outside {DOF_NAMES}", "DofMap")
+        return DOFS_PER_NODE * node + local
+
+    def free_index(self, node: int, dof: str | int) -> int:
+        """Index among the free DOFs; raises if the DOF is fixed."""
+        i = int(self.full_to_free[self.index(node, dof)])
+        if i < 0:
+            raise ModelError(f"DOF {dof!r} of node {node} is fixed", "DofMap")
+        return i
+
+    def expand(self, values: NDArray) -> NDArray:
+        """Place free-DOF values (first axis ``n_free``) into all DOFs, zeros where fixed."""
+        values = np.asarray(values)
+        out = np.zeros((self.ndof, *values.shape[1:]), dtype=values.dtype)
+        out[self.free] = values
+        return out
+
+    def names(self) -> list[str]:
+        """Labels ``"node:dof"`` of all DOFs."""
+        return [f"{n}:{d}" for n in range(self.n_nodes) for d in DOF_NAMES]

@@ -1,0 +1,146 @@
+"""Assembly of a :class:`~rotorsim.model.rotor.Rotor` into sparse global matrices."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import scipy.sparse as sp
+from numpy.typing import NDArray
+
+from rotorsim.assembly.dof_map import DofMap
+from rotorsim.assembly.sparse import SparsityPattern
+from rotorsim.elements.base import DOF_NAMES, DOFS_PER_NODE, ElementMatrices, FloatArray
+from rotorsim.elements.linear_bearing import BearingElement
+from rotorsim.elements.shaft import shaft_matrices
+from rotorsim.model.rotor import Rotor
+
+
+@dataclass(frozen=True, eq=False)
+class SystemMatrices:
+    """Global CSR matrices on the free DOFs at one speed.
+
+    The equation of motion is ``M q'' + (C + W G) q' + K q = f``.
+    """
+
+    M: sp.csr_matrix
+    C: sp.csr_matrix
+    G: sp.csr_matrix
+    K: sp.csr_matrix
+
+
+@dataclass(frozen=True, eq=False)
+class RotorSystem:
+    """Assembled rotor: DOF map, shared sparsity pattern and matrix data.
+
+    Speed-independent contributions are summed once; bearings whose coefficients depend on
+    speed are scattered into the same pattern by :meth:`matrices`.
+    """
+
+    dof_map: DofMap
+    nodes_pos: FloatArray
+    pattern: SparsityPattern
+    constant: dict[str, FloatArray]
+    variable_bearings: tuple[tuple[int, BearingElement], ...]
+    structural_mass: FloatArray
+    summary: dict[str, object]
+
+    @property
+    def n_free(self) -> int:
+        return self.dof_map.n_free
+
+    def matrices(self, speed: float = 0.0) -> SystemMatrices:
+        """Global ``M, C, G, K`` at spin speed ``speed`` [rad/s]."""
+        data = {k: v.copy() for k, v in self.constant.items()} if self.variable_bearings else \
+            self.constant
+        for group, bearing in self.variable_bearings:
+            mats = bearing.matrices(speed)
+            for key in ("M", "C", "K"):
+                data[key] = data[key] + self.pattern.scatter(group, getattr(mats, key)[None])
+        return SystemMatrices(**{k: self.pattern.matrix(v) for k, v in data.items()})
+
+    def dofs_of(self, node: int, dofs: tuple[str, ...] = DOF_NAMES) -> NDArray[np.int64]:
+        """Free-DOF indices of ``dofs`` at ``node`` (fixed ones are skipped)."""
+        full = [self.dof_map.index(node, d) for d in dofs]
+        idx = self.dof_map.full_to_free[full]
+        return idx[idx >= 0]
+
+
+def _element_dofs(nodes: NDArray[np.int64]) -> NDArray[np.int64]:
+    """Global DOF indices ``(E, 6 * nodes_per_element)`` from node numbers ``(E, k)``."""
+    local = np.arange(DOFS_PER_NODE)
+    return (DOFS_PER_NODE * nodes[:, :, None] + local).reshape(nodes.shape[0], -1)
+
+
+def _stack(mats: list[ElementMatrices]) -> ElementMatrices:
+    return ElementMatrices(*(np.stack([getattr(m, k) for m in mats]) for k in "MCGK"))
+
+
+def assemble(rotor: Rotor) -> RotorSystem:
+    """Assemble the global sparse matrices of ``rotor``.
+
+    Parameters
+    ----------
+    rotor : Rotor
+        The model.
+
+    Returns
+    -------
+    RotorSystem
+        DOF map, shared CSR pattern and the speed-independent matrix data.
+
+    Examples
+    --------
+    >>> from rotorsim.model.material import steel
+    >>> from rotorsim.elements.shaft import ShaftElement
+    >>> rotor = Rotor([ShaftElement(L=0.5, idl=0.0, odl=0.05, material=steel)] * 2)
+    >>> system = assemble(rotor)
+    >>> system.matrices().M.shape
+    (18, 18)
+    """
+    fixed = [DOFS_PER_NODE * n + DOF_NAMES.index(d) for n, d in rotor.fixed]
+    dof_map = DofMap(rotor.n_nodes, fixed)
+    groups: list[tuple[NDArray[np.int64], ElementMatrices]] = []
+
+    shaft = rotor.shaft_elements
+    shaft_nodes = np.array([el.nodes for el in shaft], dtype=np.int64)
+    groups.append((_element_dofs(shaft_nodes), shaft_matrices(shaft)))
+    for kind in (rotor.disk_elements, rotor.point_mass_elements):
+        if kind:
+            nodes = np.array([el.nodes for el in kind], dtype=np.int64)
+            groups.append((_element_dofs(nodes), _stack([el.matrices() for el in kind])))
+    n_structural = len(groups)
+    variable: list[tuple[int, BearingElement]] = []
+    constant_bearings: dict[int, list[BearingElement]] = {}
+    for b in rotor.bearing_elements:
+        if b.speed_dependent:
+            nodes = np.array([b.nodes], dtype=np.int64)
+            groups.append((_element_dofs(nodes), _stack([b.matrices(0.0)])))
+            variable.append((len(groups) - 1, b))
+        else:
+            constant_bearings.setdefault(len(b.nodes), []).append(b)
+    for same_size in constant_bearings.values():
+        nodes = np.array([b.nodes for b in same_size], dtype=np.int64)
+        groups.append((_element_dofs(nodes), _stack([b.matrices(0.0) for b in same_size])))
+
+    free_dofs = [dof_map.full_to_free[dofs] for dofs, _ in groups]
+    pattern = SparsityPattern.from_blocks(dof_map.n_free, free_dofs)
+    variable_groups = {g for g, _ in variable}
+    constant = {k: np.zeros(pattern.nnz) for k in "MCGK"}
+    structural_mass = np.zeros(pattern.nnz)
+    for g, (_, mats) in enumerate(groups):
+        if g in variable_groups:
+            continue
+        for k in "MCGK":
+            constant[k] += pattern.scatter(g, getattr(mats, k))
+        if g < n_structural:
+            structural_mass += pattern.scatter(g, mats.M)
+    return RotorSystem(
+        dof_map=dof_map,
+        nodes_pos=rotor.nodes_pos,
+        pattern=pattern,
+        constant=constant,
+        variable_bearings=tuple(variable),
+        structural_mass=structural_mass,
+        summary=rotor.summary(),
+    )

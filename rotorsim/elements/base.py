@@ -1,0 +1,54 @@
+"""Element protocols and the container for element matrices (DESIGN section 4)."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Protocol, runtime_checkable
+
+import numpy as np
+from numpy.typing import NDArray
+
+FloatArray = NDArray[np.float64]
+
+DOF_NAMES: tuple[str, ...] = ("ux", "uy", "uz", "rx", "ry", "rz")
+"""Local DOF order of every node: translations then small rotations about x, y, z."""
+DOFS_PER_NODE = 6
+
+
+@dataclass(frozen=True)
+class ElementMatrices:
+    """Mass, damping, gyroscopic and stiffness matrices of one or many elements.
+
+    Each array has shape ``(n, n)`` for one element or ``(E, n, n)`` for a batch,
+    with ``n = 6 * number of nodes`` in the local DOF order of :data:`DOF_NAMES`.
+    ``G`` multiplies the spin speed: the element adds ``M a + (C + W G) v + K q``.
+    """
+
+    M: FloatArray
+    C: FloatArray
+    G: FloatArray
+    K: FloatArray
+
+
+@runtime_checkable
+class LinearElement(Protocol):
+    """An element with constant or speed-dependent linear matrices."""
+
+    @property
+    def nodes(self) -> tuple[int, ...]: ...
+
+    def matrices(self, speed: float = 0.0) -> ElementMatrices: ...
+
+
+def check_finite(value: float, name: str, where: str, *, positive: bool = False,
+                 nonnegative: bool = False) -> None:
+    """Raise :class:`~rotorsim.errors.ModelError` unless ``value`` is finite (and signed as asked)."""
+    from rotorsim.errors import ModelError
+
+    arr = np.asarray(value, dtype=float)
+    if not np.all(np.isfinite(arr)):
+        raise ModelError(f"{name} must be finite, got {value!r}", where)
+    if positive and np.any(arr <= 0):
+        raise ModelError(f"{name} must be > 0, got {value!r}", where)
+    if nonnegative and np.any(arr < 0):
+        raise ModelError(f"{name} must be >= 0, got {value!r}", where)

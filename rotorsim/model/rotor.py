@@ -1,0 +1,177 @@
+"""The immutable rotor model: nodes along the shaft line plus element objects."""
+
+from __future__ import annotations
+
+import dataclasses
+from collections.abc import Iterable, Sequence
+from dataclasses import dataclass, field
+from functools import cached_property
+
+import numpy as np
+
+from rotorsim.elements.base import DOF_NAMES, FloatArray
+from rotorsim.elements.disk import DiskElement, PointMass
+from rotorsim.elements.linear_bearing import BearingElement
+from rotorsim.elements.shaft import ShaftElement
+from rotorsim.errors import ModelError
+
+
+@dataclass(frozen=True, eq=False)
+class Rotor:
+    """A rotor: shaft elements in order along z, disks, bearings and point masses.
+
+    Shaft element ``i`` joins nodes ``i`` and ``i + 1``. Nodes after the last shaft node
+    (housings, pedestals) are created by the bearings and point masses that name them;
+    they must be numbered consecutively and each needs mass (a :class:`PointMass`).
+
+    Parameters
+    ----------
+    shaft_elements : sequence of ShaftElement
+    disk_elements : sequence of DiskElement, optional
+    bearing_elements : sequence of BearingElement, optional
+    point_mass_elements : sequence of PointMass, optional
+    fixed : iterable of (node, dof), optional
+        DOFs held at zero, ``dof`` one of ``ux, uy, uz, rx, ry, rz``.
+    tag : str, optional
+        Model name.
+
+    Examples
+    --------
+    >>> from rotorsim.model.material import steel
+    >>> shaft = [ShaftElement(L=0.25, idl=0.0, odl=0.05, material=steel) for _ in range(4)]
+    >>> rotor = Rotor(shaft, [DiskElement(n=2, m=10.0, Id=0.05, Ip=0.1)],
+    ...               [BearingElement(n=0, kxx=1e6), BearingElement(n=4, kxx=1e6)])
+    >>> rotor.n_nodes, rotor.ndof
+    (5, 30)
+    """
+
+    shaft_elements: Sequence[ShaftElement]
+    disk_elements: Sequence[DiskElement] = ()
+    bearing_elements: Sequence[BearingElement] = ()
+    point_mass_elements: Sequence[PointMass] = ()
+    fixed: Iterable[tuple[int, str]] = ()
+    tag: str = "rotor"
+    n_shaft_nodes: int = field(init=False)
+    n_nodes: int = field(init=False)
+
+    def __post_init__(self) -> None:
+        shaft = tuple(self.shaft_elements)
+        if not shaft:
+            raise ModelError("a rotor needs at least one shaft element", f"Rotor '{self.tag}'")
+        numbered = []
+        for i, el in enumerate(shaft):
+            if not isinstance(el, ShaftElement):
+                raise ModelError(f"not a ShaftElement: {el!r}", f"shaft_elements[{i}]")
+            if el.n is not None and el.n != i:
+                raise ModelError(f"element {i} must join nodes {i} and {i + 1}, has n={el.n}",
+                                 el.label)
+            numbered.append(el if el.n == i else el.with_node(i))
+        object.__setattr__(self, "shaft_elements", tuple(numbered))
+        object.__setattr__(self, "n_shaft_nodes", len(shaft) + 1)
+        for name in ("disk_elements", "bearing_elements", "point_mass_elements"):
+            object.__setattr__(self, name, tuple(getattr(self, name)))
+        object.__setattr__(self, "n_nodes", self._count_nodes())
+        fixed = tuple((int(n), str(d)) for n, d in self.fixed)
+        for node, dof in fixed:
+            if dof not in DOF_NAMES:
+                raise ModelError(f"unknown DOF '{dof}', use one of {DOF_NAMES}", "Rotor.fixed")
+            if not 0 <= node < self.n_nodes:
+                raise ModelError(f"node {node} outside 0..{self.n_nodes - 1}", "Rotor.fixed")
+        object.__setattr__(self, "fixed", fixed)
+
+    def _count_nodes(self) -> int:
+        n_shaft = self.n_shaft_nodes
+        extra: set[int] = set()
+        for el in (*self.disk_elements, *self.bearing_elements, *self.point_mass_elements):
+            for node in el.nodes:
+                if node >= n_shaft:
+                    extra.add(node)
+        for el in self.disk_elements:
+            if el.n >= n_shaft:
+                raise ModelError(
+                    f"node {el.n} is not on the shaft (nodes 0..{n_shaft - 1})", el.label
+                )
+        expected = set(range(n_shaft, n_shaft + len(extra)))
+        if extra != expected:
+            missing = sorted(expected - extra)
+            raise ModelError(
+                f"off-shaft nodes must be numbered {n_shaft}, {n_shaft + 1}, ... without gaps;"
+                f" got {sorted(extra)} (missing {missing}). Nodes beyond the shaft "
+                "(0..{}) are housings".format(n_shaft - 1),
+                f"Rotor '{self.tag}'",
+            )
+        massive = {pm.n for pm in self.point_mass_elements}
+        for node in sorted(extra - massive):
+            raise ModelError(
+                f"housing node {node} has no mass: add a PointMass(n={node}, m=...)",
+                f"Rotor '{self.tag}'",
+            )
+        return n_shaft + len(extra)
+
+    # ------------------------------------------------------------------ geometry
+    @cached_property
+    def nodes_pos(self) -> FloatArray:
+        """Axial position z [m] of every node; housing nodes sit at their shaft node."""
+        z = np.zeros(self.n_nodes)
+        z[: self.n_shaft_nodes] = np.concatenate(
+            [[0.0], np.cumsum([el.L for el in self.shaft_elements])]
+        )
+        for b in self.bearing_elements:
+            if b.n_link is not None and b.n_link >= self.n_shaft_nodes and b.n < self.n_shaft_nodes:
+                z[b.n_link] = z[b.n]
+        return z
+
+    @property
+    def length(self) -> float:
+        return float(self.nodes_pos[self.n_shaft_nodes - 1])
+
+    @property
+    def ndof(self) -> int:
+        return 6 * self.n_nodes
+
+    @cached_property
+    def m_shaft(self) -> float:
+        return float(sum(el.mass for el in self.shaft_elements))
+
+    @cached_property
+    def m_disks(self) -> float:
+        return float(sum(d.m for d in self.disk_elements))
+
+    @property
+    def m(self) -> float:
+        """Mass of the rotating parts (shaft and disks) [kg]."""
+        return self.m_shaft + self.m_disks
+
+    @property
+    def speed_dependent(self) -> bool:
+        return any(b.speed_dependent for b in self.bearing_elements)
+
+    # ------------------------------------------------------------------ copies
+    def with_bearings(self, bearings: Sequence[BearingElement]) -> Rotor:
+        """Copy with the bearing elements replaced."""
+        return dataclasses.replace(self, bearing_elements=tuple(bearings))
+
+    def with_fixed(self, fixed: Iterable[tuple[int, str]]) -> Rotor:
+        """Copy with more DOFs held at zero."""
+        return dataclasses.replace(self, fixed=(*self.fixed, *fixed))
+
+    def without_axial_torsion(self) -> Rotor:
+        """Copy with ``uz`` and ``rz`` fixed at every node: a purely lateral model."""
+        extra = [(n, d) for n in range(self.n_nodes) for d in ("uz", "rz")]
+        return self.with_fixed(extra)
+
+    def summary(self) -> dict[str, object]:
+        """Counts, length and masses, for tables and result metadata."""
+        return {
+            "tag": self.tag,
+            "nodes": self.n_nodes,
+            "dofs": self.ndof,
+            "fixed_dofs": len(self.fixed),
+            "shaft_elements": len(self.shaft_elements),
+            "disks": len(self.disk_elements),
+            "bearings": len(self.bearing_elements),
+            "point_masses": len(self.point_mass_elements),
+            "length_m": self.length,
+            "mass_shaft_kg": self.m_shaft,
+            "mass_disks_kg": self.m_disks,
+        }
