@@ -99,6 +99,31 @@ def assemble(rotor: Rotor) -> RotorSystem:
     (18, 18)
     """
     fixed = [DOFS_PER_NODE * n + DOF_NAMES.index(d) for n, d in rotor.fixed]
+    system = _assemble(rotor, fixed)
+    inactive = _unconnected_dofs(system)
+    if inactive.size == 0:
+        return system
+    system = _assemble(rotor, [*fixed, *inactive.tolist()])
+    system.summary["inactive_dofs"] = [
+        f"{i // DOFS_PER_NODE}:{DOF_NAMES[i % DOFS_PER_NODE]}" for i in inactive
+    ]
+    return system
+
+
+def _unconnected_dofs(system: RotorSystem) -> NDArray[np.int64]:
+    """Free DOFs with no mass, damping or stiffness at all (e.g. rotations of a housing
+    point mass): they are removed like fixed DOFs and listed in ``summary``."""
+    touched = np.zeros(system.n_free, dtype=bool)
+    rows = np.repeat(np.arange(system.n_free), np.diff(system.pattern.indptr))
+    for data in system.constant.values():
+        touched[rows[data != 0]] = True
+    for group, _ in system.variable_bearings:
+        pos = system.pattern.positions[group]
+        touched[rows[pos[pos >= 0]]] = True
+    return system.dof_map.free[~touched]
+
+
+def _assemble(rotor: Rotor, fixed: list[int]) -> RotorSystem:
     dof_map = DofMap(rotor.n_nodes, fixed)
     groups: list[tuple[NDArray[np.int64], ElementMatrices]] = []
 
@@ -142,5 +167,5 @@ def assemble(rotor: Rotor) -> RotorSystem:
         constant=constant,
         variable_bearings=tuple(variable),
         structural_mass=structural_mass,
-        summary=rotor.summary(),
+        summary={**rotor.summary(), "inactive_dofs": []},
     )

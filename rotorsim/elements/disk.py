@@ -125,7 +125,7 @@ class PointMass:
     tag: str | None = None
 
     def __post_init__(self) -> None:
-        where = f"PointMass '{self.tag}'" if self.tag else f"PointMass(n={self.n})"
+        where = self.label
         if not isinstance(self.n, int | np.integer) or self.n < 0:
             raise ModelError(f"node number must be a non-negative integer, got {self.n!r}", where)
         for key in ("m", "mx", "my", "mz"):
@@ -138,6 +138,10 @@ class PointMass:
     @property
     def nodes(self) -> tuple[int, ...]:
         return (int(self.n),)
+
+    @property
+    def label(self) -> str:
+        return f"PointMass '{self.tag}'" if self.tag else f"PointMass(n={self.n})"
 
     @property
     def masses(self) -> tuple[float, float, float]:

@@ -81,29 +81,27 @@ class Rotor:
 
     def _count_nodes(self) -> int:
         n_shaft = self.n_shaft_nodes
+        last = n_shaft - 1
+        massive = {pm.n for pm in self.point_mass_elements}
         extra: set[int] = set()
-        for el in (*self.disk_elements, *self.bearing_elements, *self.point_mass_elements):
-            for node in el.nodes:
-                if node >= n_shaft:
-                    extra.add(node)
         for el in self.disk_elements:
-            if el.n >= n_shaft:
-                raise ModelError(
-                    f"node {el.n} is not on the shaft (nodes 0..{n_shaft - 1})", el.label
-                )
+            if el.n > last:
+                raise ModelError(f"node {el.n} is not on the shaft (nodes 0..{last})", el.label)
+        for el in (*self.bearing_elements, *self.point_mass_elements):
+            for node in el.nodes:
+                if node > last and node not in massive:
+                    raise ModelError(
+                        f"node {node} is not on the shaft (nodes 0..{last}); an off-shaft"
+                        f" (housing) node needs a PointMass(n={node}, m=...)",
+                        getattr(el, "label", type(el).__name__),
+                    )
+                if node > last:
+                    extra.add(node)
         expected = set(range(n_shaft, n_shaft + len(extra)))
         if extra != expected:
-            missing = sorted(expected - extra)
             raise ModelError(
-                f"off-shaft nodes must be numbered {n_shaft}, {n_shaft + 1}, ... without gaps;"
-                f" got {sorted(extra)} (missing {missing}). Nodes beyond the shaft "
-                "(0..{}) are housings".format(n_shaft - 1),
-                f"Rotor '{self.tag}'",
-            )
-        massive = {pm.n for pm in self.point_mass_elements}
-        for node in sorted(extra - massive):
-            raise ModelError(
-                f"housing node {node} has no mass: add a PointMass(n={node}, m=...)",
+                f"housing nodes must be numbered {n_shaft}, {n_shaft + 1}, ... without gaps;"
+                f" got {sorted(extra)}",
                 f"Rotor '{self.tag}'",
             )
         return n_shaft + len(extra)
