@@ -20,7 +20,7 @@ All matrices are computed for a batch of elements at once (:func:`shaft_matrices
 
 from __future__ import annotations
 
-import dataclasses
+import copy
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass
@@ -165,7 +165,10 @@ class ShaftElement:
         return self.volume * self.material.rho
 
     def with_node(self, n: int) -> ShaftElement:
-        return dataclasses.replace(self, n=n)
+        """Copy numbered as joining nodes ``n`` and ``n + 1`` (already validated)."""
+        out = copy.copy(self)
+        object.__setattr__(out, "n", int(n))
+        return out
 
     def matrices(self, speed: float = 0.0) -> ElementMatrices:
         """Element matrices ``(12, 12)``; independent of ``speed``."""
@@ -202,12 +205,13 @@ def shaft_matrices(elements: Sequence[ShaftElement]) -> ElementMatrices:
 
 
 def _batch_properties(elements: Sequence[ShaftElement]) -> dict[str, FloatArray]:
-    n_el = len(elements)
-    area = np.empty((n_el, _XI.size))
-    inertia = np.empty_like(area)
-    ratio = np.empty_like(area)
-    for i, el in enumerate(elements):
-        area[i], inertia[i], ratio[i] = _section(el, _XI)
+    geometry = np.array([(e.idl, e.odl, e.idr, e.odr) for e in elements], dtype=float)
+    xi = _XI[None, :]
+    di = geometry[:, [0]] + (geometry[:, [2]] - geometry[:, [0]]) * xi
+    do = geometry[:, [1]] + (geometry[:, [3]] - geometry[:, [1]]) * xi
+    area = math.pi / 4.0 * (do**2 - di**2)
+    inertia = math.pi / 64.0 * (do**4 - di**4)
+    ratio = di / do
 
     def col(fn):  # per-element scalar as a column (E, 1)
         return np.array([fn(el) for el in elements], dtype=float)[:, None]
@@ -310,7 +314,8 @@ def _shape_fields(length: FloatArray, phi: FloatArray) -> dict[str, FloatArray]:
 def _gram(coef: FloatArray, a: FloatArray, b: FloatArray | None = None) -> FloatArray:
     """``sum_q w_q coef_q a_q^T b_q`` per element, shape (E, 12, 12) (times L by caller)."""
     b = a if b is None else b
-    return np.einsum("q,eq,eqi,eqj->eij", _WQ, coef, a, b)
+    weighted = a * (coef * _WQ)[:, :, None]
+    return np.matmul(weighted.transpose(0, 2, 1), b)
 
 
 def _integrate(props: dict[str, FloatArray], f: dict[str, FloatArray]) -> ElementMatrices:

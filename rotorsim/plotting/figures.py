@@ -1,0 +1,112 @@
+"""Figure functions, one per result type (registered in :data:`DRAWERS`)."""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from typing import Any
+
+import matplotlib.pyplot as plt
+import numpy as np
+
+from rotorsim.plotting.units import speed_factor
+
+WHIRL_STYLE = {
+    "forward": {"marker": "^", "color": "tab:red", "label": "forward"},
+    "backward": {"marker": "v", "color": "tab:blue", "label": "backward"},
+    "mixed": {"marker": "o", "color": "tab:gray", "label": "mixed"},
+    "none": {"marker": "s", "color": "tab:green", "label": "axial/torsional"},
+}
+
+
+def _axes(ax: Any, nrows: int = 1, ncols: int = 1, **kw: Any) -> tuple[Any, Any]:
+    if ax is not None:
+        return ax.figure, ax
+    fig, axes = plt.subplots(nrows, ncols, **kw)
+    return fig, axes
+
+
+def campbell_figure(result: Any, ax: Any = None, *, units: str = "rpm",
+                    harmonics: tuple[int, ...] = (1,), color_by: str | None = None,
+                    annotate: bool = True) -> Any:
+    """Campbell diagram: damped frequencies vs speed, whirl marked, kX lines, criticals.
+
+    ``color_by="log_dec"`` colours points by logarithmic decrement instead of whirl.
+    """
+    f = speed_factor(units)
+    fig, ax = _axes(ax, figsize=(8, 5.5))
+    speeds = result.speeds * f
+    wd = result.wd * f
+    for j in range(wd.shape[1]):
+        ax.plot(speeds, wd[:, j], color="0.75", lw=0.8, zorder=1)
+    if color_by == "log_dec":
+        grid = np.broadcast_to(speeds[:, None], wd.shape)
+        sc = ax.scatter(grid, wd, c=np.clip(result.log_dec, -1, 3), cmap="RdYlGn", s=12,
+                        zorder=2)
+        fig.colorbar(sc, ax=ax, label="log dec")
+    else:
+        whirl = np.asarray(result.whirl)
+        for name, style in WHIRL_STYLE.items():
+            mask = whirl == name
+            if mask.any():
+                grid = np.broadcast_to(speeds[:, None], wd.shape)
+                ax.scatter(grid[mask], wd[mask], s=14, zorder=2, **style)
+    top = np.nanmax(wd) * 1.05
+    for k in harmonics:
+        ax.plot(speeds, k * speeds, "k--", lw=1, label=f"{k}X")
+        if annotate:
+            crit = result.critical_speeds(harmonic=k)
+            for s, w in zip(crit.speed * f, crit.frequency * f, strict=True):
+                ax.plot(s, w, "o", mfc="none", mec="k", ms=9)
+                ax.annotate(f"{s:.0f}", (s, w), textcoords="offset points", xytext=(4, -12),
+                            fontsize=8)
+    ax.set_ylim(0, top)
+    ax.set_xlim(speeds.min(), speeds.max())
+    ax.set_xlabel(f"rotor speed [{units}]")
+    ax.set_ylabel(f"damped natural frequency [{units}]")
+    ax.set_title("Campbell diagram")
+    handles, labels = ax.get_legend_handles_labels()
+    unique = dict(zip(labels, handles, strict=True))
+    ax.legend(unique.values(), unique.keys(), loc="upper left", fontsize=8)
+    ax.grid(alpha=0.3)
+    return fig
+
+
+def mode_shape_figure(result: Any, ax: Any = None, *, mode: int = 0, view: str = "2d",
+                      units: str = "Hz") -> Any:
+    """Mode shape: real parts in the x-z and y-z planes (2d) or node orbits along z (3d)."""
+    f = speed_factor(units)
+    ux, uy = result.lateral_shape(mode)
+    z = result.nodes_pos
+    order = np.argsort(z)
+    title = (f"mode {mode}: {result.wd[mode] * f:.2f} {units}, {result.whirl[mode]}, "
+             f"log dec {result.log_dec[mode]:.3f}")
+    if view == "3d":
+        fig = plt.figure(figsize=(8, 5)) if ax is None else ax.figure
+        ax3 = fig.add_subplot(projection="3d") if ax is None else ax
+        t = np.linspace(0, 2 * np.pi, 60)
+        ring = np.exp(1j * t)
+        for zi, x, y in zip(z, ux, uy, strict=True):
+            ax3.plot(np.full(t.size, zi), (x * ring).real, (y * ring).real, lw=0.8)
+        ax3.plot(z[order], ux.real[order], uy.real[order], "k-o", ms=3)
+        ax3.set_xlabel("z [m]")
+        ax3.set_ylabel("x")
+        ax3.set_zlabel("y")
+        ax3.set_title(title)
+        return fig
+    fig, ax = _axes(ax, figsize=(8, 4))
+    ax.plot(z[order], ux.real[order], "-o", ms=3, label="x (Re ux)")
+    ax.plot(z[order], uy.real[order], "-s", ms=3, label="y (Re uy)")
+    ax.plot(z[order], np.abs(ux[order] + 0j), ":", color="0.5", label="|ux|")
+    ax.axhline(0, color="k", lw=0.5)
+    ax.set_xlabel("z [m]")
+    ax.set_ylabel("normalised displacement")
+    ax.set_title(title)
+    ax.legend(fontsize=8)
+    ax.grid(alpha=0.3)
+    return fig
+
+
+DRAWERS: dict[str, Callable[..., Any]] = {
+    "CampbellResult": campbell_figure,
+    "ModalResult": mode_shape_figure,
+}
