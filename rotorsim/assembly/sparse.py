@@ -70,7 +70,7 @@ class SparsityPattern:
         """CSR data array holding the summed entries of ``blocks`` (E, d, d) of ``group``."""
         pos = self.positions[group]
         ok = pos >= 0
-        return np.bincount(pos[ok], weights=np.ravel(blocks)[ok], minlength=self.nnz)
+        return np.bincount(pos[ok], weights=np.ravel(blocks)[ok], minlength=self.nnz).astype(float)
 
     def matrix(self, data: FloatArray) -> sp.csr_matrix:
         """CSR matrix with this pattern and ``data``."""

@@ -42,7 +42,7 @@ class LinearElement(Protocol):
 
 def check_finite(value: float, name: str, where: str, *, positive: bool = False,
                  nonnegative: bool = False) -> None:
-    """Raise :class:`~rotorsim.errors.ModelError` unless ``value`` is finite (and signed as asked)."""
+    """Raise :class:`~rotorsim.errors.ModelError` unless ``value`` is finite and signed as asked."""
     from rotorsim.errors import ModelError
 
     arr = np.asarray(value, dtype=float)

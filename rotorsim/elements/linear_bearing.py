@@ -16,10 +16,10 @@ from rotorsim.elements.base import ElementMatrices, FloatArray
 from rotorsim.errors import ModelError
 
 _LATERAL = ("xx", "xy", "yx", "yy")
-COEFFICIENTS = (
-    tuple(f"k{s}" for s in _LATERAL) + ("kzz", "krr")
-    + tuple(f"c{s}" for s in _LATERAL) + ("czz", "crr")
-    + tuple(f"m{s}" for s in _LATERAL)
+COEFFICIENTS: tuple[str, ...] = (
+    *(f"k{s}" for s in _LATERAL), "kzz", "krr",
+    *(f"c{s}" for s in _LATERAL), "czz", "crr",
+    *(f"m{s}" for s in _LATERAL),
 )
 """Coefficient names: stiffness ``k``, damping ``c`` and added mass ``m``; ``zz`` axial,
 ``rr`` tilting (moment) about x and y."""
@@ -86,9 +86,9 @@ class BearingElement:
 
     def __post_init__(self) -> None:
         where = self.label
-        for key, value in (("n", self.n), ("n_link", self.n_link)):
-            if value is not None and (not isinstance(value, int | np.integer) or value < 0):
-                raise ModelError(f"{key} must be a non-negative integer, got {value!r}", where)
+        for key, node in (("n", self.n), ("n_link", self.n_link)):
+            if node is not None and (not isinstance(node, int | np.integer) or node < 0):
+                raise ModelError(f"{key} must be a non-negative integer, got {node!r}", where)
         if self.n_link is not None and self.n_link == self.n:
             raise ModelError(f"n_link must differ from n (both {self.n})", where)
         for key, default in (("kyy", "kxx"), ("cyy", "cxx"), ("myy", "mxx")):

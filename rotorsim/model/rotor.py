@@ -49,7 +49,7 @@ class Rotor:
     disk_elements: Sequence[DiskElement] = ()
     bearing_elements: Sequence[BearingElement] = ()
     point_mass_elements: Sequence[PointMass] = ()
-    fixed: Iterable[tuple[int, str]] = ()
+    fixed: Sequence[tuple[int, str]] = ()
     tag: str = "rotor"
     n_shaft_nodes: int = field(init=False)
     n_nodes: int = field(init=False)
@@ -84,16 +84,19 @@ class Rotor:
         last = n_shaft - 1
         massive = {pm.n for pm in self.point_mass_elements}
         extra: set[int] = set()
-        for el in self.disk_elements:
-            if el.n > last:
-                raise ModelError(f"node {el.n} is not on the shaft (nodes 0..{last})", el.label)
-        for el in (*self.bearing_elements, *self.point_mass_elements):
+        for disk in self.disk_elements:
+            if disk.n > last:
+                raise ModelError(f"node {disk.n} is not on the shaft (nodes 0..{last})",
+                                 disk.label)
+        others: tuple[BearingElement | PointMass, ...] = (
+            *self.bearing_elements, *self.point_mass_elements)
+        for el in others:
             for node in el.nodes:
                 if node > last and node not in massive:
                     raise ModelError(
                         f"node {node} is not on the shaft (nodes 0..{last}); an off-shaft"
                         f" (housing) node needs a PointMass(n={node}, m=...)",
-                        getattr(el, "label", type(el).__name__),
+                        el.label,
                     )
                 if node > last:
                     extra.add(node)

@@ -71,7 +71,7 @@ def factorize(
     if stats is not None:
         stats.factorizations += 1
     if n <= dense_threshold:
-        dense = A.toarray() if sp.issparse(A) else np.asarray(A)
+        dense = A.toarray() if sp.issparse(A) else np.asarray(A)  # type: ignore[union-attr]
         lu, piv = sl.lu_factor(dense, check_finite=False)
         d = np.abs(np.diag(lu))
         if not np.all(np.isfinite(d)) or d.min() <= 1e-14 * max(d.max(), 1e-300):

@@ -81,7 +81,7 @@ def test_bearing_errors(kwargs, fragment):
 def test_disk_errors():
     with pytest.raises(rs.ModelError, match=r"DiskElement\(n=2\): m must be > 0"):
         rs.DiskElement(n=2, m=0.0, Id=1.0, Ip=1.0)
-    with pytest.raises(rs.ModelError, match="bore i_d=0.3 m must be < outer diameter"):
+    with pytest.raises(rs.ModelError, match=r"bore i_d=0\.3 m must be < outer diameter"):
         rs.DiskElement.from_geometry(2, steel, width=0.05, i_d=0.3, o_d=0.2)
 
 
