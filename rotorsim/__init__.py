@@ -17,7 +17,9 @@ All quantities are SI (m, kg, s, N, rad, rad/s). Importing rotorsim pulls in num
 scipy only; plotting imports matplotlib lazily.
 """
 
+from rotorsim.analyses.frequency_response import frequency_response, unbalance_response
 from rotorsim.analyses.modal import modal
+from rotorsim.analyses.static import static
 from rotorsim.assembly.dof_map import DofMap
 from rotorsim.assembly.system import RotorSystem, SystemMatrices, assemble
 from rotorsim.elements.base import DOF_NAMES, ElementMatrices
@@ -27,7 +29,9 @@ from rotorsim.elements.shaft import ShaftElement, cowper_shear_coefficient
 from rotorsim.errors import ConvergenceError, ModelError, RotorsimError, Status
 from rotorsim.model.material import Material
 from rotorsim.model.rotor import Rotor
+from rotorsim.results.frequency_response import FrequencyResponseResult
 from rotorsim.results.modal import ModalResult
+from rotorsim.results.static import StaticResult
 from rotorsim.results.orbits import Ellipse, ellipse
 
 __version__ = "0.1.0"
@@ -41,6 +45,7 @@ __all__ = [
     "ElementMatrices",
     "Ellipse",
     "Material",
+    "FrequencyResponseResult",
     "ModalResult",
     "ModelError",
     "PointMass",
@@ -48,10 +53,14 @@ __all__ = [
     "RotorSystem",
     "RotorsimError",
     "ShaftElement",
+    "StaticResult",
     "Status",
     "SystemMatrices",
     "assemble",
     "cowper_shear_coefficient",
     "ellipse",
+    "frequency_response",
     "modal",
+    "static",
+    "unbalance_response",
 ]

@@ -6,6 +6,7 @@ never forms an inverse.
 
 from __future__ import annotations
 
+import warnings
 from dataclasses import dataclass
 from typing import Any
 
@@ -72,7 +73,9 @@ def factorize(
         stats.factorizations += 1
     if n <= dense_threshold:
         dense = A.toarray() if sp.issparse(A) else np.asarray(A)  # type: ignore[union-attr]
-        lu, piv = sl.lu_factor(dense, check_finite=False)
+        with warnings.catch_warnings():  # singularity is reported below as ConvergenceError
+            warnings.simplefilter("ignore", sl.LinAlgWarning)
+            lu, piv = sl.lu_factor(dense, check_finite=False)
         d = np.abs(np.diag(lu))
         if not np.all(np.isfinite(d)) or d.min() <= 1e-14 * max(d.max(), 1e-300):
             raise ConvergenceError("matrix is singular to working precision", where)

@@ -1,0 +1,328 @@
+"""Linear static analysis under gravity and point loads, with explicit rigid-body checks.
+
+The solve is split so that the nonlinear-bearing version can reuse every stage:
+``_applied_load`` (f), ``free_rigid_motions`` (which motions of the whole rotor nothing
+restrains, and whether the load can be equilibrated), ``_solve_restrained`` (one linear solve
+with those motions held) and ``_post_process`` (bearing reactions, shaft internal forces).
+A nonlinear static analysis replaces ``_solve_restrained`` by a Newton iteration on
+``K q + r(q) = f`` started from the linear solution.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+import scipy.sparse as sp
+import scipy.sparse.linalg as spl
+from numpy.typing import ArrayLike, NDArray
+
+from rotorsim.analyses.system_input import as_system
+from rotorsim.assembly.loads import (
+    STANDARD_GRAVITY,
+    consistent_gravity,
+    gravity_load,
+    gravity_load_all_dofs,
+    nodal_load,
+    unit_direction,
+)
+from rotorsim.assembly.system import RotorSystem
+from rotorsim.elements.base import DOFS_PER_NODE
+from rotorsim.elements.shaft import shaft_matrices
+from rotorsim.errors import ConvergenceError, ModelError
+from rotorsim.model.rotor import Rotor
+from rotorsim.results.static import StaticResult
+from rotorsim.solvers.linear import factorize
+from rotorsim.solvers.stats import Stats
+
+FloatArray = NDArray[np.float64]
+_MOTIONS = ("rotation about x", "rotation about y", "rotation about z",
+            "x (translation)", "y (translation)", "z (translation)")
+
+
+def static(
+    rotor: Rotor | RotorSystem,
+    *,
+    gravity: float | None = STANDARD_GRAVITY,
+    direction: ArrayLike = (0.0, -1.0, 0.0),
+    loads: Sequence[tuple[int, str, float]] = (),
+    speed: float = 0.0,
+    rigid_tol: float = 1e-10,
+) -> StaticResult:
+    """Linear static deflection, bearing reactions and shaft internal forces.
+
+    Solves ``K(W) q = f`` with ``f`` the consistent gravity load plus point loads. Rigid-body
+    motions of the whole rotor that nothing restrains (e.g. axial and torsional motion of a
+    rotor on radial bearings) are detected: if the load has a resultant along one of them
+    the problem has no equilibrium and :class:`ModelError` says which direction is unsupported;
+    otherwise the motion is removed by holding one DOF (e.g. ``uz`` of node 0) at zero.
+
+    Parameters
+    ----------
+    rotor : Rotor or RotorSystem
+        The model. Bearing reactions and internal forces need a :class:`Rotor`; with a
+        RotorSystem they are ``None``.
+    gravity : float or None
+        Acceleration of gravity [m/s^2]; ``None`` or 0 switches gravity off.
+    direction : 3 floats
+        Direction in which gravity acts; default ``-y``.
+    loads : list of (node, dof, value)
+        Point forces [N] (``ux, uy, uz``) and moments [N m] (``rx, ry, rz``).
+    speed : float
+        Spin speed W [rad/s] at which speed-dependent bearing stiffness is evaluated.
+    rigid_tol : float
+        A rigid motion ``r`` is free when ``||K r|| <= rigid_tol ||K||_F ||r||``; a support
+        softer than about ``rigid_tol`` times the stiffest entry counts as absent.
+
+    Returns
+    -------
+    StaticResult
+        Displacements on all DOFs; with a Rotor also the force of each bearing on the shaft
+        and the section forces at both ends of every shaft element: the force and moment
+        that the part at larger ``z`` exerts on the part at smaller ``z`` (tension-positive
+        axial force, ``M_x = E I d(rx)/dz``, ``M_y = E I d(ry)/dz``), computed as element
+        stiffness times element displacements minus the element's consistent gravity load.
+
+    Raises
+    ------
+    ModelError
+        If the load cannot be equilibrated (e.g. no bearings) or an input is invalid.
+
+    Examples
+    --------
+    >>> import rotorsim as rs
+    >>> steel = rs.Material(name="steel", E=211e9, G_s=81.2e9, rho=7810)
+    >>> shaft = [rs.ShaftElement(L=0.25, idl=0.0, odl=0.05, material=steel) for _ in range(4)]
+    >>> rotor = rs.Rotor(shaft, [], [rs.BearingElement(n=0, kxx=1e8),
+    ...                              rs.BearingElement(n=4, kxx=1e8)])
+    >>> s = static(rotor)
+    >>> s.free_rigid_motions
+    ('rotation about z', 'z (translation)')
+    >>> bool(np.allclose(s.bearing_forces[:, 1], 9.80665 * rotor.m / 2))
+    True
+    """
+    if not np.isfinite(speed):
+        raise ModelError(f"speed must be finite, got {speed!r}", "static")
+    if not np.isfinite(rigid_tol) or rigid_tol <= 0:
+        raise ModelError(f"rigid_tol must be > 0, got {rigid_tol!r}", "static")
+    system = as_system(rotor)
+    model = rotor if isinstance(rotor, Rotor) else None
+    g = 0.0 if gravity is None else float(gravity)
+    if not np.isfinite(g):
+        raise ModelError(f"must be finite or None, got {gravity!r}", "gravity")
+    unit = unit_direction(direction)
+    stats = Stats()
+    K = system.matrices(float(speed)).K
+    f, f_all = _applied_load(system, model, g, unit, loads)
+    rigid = free_rigid_motions(system, K, rigid_tol)
+    _check_equilibrium(rigid, f)
+    q_free, held = _solve_restrained(K, f, rigid, stats)
+    residual = float(np.linalg.norm(K @ q_free - f)) / max(float(np.linalg.norm(f)), 1e-300)
+    q = system.dof_map.expand(q_free)
+    post = _post_process(model, q, f_all, g, unit, float(speed)) if model else {}
+    extra: dict[str, Any] = {key: post.get(key) for key in _POST_KEYS}
+    names = system.dof_map.names()
+    return StaticResult(
+        displacement=q, load=f_all, dof_map=system.dof_map, nodes_pos=system.nodes_pos,
+        speed=float(speed), free_rigid_motions=rigid.labels,
+        restrained_dofs=tuple(names[system.dof_map.free[i]] for i in held), residual=residual,
+        options={"gravity": g, "direction": unit.tolist(),
+                 "loads": [tuple(x) for x in loads], "rigid_tol": rigid_tol},
+        stats=stats.finish(), summary=system.summary,
+        **extra,
+    )
+
+
+_POST_KEYS = ("bearing_nodes", "bearing_forces", "bearing_moments", "constraint_reactions",
+              "element_z", "shear_force", "bending_moment", "axial_force", "torque")
+
+
+def _applied_load(
+    system: RotorSystem, model: Rotor | None, g: float, unit: FloatArray,
+    loads: Sequence[tuple[int, str, float]],
+) -> tuple[FloatArray, FloatArray]:
+    """Load on the free DOFs and on all DOFs (gravity exact on fixed DOFs with a Rotor)."""
+    point = np.zeros(system.n_free)
+    if isinstance(loads, str) or not isinstance(loads, Sequence):
+        raise ModelError("give a list of (node, dof, value)", "loads")
+    for i, item in enumerate(loads):
+        if isinstance(item, str) or not isinstance(item, Sequence) or len(item) != 3:
+            raise ModelError(f"expected (node, dof, value), got {item!r}", f"loads[{i}]")
+        point += nodal_load(system, item[0], item[1], item[2], where=f"loads[{i}]")
+    f_all = system.dof_map.expand(point)
+    if g == 0.0:
+        return point, f_all
+    if model is None:
+        f = point + gravity_load(system, g, unit)
+        return f, system.dof_map.expand(f)
+    f_all += gravity_load_all_dofs(model, g, unit)
+    return f_all[system.dof_map.free], f_all
+
+
+@dataclass(frozen=True)
+class RigidMotions:
+    """Free rigid-body motions of the whole rotor.
+
+    ``fields`` (n_free, k) holds each motion on the free DOFs, normalised to a unit
+    translation [m] or a unit rotation [rad]; ``labels`` names them.
+    """
+
+    fields: FloatArray
+    labels: tuple[str, ...]
+
+
+def rigid_body_fields(system: RotorSystem) -> FloatArray:
+    """The 6 rigid motions of the whole rotor on all DOFs, shape ``(ndof, 6)``.
+
+    Columns: rotations about the x, y and z axes through ``z = 0`` (``uy = -z theta``,
+    ``rx = theta``; ``ux = z theta``, ``ry = theta``; ``rz = theta``), then unit
+    translations along x, y and z.
+
+    Examples
+    --------
+    >>> from rotorsim.model.material import steel
+    >>> from rotorsim.elements.shaft import ShaftElement
+    >>> from rotorsim.assembly.system import assemble
+    >>> R = rigid_body_fields(assemble(Rotor([ShaftElement(L=2.0, idl=0.0, odl=0.05,
+    ...                                                    material=steel)])))
+    >>> R[6:12, 0].tolist()   # rotation about x at the node z = 2 m
+    [0.0, -2.0, 0.0, 1.0, 0.0, 0.0]
+    """
+    z = np.asarray(system.nodes_pos, dtype=float)
+    fields = np.zeros((z.size, DOFS_PER_NODE, 6))
+    fields[:, 1, 0], fields[:, 3, 0] = -z, 1.0
+    fields[:, 0, 1], fields[:, 4, 1] = z, 1.0
+    fields[:, 5, 2] = 1.0
+    fields[:, [0, 1, 2], [3, 4, 5]] = 1.0
+    return fields.reshape(-1, 6)
+
+
+def free_rigid_motions(system: RotorSystem, K: sp.spmatrix, rigid_tol: float = 1e-10
+                       ) -> RigidMotions:
+    """Rigid-body motions ``r`` of the whole rotor with ``||K r|| <= tol ||K|| ||r||``.
+
+    The test is made on the orthonormalised span of :func:`rigid_body_fields` (restricted to
+    the free DOFs), so combinations such as a rotation about a single bearing are found.
+    The basis returned is in reduced row-echelon form over the named motions (rotations
+    first), which turns it into pure translations and rotations about a pivot.
+    """
+    R = rigid_body_fields(system)[system.dof_map.free]
+    U, S, Vt = np.linalg.svd(R, full_matrices=False)
+    keep = S > 1e-12 * S.max()
+    Q = U[:, keep]
+    both = np.vstack([K @ Q, K.T @ Q])
+    _, s, wt = np.linalg.svd(both, full_matrices=True)
+    s = np.concatenate([s, np.zeros(Q.shape[1] - s.size)])
+    null = wt[s <= rigid_tol * spl.norm(K)].T  # (m, k) in Q coordinates
+    if null.shape[1] == 0:
+        return RigidMotions(np.zeros((R.shape[0], 0)), ())
+    coef = Vt[keep].T @ (null / S[keep][:, None])  # (6, k) over the named motions
+    coef = _reduced_echelon(coef.T).T
+    labels = tuple(_label(c) for c in coef.T)
+    return RigidMotions(R @ coef, labels)
+
+
+def _reduced_echelon(rows: FloatArray) -> FloatArray:
+    """Reduced row-echelon form (leading entries 1) of a full-rank ``(k, 6)`` array."""
+    A = rows.copy()
+    r = 0
+    for col in range(A.shape[1]):
+        if r == A.shape[0]:
+            break
+        pivot = r + int(np.argmax(np.abs(A[r:, col])))
+        if abs(A[pivot, col]) <= 1e-9 * np.abs(A).max():
+            continue
+        A[[r, pivot]] = A[[pivot, r]]
+        A[r] /= A[r, col]
+        others = np.arange(A.shape[0]) != r
+        A[others] -= np.outer(A[others, col], A[r])
+        r += 1
+    A[np.abs(A) <= 1e-9] = 0.0
+    return A
+
+
+def _label(c: FloatArray) -> str:
+    """Name of a rigid motion with coefficients ``c`` over :data:`_MOTIONS`."""
+    nonzero = set(np.flatnonzero(c).tolist())
+    pivots = {0: (4, -1.0, "x"), 1: (3, 1.0, "y")}  # rotation -> (translation, sign, axis)
+    for rot, (trans, sign, axis) in pivots.items():
+        if nonzero and min(nonzero) == rot and nonzero <= {rot, trans}:
+            z0 = -sign * c[trans] / c[rot] if trans in nonzero else 0.0
+            return f"rotation about {axis} through z = {z0 + 0.0:.6g} m"
+    if len(nonzero) == 1:
+        return _MOTIONS[nonzero.pop()]
+    return " + ".join(f"{c[i]:.3g} * {_MOTIONS[i]}" for i in sorted(nonzero))
+
+
+def _check_equilibrium(rigid: RigidMotions, f: FloatArray, tol: float = 1e-9) -> None:
+    """Raise if the load does work on a free rigid motion (no equilibrium exists)."""
+    work = rigid.fields.T @ f
+    scale = np.linalg.norm(rigid.fields, axis=0) * np.linalg.norm(f)
+    bad = np.flatnonzero(np.abs(work) > tol * scale)
+    if not bad.size:
+        return
+    order = sorted(bad, key=lambda j: "translation" not in rigid.labels[j])
+    parts = []
+    for j in order:
+        translation = "translation" in rigid.labels[j]
+        kind, unit = ("load resultant", "N") if translation else ("load moment", "N m")
+        where = "in" if translation else "against"
+        parts.append(f"rotor has no support {where} {rigid.labels[j]}: {kind} "
+                     f"{work[j]:.6g} {unit} cannot be equilibrated")
+    raise ModelError("; ".join(parts) + "; add bearings", "static")
+
+
+def _solve_restrained(K: sp.spmatrix, f: FloatArray, rigid: RigidMotions, stats: Stats
+                      ) -> tuple[FloatArray, list[int]]:
+    """Solve ``K q = f`` holding one free DOF per free rigid motion at zero."""
+    fields = rigid.fields.copy()
+    held: list[int] = []
+    for j in range(fields.shape[1]):
+        col = np.abs(fields[:, j])
+        i = int(np.flatnonzero(col >= (1.0 - 1e-9) * col.max())[0])  # first largest entry
+        held.append(i)
+        fields[:, j + 1:] -= np.outer(fields[:, j] / fields[i, j], fields[i, j + 1:])
+    keep = np.setdiff1d(np.arange(K.shape[0]), held)
+    Kc = sp.csr_matrix(K)[keep][:, keep]
+    q = np.zeros(K.shape[0])
+    try:
+        q[keep] = factorize(Kc, stats=stats, where="static").solve(f[keep])
+    except ConvergenceError as exc:
+        raise ModelError(
+            "stiffness matrix is singular beyond the rigid-body motions of the whole rotor: "
+            "some node or housing has no support in some direction", "static") from exc
+    return q, held
+
+
+def _post_process(model: Rotor, q: FloatArray, f_all: FloatArray, g: float,
+                  unit: FloatArray, speed: float) -> dict[str, Any]:
+    """Bearing reactions, constraint reactions and shaft section forces from the elements."""
+    internal = np.zeros(model.ndof)  # K_full q assembled element by element
+    shaft = model.shaft_elements
+    mats = shaft_matrices(shaft)
+    nodes = np.array([el.nodes for el in shaft])
+    dofs = (DOFS_PER_NODE * nodes[:, :, None] + np.arange(DOFS_PER_NODE)).reshape(len(shaft), -1)
+    end_forces = np.einsum("eij,ej->ei", mats.K, q[dofs])
+    np.add.at(internal, dofs, end_forces)
+    if g != 0.0:
+        end_forces = end_forces - consistent_gravity(mats.M, g, unit)
+    sections = np.stack([-end_forces[:, :6], end_forces[:, 6:]], axis=1)  # (E, 2, 6)
+    b_nodes, b_forces = [], []
+    for b in model.bearing_elements:
+        bdofs = (DOFS_PER_NODE * np.asarray(b.nodes)[:, None] + np.arange(6)).ravel()
+        force = b.matrices(speed).K @ q[bdofs]
+        np.add.at(internal, bdofs, force)
+        b_nodes.append(b.n)
+        b_forces.append(-force[:6])
+    reactions = np.array(b_forces).reshape(-1, 6)
+    z = model.nodes_pos[nodes]
+    return {
+        "bearing_nodes": np.array(b_nodes, dtype=np.int64),
+        "bearing_forces": reactions[:, :3], "bearing_moments": reactions[:, 3:],
+        "constraint_reactions": internal - f_all,
+        "element_z": z, "shear_force": sections[..., 0:2], "axial_force": sections[..., 2],
+        "bending_moment": sections[..., 3:5], "torque": sections[..., 5],
+    }
+
