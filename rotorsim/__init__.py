@@ -31,8 +31,8 @@ from rotorsim.model.material import Material
 from rotorsim.model.rotor import Rotor
 from rotorsim.results.frequency_response import FrequencyResponseResult
 from rotorsim.results.modal import ModalResult
-from rotorsim.results.static import StaticResult
 from rotorsim.results.orbits import Ellipse, ellipse
+from rotorsim.results.static import StaticResult
 
 __version__ = "0.1.0"
 
@@ -44,8 +44,8 @@ __all__ = [
     "DofMap",
     "ElementMatrices",
     "Ellipse",
-    "Material",
     "FrequencyResponseResult",
+    "Material",
     "ModalResult",
     "ModelError",
     "PointMass",
