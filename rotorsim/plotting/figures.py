@@ -106,7 +106,73 @@ def mode_shape_figure(result: Any, ax: Any = None, *, mode: int = 0, view: str =
     return fig
 
 
+def bode_figure(result: Any, ax: Any = None, *, node: int | None = None,
+                dofs: tuple[str, ...] = ("ux", "uy"), input: int = 0, units: str = "rpm",
+                polar: bool = False, amplitude_units: str = "um") -> Any:
+    """Bode plot (amplitude and phase vs frequency) or polar plot of one node's response.
+
+    ``node`` defaults to the node with the largest response.
+    """
+    f = speed_factor(units)
+    scale = {"m": 1.0, "mm": 1e3, "um": 1e6}[amplitude_units]
+    if node is None:
+        amp = np.nan_to_num(np.abs(result.response[:, :, input]))
+        node = int(np.argmax(amp.max(axis=0).reshape(-1, 6)[:, :2].max(axis=1)))
+    x = result.frequencies * f
+    if polar:
+        fig, ax = _axes(ax, figsize=(6, 6))
+        for dof in dofs:
+            z = result.complex(node, dof, input) * scale
+            ax.plot(z.real, z.imag, "-", label=dof)
+            ax.plot(z.real[0], z.imag[0], "ko", ms=3)
+        ax.set_aspect("equal")
+        ax.axhline(0, color="k", lw=0.5)
+        ax.axvline(0, color="k", lw=0.5)
+        ax.set_xlabel(f"Re [{amplitude_units}]")
+        ax.set_ylabel(f"Im [{amplitude_units}]")
+        ax.set_title(f"polar plot, node {node}")
+        ax.legend(fontsize=8)
+        return fig
+    fig, (top, bottom) = plt.subplots(2, 1, sharex=True, figsize=(8, 6))
+    for dof in dofs:
+        top.semilogy(x, result.amplitude(node, dof, input) * scale, label=dof)
+        bottom.plot(x, np.degrees(np.unwrap(result.phase(node, dof, input))), label=dof)
+    top.set_ylabel(f"amplitude [{amplitude_units}]")
+    bottom.set_ylabel("phase [deg]")
+    bottom.set_xlabel(f"{'speed' if result.kind == 'unbalance' else 'frequency'} [{units}]")
+    top.set_title(f"{result.kind} response, node {node}")
+    for a in (top, bottom):
+        a.grid(alpha=0.3, which="both")
+        a.legend(fontsize=8)
+    return fig
+
+
+def static_figure(result: Any, ax: Any = None) -> Any:
+    """Static deflection, shear force and bending moment along the shaft."""
+    fig, axes = plt.subplots(3, 1, sharex=True, figsize=(8, 8))
+    n_shaft = result.summary.get("shaft_elements", len(result.nodes_pos) - 1) + 1
+    z = result.nodes_pos[:n_shaft]
+    for dof in ("ux", "uy"):
+        axes[0].plot(z, result.deflection(dof)[:n_shaft] * 1e6, "-o", ms=3, label=dof)
+    axes[0].set_ylabel("deflection [um]")
+    if result.shear_force is not None:
+        ez = result.element_z.ravel()
+        for i, name in enumerate(("x", "y")):
+            axes[1].plot(ez, result.shear_force[..., i].ravel(), label=f"V{name}")
+            axes[2].plot(ez, result.bending_moment[..., i].ravel(), label=f"M{name}")
+    axes[1].set_ylabel("shear force [N]")
+    axes[2].set_ylabel("bending moment [N m]")
+    axes[2].set_xlabel("z [m]")
+    axes[0].set_title("static deflection and section forces")
+    for a in axes:
+        a.grid(alpha=0.3)
+        a.legend(fontsize=8)
+    return fig
+
+
 DRAWERS: dict[str, Callable[..., Any]] = {
+    "FrequencyResponseResult": bode_figure,
+    "StaticResult": static_figure,
     "CampbellResult": campbell_figure,
     "ModalResult": mode_shape_figure,
 }

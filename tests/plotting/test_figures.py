@@ -1,0 +1,60 @@
+"""Every result type draws its standard figure (Agg backend, no screen)."""
+
+from __future__ import annotations
+
+import matplotlib
+
+matplotlib.use("Agg")
+
+import numpy as np  # noqa: E402
+import pytest  # noqa: E402
+
+import rotorsim as rs  # noqa: E402
+from rotorsim.model.material import steel  # noqa: E402
+from rotorsim.plotting import plot  # noqa: E402
+
+
+@pytest.fixture(scope="module")
+def rotor():
+    shaft = [rs.ShaftElement(L=0.25, idl=0.0, odl=0.05, material=steel) for _ in range(6)]
+    disks = [rs.DiskElement.from_geometry(2, steel, 0.07, 0.05, 0.28),
+             rs.DiskElement.from_geometry(4, steel, 0.07, 0.05, 0.35)]
+    bearings = [rs.BearingElement(n=0, kxx=1e6, kyy=1.2e6, cxx=200.0),
+                rs.BearingElement(n=6, kxx=1e6, kyy=1.2e6, cxx=200.0)]
+    return rs.Rotor(shaft, disks, bearings)
+
+
+def _axes_count(fig):
+    return len(fig.axes)
+
+
+def test_mode_shape_2d_and_3d(rotor):
+    m = rs.modal(rotor, speed=300.0, num_modes=4)
+    assert _axes_count(plot(m, mode=1)) == 1
+    assert _axes_count(plot(m, mode=1, view="3d")) == 1
+
+
+def test_bode_and_polar(rotor):
+    u = rs.unbalance_response(rotor, np.linspace(10, 600, 60), [(2, 1e-4, 0.0)])
+    fig = plot(u, node=2)
+    assert _axes_count(fig) == 2
+    lines = fig.axes[0].get_lines()
+    assert np.allclose(lines[0].get_ydata(), u.amplitude(2, "ux") * 1e6)
+    assert _axes_count(plot(u, polar=True)) == 1
+
+
+def test_static(rotor):
+    s = rs.static(rotor)
+    fig = plot(s)
+    assert _axes_count(fig) == 3
+
+
+def test_unknown_result_type():
+    with pytest.raises(TypeError, match="no standard figure for int"):
+        plot(3)
+
+
+def test_bad_units(rotor):
+    m = rs.modal(rotor, num_modes=2)
+    with pytest.raises(TypeError, match="unknown units 'furlong'"):
+        plot(m, units="furlong")
