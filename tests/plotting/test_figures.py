@@ -2,16 +2,12 @@
 
 from __future__ import annotations
 
-import matplotlib
+import numpy as np
+import pytest
 
-matplotlib.use("Agg")
-
-import numpy as np  # noqa: E402
-import pytest  # noqa: E402
-
-import rotorsim as rs  # noqa: E402
-from rotorsim.model.material import steel  # noqa: E402
-from rotorsim.plotting import plot  # noqa: E402
+import rotorsim as rs
+from rotorsim.model.material import steel
+from rotorsim.plotting import plot
 
 
 @pytest.fixture(scope="module")
