@@ -17,6 +17,9 @@ All quantities are SI (m, kg, s, N, rad, rad/s). Importing rotorsim pulls in num
 scipy only; plotting imports matplotlib lazily.
 """
 
+from rotorsim.analyses.campbell import campbell
+from rotorsim.analyses.critical_speed_map import critical_speed_map
+from rotorsim.analyses.critical_speeds import critical_speeds
 from rotorsim.analyses.frequency_response import frequency_response, unbalance_response
 from rotorsim.analyses.modal import modal
 from rotorsim.analyses.static import static
@@ -29,6 +32,9 @@ from rotorsim.elements.shaft import ShaftElement, cowper_shear_coefficient
 from rotorsim.errors import ConvergenceError, ModelError, RotorsimError, Status
 from rotorsim.model.material import Material
 from rotorsim.model.rotor import Rotor
+from rotorsim.plotting import plot
+from rotorsim.results.campbell import CampbellResult
+from rotorsim.results.critical_speeds import CriticalSpeedMapResult, CriticalSpeeds
 from rotorsim.results.frequency_response import FrequencyResponseResult
 from rotorsim.results.modal import ModalResult
 from rotorsim.results.orbits import Ellipse, ellipse
@@ -39,7 +45,10 @@ __version__ = "0.1.0"
 __all__ = [
     "DOF_NAMES",
     "BearingElement",
+    "CampbellResult",
     "ConvergenceError",
+    "CriticalSpeedMapResult",
+    "CriticalSpeeds",
     "DiskElement",
     "DofMap",
     "ElementMatrices",
@@ -57,10 +66,14 @@ __all__ = [
     "Status",
     "SystemMatrices",
     "assemble",
+    "campbell",
     "cowper_shear_coefficient",
+    "critical_speed_map",
+    "critical_speeds",
     "ellipse",
     "frequency_response",
     "modal",
+    "plot",
     "static",
     "unbalance_response",
 ]

@@ -7,17 +7,14 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from rotorsim.analyses.mode_shapes import circularize, clusters, mode_kind, whirl_of
 from rotorsim.analyses.system_input import as_system
 from rotorsim.assembly.system import RotorSystem
 from rotorsim.errors import ConvergenceError, ModelError
 from rotorsim.model.rotor import Rotor
 from rotorsim.results.modal import ModalResult
-from rotorsim.results.orbits import ellipse
 from rotorsim.solvers.eigen import quadratic_eigen
 from rotorsim.solvers.stats import Stats
-
-_LATERAL, _AXIAL, _TORSION = [0, 1, 3, 4], [2], [5]
-_KINDS = ("lateral", "axial", "torsional")
 
 
 def modal(
@@ -93,7 +90,11 @@ def modal(
         raise ConvergenceError("no elastic mode found", "modal", residual=None)
     elastic = elastic[:num_modes]
     lam = pairs.values[elastic]
-    shapes = _normalise(system.dof_map.expand(pairs.vectors[:, elastic]))
+    shapes = system.dof_map.expand(pairs.vectors[:, elastic])
+    groups = clusters(lam)
+    if groups:  # repeated eigenvalues: report circular forward/backward modes
+        shapes = circularize(shapes, groups)
+    shapes = _normalise(shapes)
     whirl, ratio, kind = _classify(system, shapes)
     rigid_shapes = _rigid_basis(system.dof_map.expand(pairs.vectors[:, rigid]))
     wn = np.abs(lam)
@@ -146,29 +147,12 @@ def _normalise(shapes: NDArray[np.complex128]) -> NDArray[np.complex128]:
     return out
 
 
-def _classify(system: RotorSystem, shapes):
+def _classify(system: RotorSystem, shapes: NDArray[np.complex128]):
     mass = system.dof_map.expand(system.pattern.matrix(system.structural_mass).diagonal())
-    energy = (np.abs(shapes) ** 2 * mass[:, None]).reshape(-1, 6, shapes.shape[1])
-    groups = np.stack([energy[:, g, :].sum(axis=(0, 1)) for g in (_LATERAL, _AXIAL, _TORSION)])
-    kinds = tuple(_KINDS[i] for i in np.argmax(groups, axis=0))
-    nodes = shapes.reshape(-1, 6, shapes.shape[1])
-    orbit = ellipse(nodes[:, 0, :], nodes[:, 1, :])
-    size = orbit.major
-    significant = size > 1e-3 * size.max(axis=0, keepdims=True)
-    weight = np.where(significant, size, 0.0)
-    ratio = (weight * orbit.whirl_ratio).sum(axis=0) / np.maximum(weight.sum(axis=0), 1e-300)
-    whirl = []
-    for j, kind in enumerate(kinds):
-        r = orbit.whirl_ratio[significant[:, j], j]
-        if kind != "lateral":
-            whirl.append("none")
-        elif np.all(r > 1e-6):
-            whirl.append("forward")
-        elif np.all(r < -1e-6):
-            whirl.append("backward")
-        else:
-            whirl.append("mixed")
-    return tuple(whirl), ratio, kinds
+    kind = mode_kind(mass, shapes)
+    whirl, ratio = whirl_of(shapes)
+    whirl = np.where(kind == "lateral", whirl, "none")
+    return tuple(str(w) for w in whirl), ratio, tuple(str(k) for k in kind)
 
 
 def _rigid_basis(vectors: NDArray[np.complex128]) -> NDArray[np.float64]:

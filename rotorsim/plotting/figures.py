@@ -170,7 +170,32 @@ def static_figure(result: Any, ax: Any = None) -> Any:
     return fig
 
 
+def critical_speed_map_figure(result: Any, ax: Any = None, *, units: str = "rpm") -> Any:
+    """Critical speeds vs support stiffness (log-log), bearing curves and intersections."""
+    f = speed_factor(units)
+    fig, ax = _axes(ax, figsize=(7, 5.5))
+    for j in range(result.critical_speeds.shape[1]):
+        ax.loglog(result.stiffness, result.critical_speeds[:, j] * f, "-", lw=1.5,
+                  label=f"mode {j + 1}")
+    for i, b in enumerate(result.curve_bearings):
+        for name, values, style in (("kxx", result.bearing_kxx, "--"),
+                                    ("kyy", result.bearing_kyy, ":")):
+            ax.loglog(values[i], result.speeds * f, style, color="k", lw=1,
+                      label=f"bearing {b} {name}")
+    crossings = result.intersections
+    if len(crossings.speed):
+        ax.loglog(crossings.stiffness, crossings.speed * f, "o", mfc="none", mec="tab:red",
+                  ms=8, label="intersections")
+    ax.set_xlabel("support stiffness [N/m]")
+    ax.set_ylabel(f"critical speed [{units}]")
+    ax.set_title("undamped critical speed map")
+    ax.grid(alpha=0.3, which="both")
+    ax.legend(fontsize=7)
+    return fig
+
+
 DRAWERS: dict[str, Callable[..., Any]] = {
+    "CriticalSpeedMapResult": critical_speed_map_figure,
     "FrequencyResponseResult": bode_figure,
     "StaticResult": static_figure,
     "CampbellResult": campbell_figure,

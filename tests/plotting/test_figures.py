@@ -54,3 +54,24 @@ def test_bad_units(rotor):
     m = rs.modal(rotor, num_modes=2)
     with pytest.raises(TypeError, match="unknown units 'furlong'"):
         plot(m, units="furlong")
+
+
+def test_campbell_with_critical_speeds(rotor):
+    c = rs.campbell(rotor, np.linspace(0, 1000, 21), num_modes=6)
+    fig = plot(c, units="rad/s")
+    ax = fig.axes[0]
+    crit = c.critical_speeds(1)
+    assert len(crit.speed) > 0
+    texts = [t.get_text() for t in ax.texts]
+    assert f"{crit.speed[0]:.0f}" in texts
+    assert len(plot(c, color_by="log_dec").axes) == 2  # with colour bar
+
+
+def test_critical_speed_map_with_bearing_curves():
+    shaft = [rs.ShaftElement(L=0.25, idl=0.0, odl=0.05, material=steel) for _ in range(4)]
+    table = {"kxx": [1e6, 1e8], "frequency": [0.0, 2000.0]}
+    rotor = rs.Rotor(shaft, [], [rs.BearingElement(n=0, **table), rs.BearingElement(n=4, **table)])
+    res = rs.critical_speed_map(rotor, (1e5, 1e9), num_points=12, num_modes=2)
+    fig = plot(res)
+    labels = [line.get_label() for line in fig.axes[0].get_lines()]
+    assert "bearing 0 kxx" in labels and "intersections" in labels

@@ -1,0 +1,256 @@
+"""Exact undamped synchronous critical speeds and the critical-speed map.
+
+With damping dropped and the spin tied to the whirl frequency, ``W = w / k`` for an
+excitation of order ``k``, the harmonic motion ``q = Re(x e^{i w t})`` of
+``M q'' + W G q' + K q = 0`` satisfies
+
+    ``(K - w^2 M + i w W G) x = (K - w^2 (M - (i / k) G)) x = 0``,
+
+a linear generalised eigenproblem in ``mu = w^2`` whose right-hand matrix
+``M - (i / k) G`` is Hermitian (``G`` is real skew-symmetric). Its real positive
+eigenvalues give the critical speeds ``W = sqrt(mu) / k`` directly, with no speed grid.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from dataclasses import dataclass
+from typing import Any, Literal
+
+import numpy as np
+import scipy.linalg as sl
+import scipy.sparse as sp
+import scipy.sparse.linalg as spl
+from numpy.typing import ArrayLike, NDArray
+from scipy.optimize import brentq
+
+from rotorsim.analyses.mode_shapes import circularize, clusters, mode_kind, whirl_of
+from rotorsim.analyses.system_input import as_system
+from rotorsim.assembly.system import RotorSystem
+from rotorsim.errors import ConvergenceError, ModelError
+from rotorsim.model.rotor import Rotor
+from rotorsim.results.critical_speeds import (
+    CriticalSpeeds,
+    check_harmonic,
+    check_whirl_filter,
+)
+from rotorsim.solvers.eigen import DENSE_EIGEN_THRESHOLD
+from rotorsim.solvers.linear import factorize
+from rotorsim.solvers.stats import Stats
+
+FloatArray = NDArray[np.float64]
+ComplexArray = NDArray[np.complex128]
+
+
+@dataclass(frozen=True, eq=False)
+class _Modes:
+    """Undamped synchronous modes with the bearing coefficients frozen at one speed."""
+
+    w: FloatArray            # whirl frequencies [rad/s]
+    shapes: ComplexArray     # (ndof, m)
+    whirl: NDArray[np.str_]
+    kind: NDArray[np.str_]
+
+    def take(self, index: ArrayLike) -> _Modes:
+        i = np.asarray(index, dtype=np.int64)
+        return _Modes(self.w[i], self.shapes[:, i], self.whirl[i], self.kind[i])
+
+    @staticmethod
+    def join(parts: list[_Modes], ndof: int) -> _Modes:
+        if not parts:
+            return _Modes(np.zeros(0), np.zeros((ndof, 0), complex), np.zeros(0, "<U9"),
+                          np.zeros(0, "<U9"))
+        return _Modes(*(np.concatenate([getattr(p, f) for p in parts], axis=-1)
+                        for f in ("w", "shapes", "whirl", "kind")))
+
+
+def critical_speeds(
+    rotor: Rotor | RotorSystem,
+    harmonic: float = 1,
+    num_modes: int = 8,
+    *,
+    whirl: Literal["forward", "backward"] | None = None,
+    sparse: bool | None = None,
+    sigma: float = -1.0,
+) -> CriticalSpeeds:
+    """Exact undamped critical speeds of order ``harmonic``, without a speed grid.
+
+    Solves ``K x = w^2 (M - (i/k) G) x`` (damping dropped, ``k = harmonic``) and returns
+    ``W = w / k`` for the real positive finite eigenvalues, lowest first. Dense LAPACK
+    (QZ) for small models; for large ones, ARPACK in shift-invert mode about ``sigma``
+    [rad^2/s^2] with one sparse LU of ``K - sigma (M - (i/k) G)``. Forward and backward
+    modes are told apart by the whirl of their orbits (:func:`~rotorsim.results.orbits.ellipse`);
+    degenerate pairs (non-gyroscopic rotors) are first split into circular modes.
+    Cross-coupled stiffness (``kxy != kyx``) makes the pencil non-Hermitian: eigenvalues
+    that are not real are dropped (such modes have no undamped synchronous crossing).
+
+    Bearings tabulated against speed make ``K`` and ``M`` depend on ``W``: the ``j``-th
+    critical speed is then the fixed point ``W = Wc_j(W)``, where ``Wc_j(W)`` is the
+    ``j``-th critical speed with the coefficients frozen at ``W``. It is found by Brent's
+    method on ``[0, W_hi]`` (``W_hi`` beyond the end of the bearing tables, where the
+    coefficients are held constant, so the bracket always holds). One fixed point is
+    returned per ``j``, even if ``Wc_j(W) - W`` changes sign more than once.
+
+    Parameters
+    ----------
+    rotor : Rotor or RotorSystem
+        The model; damping coefficients are ignored.
+    harmonic : float
+        Excitation order ``k`` > 0 (1: synchronous unbalance).
+    num_modes : int
+        Number of critical speeds returned (after the ``whirl`` filter).
+    whirl : {"forward", "backward"}, optional
+        Keep only modes that whirl this way (forward-only is what unbalance excites on
+        isotropic supports). ``None`` keeps all, axial and torsional modes included.
+    sparse : bool, optional
+        Force the sparse or dense eigen solver; default sparse above 150 free DOFs.
+    sigma : float
+        Shift [rad^2/s^2] of the sparse solver (slightly negative: rigid-body modes).
+
+    Returns
+    -------
+    CriticalSpeeds
+        Sorted by speed, with ``mode`` the rank, ``log_dec`` NaN (undamped) and the mode
+        shapes at the critical speeds.
+
+    References
+    ----------
+    Friswell, Penny, Garvey, Lees (2010), *Dynamics of Rotating Machines*: undamped
+    synchronous critical speeds from the eigenproblem with ``W = w`` substituted.
+
+    Examples
+    --------
+    >>> import rotorsim as rs
+    >>> steel = rs.Material(name="steel", E=211e9, G_s=81.2e9, rho=7810)
+    >>> shaft = [rs.ShaftElement(L=0.25, idl=0.0, odl=0.05, material=steel) for _ in range(6)]
+    >>> disk = rs.DiskElement.from_geometry(3, steel, width=0.07, i_d=0.05, o_d=0.28)
+    >>> bearings = [rs.BearingElement(n=0, kxx=1e6), rs.BearingElement(n=6, kxx=1e6)]
+    >>> cs = critical_speeds(rs.Rotor(shaft, [disk], bearings), num_modes=2, whirl="forward")
+    >>> cs.whirl.tolist(), bool(cs.speed[0] < cs.speed[1])
+    (['forward', 'forward'], True)
+    """
+    stats = Stats()
+    result = solve_critical_speeds(as_system(rotor), harmonic, num_modes, whirl, True, sparse,
+                              sigma, stats)
+    return dataclasses.replace(result, stats=stats.finish())
+
+
+def solve_critical_speeds(system: RotorSystem, harmonic: float, num_modes: int,
+                          whirl: str | None, gyroscopic: bool, sparse: bool | None,
+                          sigma: float, stats: Stats) -> CriticalSpeeds:
+    """Undamped critical speeds of an assembled system (the engine of :func:`critical_speeds`
+    and of the critical-speed map); ``gyroscopic=False`` drops ``G``."""
+    k = check_harmonic(harmonic, "critical_speeds")
+    check_whirl_filter(whirl, "critical_speeds")
+    if isinstance(num_modes, bool) or not isinstance(num_modes, int | np.integer) \
+            or num_modes < 1:
+        raise ModelError(f"num_modes must be an integer >= 1, got {num_modes!r}",
+                         "critical_speeds")
+
+    def solve(speed: float) -> _Modes:
+        return _lowest(system, speed, k, gyroscopic, num_modes, whirl, sparse, sigma, stats)
+
+    if system.variable_bearings and gyroscopic:
+        modes = _fixed_points(system, solve, k, num_modes)
+        method = "fixed point W = Wc(W) on the bearing tables (Brent)"
+    else:
+        modes, method = solve(0.0), "direct"
+    speeds, n = modes.w / k, modes.w.size
+    return CriticalSpeeds(
+        speed=speeds, frequency=k * speeds, mode=np.arange(n, dtype=np.int64),
+        whirl=modes.whirl, kind=modes.kind, log_dec=np.full(n, np.nan), harmonic=k,
+        mode_shapes=modes.shapes, dof_map=system.dof_map,
+        options={"num_modes": num_modes, "whirl": whirl, "sparse": sparse, "sigma": sigma,
+                 "gyroscopic": gyroscopic, "bearings": method},
+        summary=system.summary,
+    )
+
+
+def _lowest(system: RotorSystem, speed: float, k: float, gyroscopic: bool, count: int,
+            whirl: str | None, sparse: bool | None, sigma: float, stats: Stats) -> _Modes:
+    """The ``count`` lowest synchronous modes passing the whirl filter (coefficients at
+    ``speed``); more eigenvalues are requested until enough are found or none is left."""
+    n = system.n_free
+    use_sparse = n > DENSE_EIGEN_THRESHOLD if sparse is None else sparse
+    n_eig = min(2 * count + 10, n - 2)
+    while True:
+        modes = _frozen_modes(system, speed, k, gyroscopic, n_eig if use_sparse else None,
+                              sigma, stats)
+        keep = np.ones(modes.w.size, dtype=bool)
+        if whirl == "forward" and not gyroscopic:  # x/y line modes count, one per pair
+            keep = (modes.kind == "lateral") & (modes.whirl != "backward")
+        elif whirl is not None:
+            keep = modes.whirl == whirl
+        index = np.flatnonzero(keep)[:count]
+        if index.size >= count or not use_sparse or n_eig >= n - 2:
+            return modes.take(index)
+        n_eig = min(2 * n_eig, n - 2)
+
+
+def _frozen_modes(system: RotorSystem, speed: float, k: float, gyroscopic: bool,
+                  n_eig: int | None, sigma: float, stats: Stats) -> _Modes:
+    """All real positive eigenvalues (dense, ``n_eig=None``) or those among the ``n_eig``
+    nearest ``sigma`` of ``K x = mu (M - (i/k) G) x``, with classified shapes."""
+    mats = system.matrices(speed)
+    K = mats.K.astype(complex)
+    B = (mats.M - (1j / k) * mats.G) if gyroscopic else mats.M.astype(complex)
+    stats.eigen_solves += 1
+    if n_eig is None:
+        mu, vecs = sl.eig(K.toarray(), B.toarray(), check_finite=False)
+        complete = np.ones(mu.size, dtype=bool)
+    else:
+        mu, vecs = _shift_invert(K, B, n_eig, sigma, stats)
+        radius = np.abs(mu - sigma)  # a cluster cut at the edge of the window is dropped
+        complete = radius < radius.max() * (1.0 - 10 * 1e-6)
+    diag_k, diag_m = np.abs(mats.K.diagonal()), mats.M.diagonal()
+    mu_rigid = (1e-6 * np.sqrt(diag_k.max() / diag_m.max())) ** 2
+    finite = np.isfinite(mu)
+    real = finite & (np.abs(mu.imag) <= 1e-6 * np.abs(np.where(finite, mu, 0)))
+    keep = np.flatnonzero(real & (mu.real > mu_rigid) & complete)
+    keep = keep[np.argsort(mu.real[keep], kind="stable")]
+    mu, shapes = mu.real[keep], system.dof_map.expand(vecs[:, keep])
+    shapes = circularize(shapes, clusters(mu))
+    kind = mode_kind(system.dof_map.expand(diag_m), shapes)
+    whirl = np.where(kind == "lateral", whirl_of(shapes)[0], "none").astype("<U9")
+    return _Modes(np.sqrt(mu), shapes, whirl, kind)
+
+
+def _shift_invert(K: sp.csr_matrix, B: sp.csr_matrix, n_eig: int, sigma: float,
+                  stats: Stats) -> tuple[ComplexArray, ComplexArray]:
+    n = K.shape[0]
+    lu = factorize((K - sigma * B).tocsc(), stats=stats, where="critical speeds shift-invert")
+    op = spl.LinearOperator((n, n), matvec=lambda x: lu.solve(B @ x), dtype=complex)
+    try:
+        nu, vecs = spl.eigs(op, k=n_eig, which="LM", ncv=min(n, max(2 * n_eig + 1, 40)),
+                            tol=1e-12, maxiter=5000)
+    except spl.ArpackNoConvergence as exc:
+        raise ConvergenceError(f"ARPACK did not converge ({exc})", "critical_speeds") from exc
+    stats.iterations += 1
+    return sigma + 1.0 / nu, vecs
+
+
+def _fixed_points(system: RotorSystem, solve: Any, k: float, num_modes: int) -> _Modes:
+    cache: dict[float, _Modes] = {}
+
+    def frozen(speed: float) -> _Modes:
+        if speed not in cache:
+            cache[speed] = solve(speed)
+        return cache[speed]
+
+    def gap(speed: float, j: int) -> float:
+        w = frozen(speed).w
+        return float(w[j] / k - speed) if j < w.size else -speed
+
+    end = max(float(b.frequency[-1]) for _, b in system.variable_bearings
+              if b.frequency is not None)
+    found = []
+    for j in range(min(num_modes, frozen(0.0).w.size, frozen(end).w.size)):
+        high = max(end, frozen(end).w[j] / k) * 1.001 + 1e-9
+        root = brentq(gap, 0.0, high, args=(j,), xtol=1e-12 * high, rtol=1e-12)
+        if abs(gap(root, j)) > 1e-6 * max(root, 1.0):
+            raise ConvergenceError(f"critical speed {j} jumps at {root:.6g} rad/s: no fixed "
+                                   "point (mode order changes there)", "critical_speeds",
+                                   residual=abs(gap(root, j)))
+        found.append(frozen(root).take([j]))
+    modes = _Modes.join(found, system.dof_map.ndof)
+    return modes.take(np.argsort(modes.w, kind="stable"))
