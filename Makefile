@@ -14,7 +14,7 @@ $(STAMP): pyproject.toml | $(PY)
 	touch $(STAMP)
 
 run: $(STAMP)
-	MPLBACKEND=Agg $(PY) -m rotorsim.cli run models/default.toml
+	MPLBACKEND=Agg $(PY) examples/showcase.py
 
 test: $(STAMP)
 	MPLBACKEND=Agg $(PY) -m ruff check rotorsim tests benchmarks examples

@@ -103,7 +103,8 @@ def critical_speeds(
         Keep only modes that whirl this way (forward-only is what unbalance excites on
         isotropic supports). ``None`` keeps all, axial and torsional modes included.
     sparse : bool, optional
-        Force the sparse or dense eigen solver; default sparse above 150 free DOFs.
+        Force the sparse or dense eigen solver; default sparse above
+        ``DENSE_EIGEN_THRESHOLD`` free DOFs.
     sigma : float
         Shift [rad^2/s^2] of the sparse solver (slightly negative: rigid-body modes).
 

@@ -13,7 +13,7 @@ from rotorsim.assembly.system import RotorSystem
 from rotorsim.errors import ConvergenceError, ModelError
 from rotorsim.model.rotor import Rotor
 from rotorsim.results.modal import ModalResult
-from rotorsim.solvers.eigen import quadratic_eigen
+from rotorsim.solvers.eigen import DENSE_EIGEN_THRESHOLD, quadratic_eigen
 from rotorsim.solvers.stats import Stats
 
 
@@ -101,9 +101,9 @@ def modal(
     wd = np.abs(lam.imag)
     with np.errstate(divide="ignore", invalid="ignore"):
         log_dec = np.where(wd > 0, -2.0 * np.pi * lam.real / wd, np.inf)
+    use_sparse = n > DENSE_EIGEN_THRESHOLD if sparse is None else sparse
     options: dict[str, Any] = {"num_modes": num_modes, "sigma": sigma, "rigid_tol": tol,
-                               "solver": "sparse" if (sparse or (sparse is None and n > 150))
-                               else "dense"}
+                               "solver": "sparse" if use_sparse else "dense"}
     return ModalResult(
         speed=float(speed), eigenvalues=lam, wn=wn, wd=wd,
         damping_ratio=-lam.real / wn, log_dec=log_dec,

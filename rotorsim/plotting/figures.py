@@ -55,10 +55,17 @@ def campbell_figure(result: Any, ax: Any = None, *, units: str = "rpm",
         ax.plot(speeds, k * speeds, "k--", lw=1, label=f"{k}X")
         if annotate:
             crit = result.critical_speeds(harmonic=k)
-            for s, w in zip(crit.speed * f, crit.frequency * f, strict=True):
-                ax.plot(s, w, "o", mfc="none", mec="k", ms=9)
-                ax.annotate(f"{s:.0f}", (s, w), textcoords="offset points", xytext=(4, -12),
-                            fontsize=8)
+            span = float(speeds.max() - speeds.min()) or 1.0
+            groups: list[list[float]] = []  # crossings closer than 3 % of the axis share a label
+            for s in np.sort(crit.speed * f):
+                if groups and s - groups[-1][-1] < 0.03 * span:
+                    groups[-1].append(s)
+                else:
+                    groups.append([s])
+            ax.plot(crit.speed * f, crit.frequency * f, "o", mfc="none", mec="k", ms=9)
+            for g in groups:
+                ax.annotate("/".join(f"{s:.0f}" for s in g), (g[0], k * g[0]),
+                            textcoords="offset points", xytext=(4, -12), fontsize=8)
     ax.set_ylim(0, top)
     ax.set_xlim(speeds.min(), speeds.max())
     ax.set_xlabel(f"rotor speed [{units}]")

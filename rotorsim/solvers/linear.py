@@ -76,8 +76,7 @@ def factorize(
         with warnings.catch_warnings():  # singularity is reported below as ConvergenceError
             warnings.simplefilter("ignore", sl.LinAlgWarning)
             lu, piv = sl.lu_factor(dense, check_finite=False)
-        d = np.abs(np.diag(lu))
-        if not np.all(np.isfinite(d)) or d.min() <= 1e-14 * max(d.max(), 1e-300):
+        if _reciprocal_condition(dense, lu) < np.finfo(float).eps:
             raise ConvergenceError("matrix is singular to working precision", where)
         return Factorization(n, _dense=(lu, piv), _stats=stats)
     try:
@@ -85,3 +84,13 @@ def factorize(
     except RuntimeError as exc:  # SuperLU: "Factor is exactly singular"
         raise ConvergenceError(f"matrix is singular ({exc})", where) from exc
     return Factorization(n, _sparse=lu_sparse, _stats=stats)
+
+
+def _reciprocal_condition(A: NDArray, lu: NDArray) -> float:
+    """LAPACK estimate of ``1 / cond_1(A)`` from its LU factors (0 for a zero pivot)."""
+    d = np.abs(np.diag(lu))
+    if not np.all(np.isfinite(d)) or d.min() == 0.0:
+        return 0.0
+    (gecon,) = sl.get_lapack_funcs(("gecon",), (lu,))
+    rcond, _ = gecon(lu, np.abs(A).sum(axis=0).max(), norm="1")
+    return float(rcond)

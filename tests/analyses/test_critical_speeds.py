@@ -105,7 +105,8 @@ def test_accepts_an_assembled_system() -> None:
     rotor = two_disk_rotor(6)
     a = critical_speeds(rotor, 1, num_modes=4)
     b = critical_speeds(rs.assemble(rotor), 1, num_modes=4)
-    np.testing.assert_allclose(a.speed, b.speed, rtol=1e-12)
+    # the same model assembled twice: equal up to LAPACK round-off
+    np.testing.assert_allclose(a.speed, b.speed, rtol=1e-10)
 
 
 @pytest.mark.parametrize(
