@@ -19,7 +19,7 @@ run: $(STAMP)
 test: $(STAMP)
 	MPLBACKEND=Agg $(PY) -m ruff check rotorsim tests benchmarks examples
 	$(PY) -m mypy
-	MPLBACKEND=Agg $(PY) -m pytest -q
+	OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1 MPLBACKEND=Agg $(PY) -m pytest -q
 
 lint: $(STAMP)
 	$(PY) -m ruff check rotorsim tests benchmarks examples

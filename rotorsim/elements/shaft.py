@@ -11,9 +11,13 @@ displacement and quadratic rotation fields that depend on the shear parameter
 For a uniform element these fields solve the static Timoshenko equations exactly, so
 the stiffness matrix is exact and the mass, rotary-inertia and gyroscopic matrices are the
 classical consistent ones (Friswell et al. 2010, section 5.4). For a tapered element the
-section properties vary along the element and every matrix is integrated by 6-point
-Gauss-Legendre quadrature, which is exact for the polynomial integrands of a linear taper
-in diameter; ``Phi`` is taken from the element-average ``I`` and ``A``.
+bending stiffness is the inverse of the exact cantilever flexibility of the frustum
+(:mod:`rotorsim.elements.beam_flexibility`), so it stays statically exact; the other
+matrices are integrated over the varying section by 6-point Gauss-Legendre quadrature
+(exact for a linear taper in diameter) with the interpolation at the shear parameter
+``Phi = 4 f_shear / f_bending`` of the same flexibilities. With shear the frequencies
+converge at order 2 in the element length (the shear strain is constant per element),
+at order 4 without (docs/validation.md, case 1).
 
 All matrices are computed for a batch of elements at once (:func:`shaft_matrices`).
 """
@@ -28,6 +32,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from rotorsim.elements.base import ElementMatrices, FloatArray, check_finite
+from rotorsim.elements.beam_flexibility import XI_FLEX, plane_bending_stiffness
 from rotorsim.errors import ModelError
 from rotorsim.model.material import Material
 
@@ -206,32 +211,27 @@ def shaft_matrices(elements: Sequence[ShaftElement]) -> ElementMatrices:
 
 def _batch_properties(elements: Sequence[ShaftElement]) -> dict[str, FloatArray]:
     geometry = np.array([(e.idl, e.odl, e.idr, e.odr) for e in elements], dtype=float)
-    xi = _XI[None, :]
-    di = geometry[:, [0]] + (geometry[:, [2]] - geometry[:, [0]]) * xi
-    do = geometry[:, [1]] + (geometry[:, [3]] - geometry[:, [1]]) * xi
-    area = math.pi / 4.0 * (do**2 - di**2)
-    inertia = math.pi / 64.0 * (do**4 - di**4)
-    ratio = di / do
+    area, inertia, _ = _sections(geometry, _XI)
 
     def col(fn):  # per-element scalar as a column (E, 1)
         return np.array([fn(el) for el in elements], dtype=float)[:, None]
 
-    E, G, rho = col(lambda e: e.material.E), col(lambda e: e.material.G_s), col(
-        lambda e: e.material.rho
-    )
+    E, G, rho = (col(lambda e, k=k: getattr(e.material, k)) for k in ("E", "G_s", "rho"))
     nu = col(lambda e: e.material.nu)
     given = col(lambda e: e.shear_coefficient if e.shear_coefficient is not None else np.nan)
-    kappa = np.where(np.isnan(given), cowper_shear_coefficient(nu, ratio), given)
     length = col(lambda e: e.L)[:, 0]
-    shear_on = col(lambda e: float(e.shear_effects))[:, 0]
-    mean_i = inertia @ _WQ
-    mean_ka = (kappa * area) @ _WQ
-    phi = shear_on * 12.0 * E[:, 0] * mean_i / (G[:, 0] * mean_ka * length**2)
+    shear_on = col(lambda e: float(e.shear_effects))
+
+    def kappa(r):
+        return np.where(np.isnan(given), cowper_shear_coefficient(nu, r), given)
+
+    area_f, inertia_f, ratio_f = _sections(geometry, XI_FLEX)
+    inv_kga = shear_on / (kappa(ratio_f) * G * area_f)
+    bending, phi = plane_bending_stiffness(length, E * inertia_f, inv_kga)
     return {
         "L": length,
         "phi": phi,
-        "EI": E * inertia,
-        "kGA": shear_on[:, None] * kappa * G * area,
+        "K_bending": bending,
         "EA": E * area,
         "GJ": G * 2.0 * inertia,
         "rhoA": rho * area,
@@ -242,6 +242,15 @@ def _batch_properties(elements: Sequence[ShaftElement]) -> dict[str, FloatArray]
         "alpha": col(lambda e: e.alpha)[:, 0],
         "beta": col(lambda e: e.beta)[:, 0],
     }
+
+
+def _sections(geometry: FloatArray, xi: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray]:
+    """Area, second moment and diameter ratio ``(E, Q)`` at fractions ``xi`` of the lengths
+    of elements with ``geometry`` rows ``(idl, odl, idr, odr)``."""
+    x = xi[None, :]
+    di = geometry[:, [0]] + (geometry[:, [2]] - geometry[:, [0]]) * x
+    do = geometry[:, [1]] + (geometry[:, [3]] - geometry[:, [1]]) * x
+    return math.pi / 4.0 * (do**2 - di**2), math.pi / 64.0 * (do**4 - di**4), di / do
 
 
 def _shape_fields(length: FloatArray, phi: FloatArray) -> dict[str, FloatArray]:
@@ -318,16 +327,18 @@ def _gram(coef: FloatArray, a: FloatArray, b: FloatArray | None = None) -> Float
     return np.matmul(weighted.transpose(0, 2, 1), b)
 
 
+_PLANES = ((np.array([0, 4, 6, 10]), np.ones(4)),  # x-z plane: [ux1, ry1, ux2, ry2]
+           (np.array([1, 3, 7, 9]), np.array([1.0, -1.0, 1.0, -1.0])))  # [uy1, -rx1, ...]
+
+
 def _integrate(props: dict[str, FloatArray], f: dict[str, FloatArray]) -> ElementMatrices:
     L = props["L"][:, None, None]
-    gx = f["dux"] - f["ry"]  # shear strain x-z plane
-    gy = f["duy"] + f["rx"]  # shear strain y-z plane
     K = (
-        _gram(props["EI"], f["dry"]) + _gram(props["EI"], f["drx"])
-        + _gram(props["kGA"], gx) + _gram(props["kGA"], gy)
-        + _gram(props["EA"], f["duz"]) + _gram(props["GJ"], f["drz"])
+        _gram(props["EA"], f["duz"]) + _gram(props["GJ"], f["drz"])
         + _gram(props["P"], f["dux"]) + _gram(props["P"], f["duy"])
     ) * L
+    for idx, sign in _PLANES:
+        K[:, idx[:, None], idx[None, :]] += props["K_bending"] * np.outer(sign, sign)
     M = (
         _gram(props["rhoA"], f["ux"]) + _gram(props["rhoA"], f["uy"])
         + _gram(props["rhoA"], f["uz"])

@@ -23,7 +23,7 @@ def _chain(n: int, m: float, k: float, c: float):
 @pytest.mark.parametrize("sparse", [False, True])
 def test_mass_proportional_damping_chain(sparse):
     """lam = -c/(2m) +/- i sqrt(w^2 - (c/2m)^2) for C = c I, M = m I (exact)."""
-    n, m, k, c = 200, 2.0, 1e4, 3.0
+    n, m, k, c = 120, 2.0, 1e4, 3.0
     M, C, K = _chain(n, m, k, c)
     pairs = quadratic_eigen(M, C, K, 12, sparse=sparse)
     j = np.arange(1, 7)
