@@ -55,7 +55,7 @@ class BearingElement:
     Examples
     --------
     >>> b = BearingElement(n=0, kxx=1e6, cxx=100.0)
-    >>> b.matrices().K[1, 1]
+    >>> float(b.matrices().K[1, 1])
     1000000.0
     >>> bs = BearingElement(n=0, kxx=[1e6, 2e6], frequency=[0.0, 100.0])
     >>> float(bs.coefficient("kyy", 50.0))
