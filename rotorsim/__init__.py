@@ -30,6 +30,8 @@ from rotorsim.elements.disk import DiskElement, PointMass
 from rotorsim.elements.linear_bearing import BearingElement
 from rotorsim.elements.shaft import ShaftElement, cowper_shear_coefficient
 from rotorsim.errors import ConvergenceError, ModelError, RotorsimError, Status
+from rotorsim.io.hdf5 import ResultsFileError, load, save
+from rotorsim.io.vtk import export_vtk
 from rotorsim.model.material import Material
 from rotorsim.model.rotor import Rotor
 from rotorsim.plotting import plot
@@ -58,6 +60,7 @@ __all__ = [
     "ModalResult",
     "ModelError",
     "PointMass",
+    "ResultsFileError",
     "Rotor",
     "RotorSystem",
     "RotorsimError",
@@ -71,9 +74,12 @@ __all__ = [
     "critical_speed_map",
     "critical_speeds",
     "ellipse",
+    "export_vtk",
     "frequency_response",
+    "load",
     "modal",
     "plot",
+    "save",
     "static",
     "unbalance_response",
 ]

@@ -1,0 +1,151 @@
+"""Plain-text summaries of results for the terminal (critical speeds, log decs, peaks)."""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Sequence
+from typing import Any
+
+import numpy as np
+
+SPEED_UNITS = {"rad/s": 1.0, "rpm": 30.0 / np.pi, "Hz": 1.0 / (2.0 * np.pi)}
+
+
+def table(rows: Sequence[Sequence[object]], header: Sequence[str]) -> str:
+    """Right-aligned text table.
+
+    Examples
+    --------
+    >>> print(table([(1, "a")], ("n", "name")))
+    n  name
+    -------
+    1     a
+    """
+    cells = [[str(h) for h in header], *[[str(c) for c in row] for row in rows]]
+    widths = [max(len(row[i]) for row in cells) for i in range(len(header))]
+    lines = ["  ".join(c.rjust(w) for c, w in zip(row, widths, strict=True)) for row in cells]
+    return "\n".join([lines[0], "-" * len(lines[0]), *lines[1:]])
+
+
+def _factor(units: str) -> float:
+    try:
+        return SPEED_UNITS[units]
+    except KeyError:
+        raise ValueError(f"unknown units {units!r}; use one of {list(SPEED_UNITS)}") from None
+
+
+def modal_summary(result: Any, units: str = "Hz") -> str:
+    f = _factor(units)
+    rows = [(i, f"{result.wn[i] * f:.3f}", f"{result.wd[i] * f:.3f}",
+             f"{result.damping_ratio[i]:.4f}", f"{result.log_dec[i]:.4f}", result.whirl[i],
+             result.kind[i]) for i in range(result.n_modes)]
+    head = (f"modes at {result.speed * f:.4g} {units}; rigid-body modes: "
+            f"{result.rigid_body_modes}")
+    return head + "\n" + table(rows, ("mode", f"wn [{units}]", f"wd [{units}]", "zeta",
+                                      "log dec", "whirl", "kind"))
+
+
+def critical_speeds_summary(crit: Any, units: str = "rpm", title: str = "") -> str:
+    f = _factor(units)
+    kinds = getattr(crit, "kind", None)
+    rows = []
+    for i in range(len(crit.speed)):
+        if kinds is not None and kinds[i] != "lateral":
+            continue
+        log_dec = crit.log_dec[i]
+        rows.append((f"{crit.speed[i] * f:.1f}", f"{crit.frequency[i] * f:.1f}", crit.whirl[i],
+                     "-" if not np.isfinite(log_dec) else f"{log_dec:.4f}"))
+    head = title or f"{crit.harmonic:g}X critical speeds"
+    if not rows:
+        return head + ": none in range"
+    return head + "\n" + table(rows, (f"speed [{units}]", f"frequency [{units}]", "whirl",
+                                      "log dec"))
+
+
+def campbell_summary(result: Any, units: str = "rpm") -> str:
+    f = _factor(units)
+    parts = [f"Campbell: {len(result.speeds)} speeds from {result.speeds[0] * f:.4g} to "
+             f"{result.speeds[-1] * f:.4g} {units}, {result.wd.shape[1]} tracked modes"]
+    failed = int(np.sum(np.asarray(result.status) != 0))
+    if failed:
+        parts.append(f"{failed} speeds failed (status recorded)")
+    lowest = float(np.nanmin(result.log_dec))
+    verdict = "  (UNSTABLE)" if lowest < -1e-6 else "  (undamped mode)" if lowest < 1e-6 else ""
+    parts.append(f"lowest log dec over the map: {lowest:.4f}{verdict}")
+    parts.append(critical_speeds_summary(result.critical_speeds(harmonic=1), units,
+                                         "1X critical speeds (damped, Campbell crossings)"))
+    return "\n".join(parts)
+
+
+def response_summary(result: Any, units: str = "rpm", amplitude_units: str = "um") -> str:
+    f = _factor(units)
+    scale = {"m": 1.0, "mm": 1e3, "um": 1e6}[amplitude_units]
+    n_nodes = result.dof_map.n_nodes
+    amp = np.nan_to_num(np.abs(result.response[:, :, 0])).reshape(len(result.frequencies),
+                                                                    n_nodes, 6)
+    peak_per_node = np.hypot(amp[:, :, 0], amp[:, :, 1]).max(axis=0)
+    order = np.argsort(peak_per_node)[::-1][:5]
+    rows = []
+    for node in order:
+        w_x, a_x = result.peak(int(node), "ux")
+        w_y, a_y = result.peak(int(node), "uy")
+        rows.append((int(node), f"{a_x * scale:.3f}", f"{w_x * f:.1f}", f"{a_y * scale:.3f}",
+                     f"{w_y * f:.1f}"))
+    head = f"{result.kind} response: {len(result.frequencies)} points, largest peaks"
+    return head + "\n" + table(rows, ("node", f"ux [{amplitude_units}]", f"at [{units}]",
+                                      f"uy [{amplitude_units}]", f"at [{units}]"))
+
+
+def static_summary(result: Any) -> str:
+    uy = result.deflection("uy")
+    ux = result.deflection("ux")
+    lines = [f"static: max |ux| = {np.abs(ux).max() * 1e6:.2f} um, "
+             f"max |uy| = {np.abs(uy).max() * 1e6:.2f} um"]
+    if result.bearing_forces is not None:
+        rows = [(int(n), f"{fx:.2f}", f"{fy:.2f}", f"{fz:.2f}")
+                for n, (fx, fy, fz) in zip(result.bearing_nodes, result.bearing_forces,
+                                           strict=True)]
+        lines.append(table(rows, ("bearing node", "Fx [N]", "Fy [N]", "Fz [N]")))
+    moment = result.bending_moment_magnitude
+    if moment is not None:
+        lines.append(f"max bending moment {np.max(moment):.2f} N m")
+    return "\n".join(lines)
+
+
+def map_summary(result: Any, units: str = "rpm") -> str:
+    f = _factor(units)
+    lines = [f"critical-speed map: {len(result.stiffness)} stiffness values "
+             f"{result.stiffness[0]:.3g}..{result.stiffness[-1]:.3g} N/m"]
+    rows = [(f"{k:.3g}", *(f"{w * f:.1f}" for w in row))
+            for k, row in zip(result.stiffness[:: max(1, len(result.stiffness) // 6)],
+                              result.critical_speeds[:: max(1, len(result.stiffness) // 6)],
+                              strict=True)]
+    lines.append(table(rows, ("k [N/m]", *(f"mode {j + 1} [{units}]"
+                                           for j in range(result.critical_speeds.shape[1])))))
+    crossings = result.intersections
+    if len(crossings.speed):
+        cross_rows = [(int(b), c, int(m) + 1, f"{k:.3g}", f"{w * f:.1f}")
+                for b, c, m, k, w in zip(crossings.bearing, crossings.coefficient,
+                                         crossings.mode, crossings.stiffness, crossings.speed,
+                                         strict=True)]
+        lines.append("intersections with the bearing curves")
+        lines.append(table(cross_rows, ("bearing", "coef", "mode", "k [N/m]",
+                                        f"speed [{units}]")))
+    return "\n".join(lines)
+
+
+SUMMARIES: dict[str, Callable[..., str]] = {
+    "ModalResult": modal_summary,
+    "CampbellResult": campbell_summary,
+    "CriticalSpeeds": critical_speeds_summary,
+    "FrequencyResponseResult": response_summary,
+    "StaticResult": static_summary,
+    "CriticalSpeedMapResult": map_summary,
+}
+
+
+def summarize(result: Any, **options: Any) -> str:
+    """Text summary of any result type."""
+    drawer = SUMMARIES.get(type(result).__name__)
+    if drawer is None:
+        return f"{type(result).__name__} (no summary available)"
+    return drawer(result, **options)

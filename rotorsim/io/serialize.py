@@ -1,0 +1,412 @@
+"""Mapping between result dataclasses and HDF5 groups (layout version 1).
+
+A result is written into one HDF5 group whose attr ``type`` names the dataclass
+(:data:`RESULT_TYPES` maps it back). Every dataclass field, ``init=False`` ones included,
+becomes one entry whose *kind* is listed in the group attr ``fields``, a JSON object
+``{field: kind}``: ``array`` (dataset with attrs ``numpy_dtype`` and ``units``; complex as
+h5py's native ``(r, i)`` compound, str as UTF-8 variable-length strings), ``str_tuple``
+(string dataset), ``group`` (nested dataclass, same layout), ``dofmap`` (subgroup with
+attr ``n_nodes`` and dataset ``fixed``), ``status`` (int attr), ``bool``/``int``/``float``/
+``complex``/``str`` (Python scalar attr), ``numpy`` (numpy scalar attr, dtype kept),
+``json`` (attr with the tagged JSON of :func:`to_jsonable`: ``options``, ``stats``,
+``summary``, lists, other tuples) and ``none`` (nothing stored). Units of scalar attrs are
+in the group attr ``attr_units`` (JSON ``{field: units}``). ``docs/results_format.md``
+describes the layout in full.
+
+``write_result``/``read_result`` work on any open h5py group, so a sweep can stream many
+results into one file; :mod:`rotorsim.io.hdf5` adds the file header and atomic writes.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import json
+import math
+from collections.abc import Mapping
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+from rotorsim.assembly.dof_map import DofMap
+from rotorsim.errors import ModelError, Status
+from rotorsim.results.campbell import CampbellResult
+from rotorsim.results.critical_speeds import (
+    CriticalSpeedMapResult,
+    CriticalSpeeds,
+    MapIntersections,
+)
+from rotorsim.results.frequency_response import DeflectedShape, FrequencyResponseResult
+from rotorsim.results.modal import ModalResult
+from rotorsim.results.orbits import Ellipse
+from rotorsim.results.static import StaticResult
+
+if TYPE_CHECKING:
+    import h5py
+
+RESERVED_ATTRS = ("type", "fields", "attr_units")
+"""Group attributes used by the layout itself; no result field may carry these names."""
+
+_INT64 = np.iinfo(np.int64)
+_SCALAR_KINDS = {bool: "bool", int: "int", float: "float", complex: "complex", str: "str"}
+_PY_TYPES = {kind: t for t, kind in _SCALAR_KINDS.items()}
+_JSON_TAGS = ("__tuple__", "__complex__", "__float__", "__numpy__", "__ndarray__",
+              "__dict__", "__status__")
+
+
+class ResultsFileError(ModelError):
+    """A results file, or a value to be written to one, does not fit the rotorsim layout.
+
+    ``where`` names the file and HDF5 path (or the field) at fault.
+    """
+
+
+@dataclasses.dataclass(frozen=True)
+class ResultType:
+    """A registered result class and the units of its physical fields."""
+
+    cls: type
+    units: Mapping[str, str]
+
+
+RESULT_TYPES: dict[str, ResultType] = {}
+"""Registry ``class name -> ResultType`` used to rebuild results on load."""
+
+
+def register_result_type(cls: type, units: Mapping[str, str] | None = None) -> type:
+    """Make the dataclass ``cls`` storable; ``units`` maps field names to unit strings.
+
+    Unit strings are SI as used in the docstrings (``"rad/s"``, ``"m"``, ``"N m"``);
+    ``"1"`` is dimensionless and ``"m, rad"`` a per-DOF quantity with translations in m
+    and rotations in rad. Returns ``cls`` so it can serve as a decorator.
+
+    Examples
+    --------
+    >>> @dataclasses.dataclass(frozen=True)
+    ... class Point:
+    ...     z: float
+    >>> register_result_type(Point, {"z": "m"}) is Point
+    True
+    >>> del RESULT_TYPES["Point"]
+    """
+    if not (isinstance(cls, type) and dataclasses.is_dataclass(cls)):
+        raise ModelError(f"{cls!r} is not a dataclass", "register_result_type")
+    names = {f.name for f in dataclasses.fields(cls)}
+    clash = names.intersection(RESERVED_ATTRS)
+    if clash:
+        raise ModelError(f"field names {sorted(clash)} are reserved by the HDF5 layout",
+                         cls.__name__)
+    units = dict(units or {})
+    unknown = set(units) - names
+    if unknown:
+        raise ModelError(f"units given for unknown fields {sorted(unknown)}", cls.__name__)
+    RESULT_TYPES[cls.__name__] = ResultType(cls, units)
+    return cls
+
+
+_ANGULAR = "rad/s"
+register_result_type(ModalResult, {
+    "speed": _ANGULAR, "eigenvalues": _ANGULAR, "wn": _ANGULAR, "wd": _ANGULAR,
+    "damping_ratio": "1", "log_dec": "1", "whirl_ratio": "1", "mode_shapes": "1",
+    "rigid_body_shapes": "1", "nodes_pos": "m"})
+register_result_type(CampbellResult, {
+    "speeds": _ANGULAR, "wd": _ANGULAR, "wn": _ANGULAR, "log_dec": "1",
+    "damping_ratio": "1", "whirl_ratio": "1", "tracking_mac": "1"})
+register_result_type(CriticalSpeeds, {
+    "speed": _ANGULAR, "frequency": _ANGULAR, "log_dec": "1", "harmonic": "1",
+    "mode_shapes": "1"})
+register_result_type(MapIntersections, {"stiffness": "N/m", "speed": _ANGULAR})
+register_result_type(CriticalSpeedMapResult, {
+    "stiffness": "N/m", "critical_speeds": _ANGULAR, "harmonic": "1", "speeds": _ANGULAR,
+    "bearing_kxx": "N/m", "bearing_kyy": "N/m"})
+register_result_type(FrequencyResponseResult, {
+    "frequencies": _ANGULAR, "speeds": _ANGULAR, "response": "m, rad (per unit input)",
+    "nodes_pos": "m"})
+register_result_type(DeflectedShape, {
+    "frequency": _ANGULAR, "speed": _ANGULAR, "nodes_pos": "m", "ux": "m", "uy": "m"})
+register_result_type(StaticResult, {
+    "displacement": "m, rad", "load": "N, N m", "nodes_pos": "m", "speed": _ANGULAR,
+    "bearing_forces": "N", "bearing_moments": "N m", "constraint_reactions": "N, N m",
+    "element_z": "m", "shear_force": "N", "bending_moment": "N m", "axial_force": "N",
+    "torque": "N m", "residual": "1"})
+register_result_type(Ellipse, {
+    "major": "m", "minor": "m", "inclination": "rad", "forward_radius": "m",
+    "backward_radius": "m", "whirl_ratio": "1"})
+
+
+def result_type(value: object) -> ResultType:
+    """The registry entry of ``value``'s class; :class:`ResultsFileError` if not registered."""
+    entry = RESULT_TYPES.get(type(value).__name__)
+    if entry is None or entry.cls is not type(value):
+        known = ", ".join(sorted(RESULT_TYPES))
+        raise ResultsFileError(f"cannot store a {type(value).__name__}; storable types: {known}",
+                               "save")
+    return entry
+
+
+# ---------------------------------------------------------------------------- writing
+def write_result(group: h5py.Group, result: object) -> None:
+    """Write the registered dataclass ``result`` into the empty h5py ``group``."""
+    entry = result_type(result)
+    group.attrs["type"] = type(result).__name__
+    kinds: dict[str, str] = {}
+    attr_units: dict[str, str] = {}
+    for f in dataclasses.fields(result):  # type: ignore[arg-type]
+        units = entry.units.get(f.name)
+        where = f"{type(result).__name__}.{f.name}"
+        kind = _write_field(group, f.name, getattr(result, f.name), units, where)
+        kinds[f.name] = kind
+        if units and kind in (*_PY_TYPES, "numpy"):
+            attr_units[f.name] = units
+    group.attrs["fields"] = json.dumps(kinds)
+    group.attrs["attr_units"] = json.dumps(attr_units)
+
+
+def _write_field(group: h5py.Group, name: str, value: Any, units: str | None,
+                 where: str) -> str:
+    if value is None:
+        return "none"
+    if isinstance(value, DofMap):
+        sub = group.create_group(name)
+        sub.attrs["type"] = "DofMap"
+        sub.attrs["n_nodes"] = int(value.n_nodes)
+        sub.create_dataset("fixed", data=np.asarray(value.fixed, dtype=np.int64))
+        return "dofmap"
+    if dataclasses.is_dataclass(value) and not isinstance(value, type):
+        write_result(group.create_group(name), value)
+        return "group"
+    if isinstance(value, np.ndarray):
+        _write_array(group, name, value, units, where)
+        return "array"
+    if isinstance(value, Status):
+        group.attrs[name] = int(value)
+        return "status"
+    if isinstance(value, np.generic) and value.dtype.kind in "biufc" and _plain(value.dtype):
+        group.attrs[name] = value
+        return "numpy"
+    kind = _SCALAR_KINDS.get(type(value))
+    if kind is not None and _fits_attr(value):
+        group.attrs[name] = value
+        return kind
+    if type(value) is tuple and all(type(v) is str and "\0" not in v for v in value):
+        _write_strings(group, name, np.array(value, dtype=object).reshape(len(value)))
+        return "str_tuple"
+    group.attrs[name] = json.dumps(to_jsonable(value, where), allow_nan=False)
+    return "json"
+
+
+def _fits_attr(value: bool | int | float | complex | str) -> bool:
+    """Python scalar that an HDF5 attribute holds exactly (int64, strings without NUL)."""
+    if isinstance(value, str):
+        return "\0" not in value
+    return not isinstance(value, int) or _INT64.min <= value <= _INT64.max
+
+
+def _plain(dtype: np.dtype) -> bool:
+    """Fixed-size numeric dtype that HDF5 and JSON hold exactly (no long double)."""
+    limit = {"f": 8, "c": 16}.get(dtype.kind, 8)
+    return dtype.fields is None and dtype.itemsize <= limit
+
+
+def _write_array(group: h5py.Group, name: str, value: np.ndarray, units: str | None,
+                 where: str) -> None:
+    if value.dtype.kind == "U":
+        if _has_interior_nul(value):
+            raise ResultsFileError("cannot store strings containing NUL characters", where)
+        ds = _write_strings(group, name, value.astype(object))
+    elif value.dtype.kind == "S" or (value.dtype.kind in "biufc" and _plain(value.dtype)):
+        ds = group.create_dataset(name, data=value)
+    else:
+        raise ResultsFileError(f"cannot store an array of dtype {value.dtype}", where)
+    ds.attrs["numpy_dtype"] = value.dtype.str
+    if units:
+        ds.attrs["units"] = units
+
+
+def _has_interior_nul(value: np.ndarray) -> bool:
+    """Whether a str array has a NUL before the end of some element (HDF5 would cut it)."""
+    width = value.dtype.itemsize // 4
+    if value.size == 0 or width == 0:
+        return False
+    codes = np.ascontiguousarray(value).view(np.uint32).reshape(-1, width)
+    length = np.char.str_len(value).reshape(-1, 1)
+    return bool(np.any((codes == 0) & (np.arange(width) < length)))
+
+
+def _write_strings(group: h5py.Group, name: str, values: np.ndarray) -> h5py.Dataset:
+    import h5py
+
+    return group.create_dataset(name, data=values, dtype=h5py.string_dtype("utf-8"))
+
+
+# ---------------------------------------------------------------------------- reading
+def read_result(group: h5py.Group) -> Any:
+    """Rebuild the dataclass stored in ``group`` by :func:`write_result`.
+
+    Raises :class:`ResultsFileError` naming the HDF5 path if anything is missing,
+    unexpected or inconsistent; a partial result is never returned.
+    """
+    try:
+        return _read_result(group)
+    except ResultsFileError:
+        raise
+    except (KeyError, TypeError, ValueError, AttributeError, OSError) as exc:
+        raise ResultsFileError(f"malformed result ({type(exc).__name__}: {exc})",
+                               group.name) from exc
+
+
+def _read_result(group: h5py.Group) -> Any:
+    name = _str_attr(group, "type")
+    entry = RESULT_TYPES.get(name)
+    if entry is None:
+        raise ResultsFileError(f"unknown result type {name!r}; known: {sorted(RESULT_TYPES)}",
+                               group.name)
+    kinds = json.loads(_str_attr(group, "fields"))
+    fields = {f.name: f for f in dataclasses.fields(entry.cls)}
+    if set(kinds) != set(fields):
+        missing = [k for k in fields if k not in kinds]
+        extra = [k for k in kinds if k not in fields]
+        raise ResultsFileError(
+            f"fields of {name} do not match this rotorsim: missing {missing}, unexpected "
+            f"{extra} (file written by another version?)", group.name)
+    values = {key: _read_field(group, key, kind) for key, kind in kinds.items()}
+    obj = entry.cls(**{k: v for k, v in values.items() if fields[k].init})
+    for key, value in values.items():
+        if not fields[key].init:  # derived fields: restore exactly what was saved
+            object.__setattr__(obj, key, value)
+    return obj
+
+
+def _str_attr(group: h5py.Group, key: str) -> str:
+    if key not in group.attrs:
+        raise ResultsFileError(f"attribute {key!r} missing", group.name)
+    value = group.attrs[key]
+    if isinstance(value, bytes):
+        value = value.decode()
+    if not isinstance(value, str):
+        raise ResultsFileError(f"attribute {key!r} is not a string", group.name)
+    return value
+
+
+def _read_field(group: h5py.Group, name: str, kind: str) -> Any:
+    if kind == "none":
+        return None
+    if kind == "dofmap":
+        sub = group[name]
+        return DofMap(int(sub.attrs["n_nodes"]), np.asarray(sub["fixed"][()], dtype=np.int64))
+    if kind == "group":
+        return _read_result(group[name])
+    if kind == "array":
+        return _read_array(group[name])
+    if kind == "str_tuple":
+        return tuple(str(s) for s in group[name].asstr()[()])
+    value = group.attrs[name]
+    if kind == "status":
+        return Status(int(value))
+    if kind == "numpy":
+        return value
+    if kind == "json":
+        return from_jsonable(json.loads(value))
+    if kind in _PY_TYPES:
+        return _PY_TYPES[kind](value.item() if isinstance(value, np.generic) else value)
+    raise ResultsFileError(f"unknown field kind {kind!r} of {name!r}", group.name)
+
+
+def _read_array(ds: h5py.Dataset) -> np.ndarray:
+    dtype = np.dtype(ds.attrs["numpy_dtype"])
+    data = ds.asstr()[()] if dtype.kind == "U" else ds[()]
+    out = np.asarray(data, dtype=dtype)
+    if out.shape != ds.shape:
+        raise ResultsFileError(f"shape {out.shape} != stored {ds.shape}", ds.name)
+    return out
+
+
+# ---------------------------------------------------------------------------- JSON
+def to_jsonable(value: Any, where: str = "value") -> Any:
+    """Tagged, exact JSON form of ``value`` (standard JSON: no NaN tokens).
+
+    Plain JSON types pass through. Tags (one-key objects, or two or three keys for numpy):
+    ``{"__tuple__": [...]}``, ``{"__complex__": [re, im]}``, ``{"__float__": "nan"}``
+    (also ``"inf"``, ``"-inf"``, or ``"0x..."``, the bit pattern of another NaN),
+    ``{"__status__": int}``, ``{"__numpy__": dtype, "value":
+    v}``, ``{"__ndarray__": dtype, "shape": [...], "data": [flat values]}`` and
+    ``{"__dict__": [[key, value], ...]}`` for dicts with non-str keys or keys starting with
+    ``"__"``. Anything else raises :class:`ResultsFileError` naming the key path.
+
+    Examples
+    --------
+    >>> v = {"loads": [(2, 1e-4, 0.0)], "tol": np.float64(1e-8), "x": float("nan"), 3: None}
+    >>> text = json.dumps(to_jsonable(v), allow_nan=False)
+    >>> back = from_jsonable(json.loads(text))
+    >>> back["loads"], type(back["tol"]).__name__, back[3]
+    ([(2, 0.0001, 0.0)], 'float64', None)
+    """
+    t = type(value)
+    if value is None or t in (bool, int, str):
+        return value
+    if t is float:
+        return value if math.isfinite(value) else {"__float__": _nonfinite_text(value)}
+    if t is complex:
+        return {"__complex__": [to_jsonable(value.real), to_jsonable(value.imag)]}
+    if isinstance(value, Status):
+        return {"__status__": int(value)}
+    if isinstance(value, np.generic | np.ndarray):
+        return _numpy_to_jsonable(value, where)
+    if t is list:
+        return [to_jsonable(v, f"{where}[{i}]") for i, v in enumerate(value)]
+    if t is tuple:
+        return {"__tuple__": [to_jsonable(v, f"{where}[{i}]") for i, v in enumerate(value)]}
+    if t is dict:
+        if all(type(k) is str and not k.startswith("__") for k in value):
+            return {k: to_jsonable(v, f"{where}[{k!r}]") for k, v in value.items()}
+        return {"__dict__": [[to_jsonable(k, where), to_jsonable(v, f"{where}[{k!r}]")]
+                             for k, v in value.items()]}
+    raise ResultsFileError(f"cannot store a value of type {t.__name__}", where)
+
+
+def _nonfinite_text(value: float) -> str:
+    """``"inf"``, ``"-inf"``, ``"nan"`` (the default quiet NaN) or the hex bit pattern of any
+    other NaN, so that the value is restored bit for bit."""
+    bits = int(np.array(value).view(np.uint64))
+    if math.isinf(value) or bits == int(np.array(math.nan).view(np.uint64)):
+        return repr(value)
+    return hex(bits)
+
+
+def _numpy_to_jsonable(value: np.generic | np.ndarray, where: str) -> Any:
+    dtype = value.dtype
+    if not (dtype.kind in "biufcU" and (dtype.kind == "U" or _plain(dtype))):
+        raise ResultsFileError(f"cannot store numpy dtype {dtype}", where)
+    if isinstance(value, np.generic):
+        return {"__numpy__": dtype.str, "value": to_jsonable(value.item(), where)}
+    return {"__ndarray__": dtype.str, "shape": list(value.shape),
+            "data": to_jsonable(value.ravel().tolist(), where)}
+
+
+def from_jsonable(obj: Any) -> Any:
+    """Inverse of :func:`to_jsonable` applied to parsed JSON."""
+    if isinstance(obj, list):
+        return [from_jsonable(v) for v in obj]
+    if not isinstance(obj, dict):
+        return obj
+    tag = next((k for k in obj if k.startswith("__")), None)
+    if tag is None:
+        return {k: from_jsonable(v) for k, v in obj.items()}
+    body = obj[tag]
+    if tag == "__tuple__":
+        return tuple(from_jsonable(v) for v in body)
+    if tag == "__complex__":
+        return complex(from_jsonable(body[0]), from_jsonable(body[1]))
+    if tag == "__float__":
+        if body.startswith("0x"):  # a NaN with a sign or payload: its bit pattern
+            return float(np.array(int(body, 16), dtype=np.uint64).view(np.float64))
+        return float(body)
+    if tag == "__status__":
+        return Status(body)
+    if tag == "__numpy__":
+        value = from_jsonable(obj["value"])
+        return np.dtype(body).type(value)
+    if tag == "__ndarray__":
+        return np.array(from_jsonable(obj["data"]), dtype=body).reshape(obj["shape"])
+    if tag == "__dict__":
+        return {from_jsonable(k): from_jsonable(v) for k, v in body}
+    raise ResultsFileError(f"unknown JSON tag {tag!r}; known: {_JSON_TAGS}", "json")

@@ -1,0 +1,439 @@
+"""HDF5 results files: exact round trip of every result type, layout, errors, atomic writes."""
+
+from __future__ import annotations
+
+import dataclasses
+import json
+import math
+from datetime import datetime
+from pathlib import Path
+from typing import Any
+
+import h5py
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+import rotorsim
+from rotorsim.analyses.campbell import campbell
+from rotorsim.analyses.critical_speed_map import critical_speed_map
+from rotorsim.analyses.critical_speeds import critical_speeds
+from rotorsim.analyses.frequency_response import frequency_response, unbalance_response
+from rotorsim.analyses.modal import modal
+from rotorsim.analyses.static import static
+from rotorsim.assembly.dof_map import DofMap
+from rotorsim.assembly.system import assemble
+from rotorsim.elements.disk import DiskElement
+from rotorsim.elements.linear_bearing import BearingElement
+from rotorsim.elements.shaft import ShaftElement
+from rotorsim.errors import ModelError, Status
+from rotorsim.io import serialize
+from rotorsim.io.hdf5 import FORMAT, FORMAT_VERSION, ResultsFileError, load, save
+from rotorsim.io.serialize import (
+    RESULT_TYPES,
+    from_jsonable,
+    register_result_type,
+    to_jsonable,
+)
+from rotorsim.model.material import steel
+from rotorsim.model.rotor import Rotor
+from rotorsim.results.critical_speeds import MapIntersections
+from rotorsim.results.orbits import ellipse
+
+
+# ---------------------------------------------------------------------------- helpers
+def _bits(x: Any) -> bytes:
+    return np.asarray(x).tobytes()
+
+
+def assert_results_equal(a: Any, b: Any, path: str = "result") -> None:
+    """Exact equality: same types everywhere, arrays with equal dtype, shape and bytes
+    (so NaN positions, NaN payloads and signed zeros count), dict keys in the same order."""
+    assert type(a) is type(b), f"{path}: {type(a).__name__} != {type(b).__name__}"
+    if dataclasses.is_dataclass(a):
+        for f in dataclasses.fields(a):
+            assert_results_equal(getattr(a, f.name), getattr(b, f.name), f"{path}.{f.name}")
+    elif isinstance(a, np.ndarray):
+        assert a.dtype == b.dtype, f"{path}: dtype {a.dtype} != {b.dtype}"
+        assert a.shape == b.shape, f"{path}: shape {a.shape} != {b.shape}"
+        if a.dtype.kind in "US":
+            assert np.array_equal(a, b), f"{path}: strings differ"
+        else:
+            assert _bits(a) == _bits(b), f"{path}: values differ"
+    elif isinstance(a, list | tuple):
+        assert len(a) == len(b), f"{path}: length {len(a)} != {len(b)}"
+        for i, (x, y) in enumerate(zip(a, b, strict=True)):
+            assert_results_equal(x, y, f"{path}[{i}]")
+    elif isinstance(a, dict):
+        assert_results_equal(list(a), list(b), f"{path}.keys()")
+        for key in a:
+            assert_results_equal(a[key], b[key], f"{path}[{key!r}]")
+    elif isinstance(a, float | complex | np.inexact):
+        assert _bits(a) == _bits(b), f"{path}: {a!r} != {b!r}"
+    else:
+        assert a == b, f"{path}: {a!r} != {b!r}"
+
+
+def _round_trip(result: Any, tmp_path: Path) -> Any:
+    path = save(result, tmp_path / "r.h5")
+    return load(path)
+
+
+# ---------------------------------------------------------------------------- results
+def _rotor(speed_dependent: bool = False) -> Rotor:
+    shaft = [ShaftElement(L=0.2, idl=0.0, odl=0.05, material=steel) for _ in range(6)]
+    disks = [DiskElement.from_geometry(2, steel, width=0.05, i_d=0.05, o_d=0.25),
+             DiskElement.from_geometry(4, steel, width=0.05, i_d=0.05, o_d=0.3)]
+    right = BearingElement(n=6, kxx=[1e6, 3e6, 9e6], cxx=[200.0, 200.0, 200.0],
+                           frequency=[0.0, 500.0, 1000.0]) if speed_dependent else \
+        BearingElement(n=6, kxx=2e6, kyy=1.5e6, cxx=300.0)
+    bearings = [BearingElement(n=0, kxx=2e6, kyy=1.5e6, cxx=300.0), right]
+    return Rotor(shaft, disks, bearings, tag="io_test")
+
+
+@pytest.fixture(scope="module")
+def results() -> dict[str, Any]:
+    rotor = _rotor()
+    camp = campbell(rotor, np.linspace(0.0, 600.0, 7), num_modes=4)
+    wd = camp.wd.copy()
+    wd[2, 1] = np.nan  # a failed point, and a signed zero: both must survive bitwise
+    wd[0, 0] = -0.0
+    with_nan = dataclasses.replace(camp, wd=wd)
+    unb = unbalance_response(rotor, np.linspace(10.0, 600.0, 6),
+                             unbalance=[(2, 1e-4, 0.0), (4, 5e-5, math.pi / 2)])
+    return {
+        "modal": modal(rotor, speed=300.0, num_modes=6),
+        "campbell": with_nan,
+        "critical_exact": critical_speeds(rotor, num_modes=3),
+        "critical_campbell": camp.critical_speeds(harmonic=1),
+        "map": critical_speed_map(_rotor(speed_dependent=True), (1e5, 1e8), num_points=6,
+                                  num_modes=2, speeds=np.linspace(0.0, 1000.0, 21)),
+        "unbalance": unb,
+        "receptance": frequency_response(rotor, np.linspace(10.0, 500.0, 4),
+                                         inputs=[(2, "ux"), (4, "uy")], speed=200.0),
+        "static": static(rotor, loads=[(3, "ux", 50.0)]),
+        "static_system": static(assemble(rotor)),
+        "deflected_shape": unb.deflected_shape(2),
+        "ellipse": ellipse(np.array([1.0, 2.0j, np.nan]), np.array([-1j, 0.5, 1.0])),
+        "intersections": MapIntersections.empty(),
+    }
+
+
+RESULT_NAMES = ["modal", "campbell", "critical_exact", "critical_campbell", "map",
+                "unbalance", "receptance", "static", "static_system", "deflected_shape",
+                "ellipse", "intersections"]
+
+
+@pytest.mark.parametrize("name", RESULT_NAMES)
+def test_every_result_type_round_trips_exactly(results, name, tmp_path):
+    result = results[name]
+    assert_results_equal(result, _round_trip(result, tmp_path))
+
+
+def test_results_cover_every_registered_type_and_interesting_cases(results):
+    covered = {type(r).__name__ for r in results.values()}
+    assert covered == set(RESULT_TYPES)
+    assert len(results["map"].intersections) > 0  # a non-empty nested dataclass
+    assert results["critical_campbell"].mode_shapes is None  # None fields
+    assert results["static_system"].bearing_forces is None
+    assert isinstance(results["modal"].options["rigid_tol"], np.float64)  # numpy scalar
+    assert isinstance(results["unbalance"].options["unbalance"][0], tuple)  # tuples in lists
+
+
+def test_helper_detects_differences(results):
+    camp = results["campbell"]
+    cases = {
+        "NaN moved": camp.wd[[1, 0, 2, 3, 4, 5, 6]],
+        "signed zero": np.where(camp.wd == 0.0, 0.0, camp.wd),
+        "dtype": camp.wd.astype(np.float32).astype(np.float64).astype(np.longdouble),
+    }
+    for label, wd in cases.items():
+        with pytest.raises(AssertionError):
+            assert_results_equal(camp, dataclasses.replace(camp, wd=wd))
+            pytest.fail(f"not detected: {label}")
+    with pytest.raises(AssertionError):
+        assert_results_equal({"a": (1, 2)}, {"a": [1, 2]})
+    with pytest.raises(AssertionError):
+        assert_results_equal({"a": 1.0}, {"a": np.float64(1.0)})
+
+
+# ---------------------------------------------------------------------------- edge cases
+@dataclasses.dataclass(frozen=True, eq=False)
+class Exotic:
+    """Every kind of field the layout knows, plus a derived (init=False) one."""
+
+    values: np.ndarray
+    labels: tuple[str, ...]
+    nothing: Any
+    status: Status
+    count: int
+    huge: int
+    scale: float
+    gain: complex
+    name: str
+    flag: bool
+    tol: np.float32
+    dofs: DofMap
+    nested: Any
+    options: dict[str, Any]
+    items: list[Any]
+    pair: tuple[float, int]
+    label_nul: tuple[str, ...]
+    name_nul: str
+    derived: float = dataclasses.field(init=False)
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "derived", float(self.values.size) * self.scale)
+
+
+@pytest.fixture
+def exotic_type():
+    register_result_type(Exotic, {"values": "m", "scale": "N"})
+    yield Exotic
+    del RESULT_TYPES["Exotic"]
+
+
+def _exotic() -> Exotic:
+    options = {
+        "nested": [[1, [2.5, None]], {"deep": (True, False)}],
+        "nan": float("nan"), "neg_nan": -math.nan, "inf": -math.inf, "neg_zero": -0.0,
+        "big": 2**80,
+        "complex": 1.5 - 2j, "np_int": np.int32(-7), "np_bool": np.bool_(True),
+        "np_complex": np.complex64(1 + 2j), "np_str": np.str_("ab"),
+        "array": np.array([[1.0, np.nan], [3.0, 4.0]]), "empty": np.zeros((0, 3), np.int16),
+        "strings": np.array(["a", "bcd"]), "status": Status.FAILED,
+        3: "int key", (1, "a"): "tuple key", "__tuple__": "looks like a tag", "": "",
+        "unicode": "Ω µm", "nul": "a\0b",
+    }
+    return Exotic(
+        values=np.array([[1.0, np.nan, -0.0]]), labels=("forward", "", "Ω"), nothing=None,
+        status=Status.NOT_CONVERGED, count=-3, huge=2**70, scale=2.5, gain=1 - 1j, name="",
+        flag=False, tol=np.float32(1e-3), dofs=DofMap(3, fixed=[2, 5, 17]),
+        nested=ellipse(1.0, -1j), options=options, items=[1, "x", None],
+        pair=(0.1, 2), label_nul=("a\0b",), name_nul="x\0",
+    )
+
+
+def test_exotic_fields_round_trip_exactly(exotic_type, tmp_path):
+    original = _exotic()
+    back = _round_trip(original, tmp_path)
+    assert_results_equal(original, back)
+    assert back.derived == 3 * 2.5
+
+
+@pytest.mark.parametrize("array", [
+    np.zeros((0, 4)), np.array(5.0), np.array([True, False]), np.arange(6, dtype=np.int32),
+    np.array([1 + 2j, np.nan], dtype=np.complex64), np.array([1.5], dtype=np.float16),
+    np.array([["x", "ÿÿ"], ["", "abc"]]), np.zeros((2, 0), dtype="<U3"),
+    np.asfortranarray(np.arange(6.0).reshape(2, 3)), np.array([b"ab", b""]),
+    np.array([1.0, 2.0], dtype=">f8"), np.array([7], dtype=np.uint64),
+])
+def test_array_dtypes_and_shapes_survive(exotic_type, tmp_path, array):
+    original = dataclasses.replace(_exotic(), values=array)
+    assert_results_equal(original, _round_trip(original, tmp_path))
+
+
+_json_leaves = (st.none() | st.booleans() | st.integers() | st.floats()
+                | st.complex_numbers() | st.text(max_size=5))
+_json_values = st.recursive(
+    _json_leaves,
+    lambda inner: st.lists(inner, max_size=4) | st.tuples(inner, inner)
+    | st.dictionaries(st.text(max_size=4) | st.integers(), inner, max_size=4),
+    max_leaves=20,
+)
+
+
+@settings(max_examples=150, deadline=None)
+@given(_json_values)
+def test_tagged_json_round_trips_any_nesting(value):
+    text = json.dumps(to_jsonable(value), allow_nan=False)  # standard JSON
+    assert_results_equal(value, from_jsonable(json.loads(text)))
+
+
+def test_unstorable_values_are_rejected_with_their_path(exotic_type, tmp_path):
+    bad = dataclasses.replace(_exotic(), options={"a": [1, {"b": object()}]})
+    with pytest.raises(ResultsFileError, match=r"options\['a'\]\[1\]\['b'\].*object"):
+        save(bad, tmp_path / "bad.h5")
+    with pytest.raises(ResultsFileError, match="dtype object"):
+        save(dataclasses.replace(_exotic(), values=np.array([None])), tmp_path / "bad.h5")
+    with pytest.raises(ResultsFileError, match="NUL"):
+        save(dataclasses.replace(_exotic(), values=np.array(["a\0b"])), tmp_path / "bad.h5")
+    with pytest.raises(ResultsFileError, match="cannot store a dict"):
+        save({"x": {"not": "a result"}}, tmp_path / "bad.h5")
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_registration_guards_layout_names():
+    @dataclasses.dataclass(frozen=True)
+    class Clash:
+        type: str
+
+    with pytest.raises(ModelError, match="reserved"):
+        register_result_type(Clash)
+    with pytest.raises(ModelError, match="unknown fields"):
+        register_result_type(Exotic, {"nope": "m"})
+    assert "Clash" not in RESULT_TYPES and "Exotic" not in RESULT_TYPES
+
+
+# ---------------------------------------------------------------------------- layout
+def test_layout_is_readable_with_plain_h5py(results, tmp_path):
+    m = results["modal"]
+    path = save(m, tmp_path / "modal.h5")
+    with h5py.File(path, "r") as f:
+        assert f.attrs["format"] == FORMAT and f.attrs["format_version"] == FORMAT_VERSION
+        assert f.attrs["rotorsim_version"] == rotorsim.__version__
+        assert f.attrs["layout"] == "single"
+        assert datetime.fromisoformat(f.attrs["created"]).tzinfo is not None
+        g = f["result"]
+        assert g.attrs["type"] == "ModalResult"
+        kinds = json.loads(g.attrs["fields"])
+        assert kinds["wn"] == "array" and kinds["whirl"] == "str_tuple"
+        assert kinds["status"] == "status" and kinds["dof_map"] == "dofmap"
+        assert kinds["options"] == "json"
+        np.testing.assert_array_equal(g["wn"][()], m.wn)
+        np.testing.assert_array_equal(g["mode_shapes"][()], m.mode_shapes)  # native complex
+        assert g["wn"].attrs["units"] == "rad/s"
+        assert list(g["whirl"].asstr()[()]) == list(m.whirl)
+        assert g["dof_map"].attrs["n_nodes"] == m.dof_map.n_nodes
+        assert json.loads(g.attrs["attr_units"]) == {"speed": "rad/s"}
+        assert g.attrs["speed"] == 300.0
+        assert json.loads(g.attrs["summary"])["shaft_elements"] == 6
+
+
+EXPECTED_UNITS = {
+    "modal": {"wd": "rad/s", "log_dec": "1", "nodes_pos": "m"},
+    "campbell": {"speeds": "rad/s", "wn": "rad/s"},
+    "map": {"stiffness": "N/m", "critical_speeds": "rad/s", "bearing_kxx": "N/m",
+            "intersections/speed": "rad/s", "intersections/stiffness": "N/m"},
+    "unbalance": {"frequencies": "rad/s", "response": "m, rad (per unit input)"},
+    "static": {"displacement": "m, rad", "bending_moment": "N m", "shear_force": "N",
+               "bearing_forces": "N", "load": "N, N m"},
+    "deflected_shape": {"ux": "m", "orbit/major": "m", "orbit/inclination": "rad"},
+}
+
+
+@pytest.mark.parametrize("name", list(EXPECTED_UNITS))
+def test_units_are_attributes_of_every_physical_dataset(results, name, tmp_path):
+    path = save(results[name], tmp_path / "r.h5")
+    with h5py.File(path, "r") as f:
+        for key, units in EXPECTED_UNITS[name].items():
+            assert f["result"][key].attrs["units"] == units
+        unitless = []
+
+        def visit(key: str, obj: Any) -> None:
+            if isinstance(obj, h5py.Dataset) and obj.dtype.kind in "fc" \
+                    and "units" not in obj.attrs:
+                unitless.append(key)
+
+        f["result"].visititems(visit)
+        assert unitless == []
+
+
+def test_collection_round_trips_in_order(results, tmp_path):
+    items = {"static": results["static"], "modal": results["modal"],
+             "campbell": results["campbell"]}
+    path = save(items, tmp_path / "all.h5")
+    back = load(path)
+    assert list(back) == ["static", "modal", "campbell"]
+    for key in items:
+        assert_results_equal(items[key], back[key])
+    with h5py.File(path, "r") as f:
+        assert f.attrs["layout"] == "collection" and "result" not in f
+        assert f["results/modal"].attrs["type"] == "ModalResult"
+
+
+@pytest.mark.parametrize("items", [{}, {"a/b": None}, {"": None}, {3: None}])
+def test_bad_collections_are_rejected(results, tmp_path, items):
+    items = {k: results["modal"] if v is None else v for k, v in items.items()}
+    with pytest.raises(ResultsFileError):
+        save(items, tmp_path / "x.h5")
+    assert not (tmp_path / "x.h5").exists()
+
+
+# ---------------------------------------------------------------------------- bad files
+def _edit(path: Path, action) -> Path:
+    with h5py.File(path, "r+") as f:
+        action(f)
+    return path
+
+
+BAD_FILES = {
+    "format": (lambda f: f.attrs.__setitem__("format", "something-else"),
+               "not a rotorsim results file"),
+    "no format": (lambda f: f.attrs.__delitem__("format"), "not a rotorsim results file"),
+    "newer version": (lambda f: f.attrs.__setitem__("format_version", 2),
+                      "format_version 2 is not supported; this rotorsim reads version 1"),
+    "text version": (lambda f: f.attrs.__setitem__("format_version", "one"),
+                     "format_version"),
+    "layout": (lambda f: f.attrs.__setitem__("layout", "weird"), "unknown layout"),
+    "no group": (lambda f: f.__delitem__("result"), "group '/result' missing"),
+    "type": (lambda f: f["result"].attrs.__setitem__("type", "Nope"),
+             "unknown result type 'Nope'"),
+    "missing dataset": (lambda f: f["result"].__delitem__("wn"), "malformed"),
+    "fields": (lambda f: f["result"].attrs.__setitem__("fields", json.dumps({"wn": "array"})),
+               r"missing \['speed'"),
+    "kind": (lambda f: f["result"].attrs.__setitem__(
+        "fields", f["result"].attrs["fields"].replace('"speed": "float"', '"speed": "odd"')),
+             "unknown field kind 'odd'"),
+    "status": (lambda f: f["result"].attrs.__setitem__("status", 99), "malformed"),
+    "nested": (lambda f: f["result/dof_map"].attrs.__delitem__("n_nodes"), "malformed"),
+}
+
+
+@pytest.mark.parametrize("case", list(BAD_FILES))
+def test_bad_files_raise_a_clear_error(results, tmp_path, case):
+    action, message = BAD_FILES[case]
+    path = _edit(save(results["modal"], tmp_path / "m.h5"), action)
+    with pytest.raises(ResultsFileError, match=message) as info:
+        load(path)
+    assert str(path) in str(info.value)
+    assert isinstance(info.value, ModelError)
+
+
+def test_non_hdf5_and_missing_files(tmp_path):
+    text = tmp_path / "notes.h5"
+    text.write_text("hello")
+    with pytest.raises(ResultsFileError, match="not an HDF5 file"):
+        load(text)
+    with pytest.raises(FileNotFoundError):
+        load(tmp_path / "missing.h5")
+    other = tmp_path / "other.h5"
+    with h5py.File(other, "w") as f:
+        f["x"] = np.zeros(3)
+    with pytest.raises(ResultsFileError, match="not a rotorsim results file"):
+        load(other)
+
+
+# ---------------------------------------------------------------------------- atomicity
+def test_crash_mid_write_keeps_previous_file_and_leaves_no_temp(results, tmp_path,
+                                                                monkeypatch):
+    target = save(results["static"], tmp_path / "out.h5")
+    before = target.read_bytes()
+    real = serialize._write_array
+    calls = {"n": 0}
+
+    def crashing(*args: Any, **kwargs: Any) -> None:
+        calls["n"] += 1
+        if calls["n"] == 5:  # after four datasets were written
+            raise KeyboardInterrupt("simulated crash")
+        real(*args, **kwargs)
+
+    monkeypatch.setattr(serialize, "_write_array", crashing)
+    with pytest.raises(KeyboardInterrupt):
+        save(results["modal"], target)
+    assert calls["n"] == 5
+    assert target.read_bytes() == before
+    assert [p.name for p in tmp_path.iterdir()] == ["out.h5"]
+    monkeypatch.undo()
+    assert_results_equal(results["static"], load(target))
+
+
+def test_overwrite_replaces_and_missing_folder_fails(results, tmp_path):
+    target = tmp_path / "out.h5"
+    save(results["static"], target)
+    save(results["modal"], target)
+    assert type(load(target)).__name__ == "ModalResult"
+    assert [p.name for p in tmp_path.iterdir()] == ["out.h5"]
+    with pytest.raises(FileNotFoundError):
+        save(results["modal"], tmp_path / "no" / "such" / "x.h5")
