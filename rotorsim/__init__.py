@@ -23,6 +23,13 @@ from rotorsim.analyses.critical_speeds import critical_speeds
 from rotorsim.analyses.frequency_response import frequency_response, unbalance_response
 from rotorsim.analyses.modal import modal
 from rotorsim.analyses.static import static
+from rotorsim.analyses.sweep import (
+    Grid,
+    Normal,
+    Sample,
+    Uniform,
+    sweep,
+)
 from rotorsim.assembly.dof_map import DofMap
 from rotorsim.assembly.system import RotorSystem, SystemMatrices, assemble
 from rotorsim.elements.base import DOF_NAMES, ElementMatrices
@@ -31,6 +38,7 @@ from rotorsim.elements.linear_bearing import BearingElement
 from rotorsim.elements.shaft import ShaftElement, cowper_shear_coefficient
 from rotorsim.errors import ConvergenceError, ModelError, RotorsimError, Status
 from rotorsim.io.hdf5 import ResultsFileError, load, save
+from rotorsim.io.sweep_store import load_sweep
 from rotorsim.io.vtk import export_vtk
 from rotorsim.model.material import Material
 from rotorsim.model.rotor import Rotor
@@ -41,6 +49,7 @@ from rotorsim.results.frequency_response import FrequencyResponseResult
 from rotorsim.results.modal import ModalResult
 from rotorsim.results.orbits import Ellipse, ellipse
 from rotorsim.results.static import StaticResult
+from rotorsim.results.sweep import SweepResult
 
 __version__ = "0.1.0"
 
@@ -56,18 +65,23 @@ __all__ = [
     "ElementMatrices",
     "Ellipse",
     "FrequencyResponseResult",
+    "Grid",
     "Material",
     "ModalResult",
     "ModelError",
+    "Normal",
     "PointMass",
     "ResultsFileError",
     "Rotor",
     "RotorSystem",
     "RotorsimError",
+    "Sample",
     "ShaftElement",
     "StaticResult",
     "Status",
+    "SweepResult",
     "SystemMatrices",
+    "Uniform",
     "assemble",
     "campbell",
     "cowper_shear_coefficient",
@@ -77,9 +91,11 @@ __all__ = [
     "export_vtk",
     "frequency_response",
     "load",
+    "load_sweep",
     "modal",
     "plot",
     "save",
     "static",
+    "sweep",
     "unbalance_response",
 ]

@@ -34,7 +34,7 @@ from rotorsim.results.critical_speeds import (
     check_harmonic,
     check_whirl_filter,
 )
-from rotorsim.solvers.eigen import DENSE_EIGEN_THRESHOLD
+from rotorsim.solvers.eigen import DENSE_EIGEN_THRESHOLD, start_vector
 from rotorsim.solvers.linear import factorize
 from rotorsim.solvers.stats import Stats
 
@@ -223,6 +223,7 @@ def _shift_invert(K: sp.csr_matrix, B: sp.csr_matrix, n_eig: int, sigma: float,
     op = spl.LinearOperator((n, n), matvec=lambda x: lu.solve(B @ x), dtype=complex)
     try:
         nu, vecs = spl.eigs(op, k=n_eig, which="LM", ncv=min(n, max(2 * n_eig + 1, 40)),
+                            v0=start_vector(n).astype(complex),
                             tol=1e-12, maxiter=5000)
     except spl.ArpackNoConvergence as exc:
         raise ConvergenceError(f"ARPACK did not converge ({exc})", "critical_speeds") from exc

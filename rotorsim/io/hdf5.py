@@ -31,6 +31,8 @@ if TYPE_CHECKING:
 
 __all__ = ["FORMAT", "FORMAT_VERSION", "ResultsFileError", "load", "save"]
 
+SWEEP_FORMAT = "rotorsim.sweep"
+"""Root ``format`` of a sweep store (:mod:`rotorsim.io.sweep_store`), also read by :func:`load`."""
 FORMAT = "rotorsim-results"
 """Value of the root attribute ``format`` of every results file."""
 
@@ -85,7 +87,7 @@ def save(result: object | Mapping[str, object], path: str | os.PathLike[str]) ->
 
 
 def load(path: str | os.PathLike[str]) -> Any:
-    """Read a file written by :func:`save`.
+    """Read a file written by :func:`save` (or a sweep store, see :func:`load_sweep`).
 
     Returns
     -------
@@ -111,6 +113,12 @@ def load(path: str | os.PathLike[str]) -> Any:
     except OSError as exc:
         raise ResultsFileError("not an HDF5 file", str(source)) from exc
     with handle as f:
+        is_sweep = f.attrs.get("format") == SWEEP_FORMAT
+    if is_sweep:  # a sweep store: read it as a SweepResult
+        from rotorsim.io.sweep_store import load_sweep
+
+        return load_sweep(source)
+    with h5py.File(source, "r") as f:
         layout = _check_header(f, source)
         try:
             if layout == "single":
