@@ -14,7 +14,7 @@ $(STAMP): pyproject.toml | $(PY)
 	touch $(STAMP)
 
 run: $(STAMP)
-	MPLBACKEND=Agg $(PY) examples/showcase.py
+	MPLBACKEND=Agg $(PY) -m rotorsim run models/default.toml
 
 test: $(STAMP)
 	MPLBACKEND=Agg $(PY) -m ruff check rotorsim tests benchmarks examples

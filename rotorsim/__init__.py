@@ -38,6 +38,7 @@ from rotorsim.elements.linear_bearing import BearingElement
 from rotorsim.elements.shaft import ShaftElement, cowper_shear_coefficient
 from rotorsim.errors import ConvergenceError, ModelError, RotorsimError, Status
 from rotorsim.io.hdf5 import ResultsFileError, load, save
+from rotorsim.io.model_file import Model, load_model, run_analysis, save_model
 from rotorsim.io.sweep_store import load_sweep
 from rotorsim.io.vtk import export_vtk
 from rotorsim.model.material import Material
@@ -68,6 +69,7 @@ __all__ = [
     "Grid",
     "Material",
     "ModalResult",
+    "Model",
     "ModelError",
     "Normal",
     "PointMass",
@@ -91,10 +93,13 @@ __all__ = [
     "export_vtk",
     "frequency_response",
     "load",
+    "load_model",
     "load_sweep",
     "modal",
     "plot",
+    "run_analysis",
     "save",
+    "save_model",
     "static",
     "sweep",
     "unbalance_response",

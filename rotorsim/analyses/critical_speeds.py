@@ -27,6 +27,7 @@ from scipy.optimize import brentq
 from rotorsim.analyses.mode_shapes import circularize, clusters, mode_kind, whirl_of
 from rotorsim.analyses.system_input import as_system
 from rotorsim.assembly.system import RotorSystem
+from rotorsim.elements.linear_bearing import BearingElement
 from rotorsim.errors import ConvergenceError, ModelError
 from rotorsim.model.rotor import Rotor
 from rotorsim.results.critical_speeds import (
@@ -81,8 +82,13 @@ def critical_speeds(
     [rad^2/s^2] with one sparse LU of ``K - sigma (M - (i/k) G)``. Forward and backward
     modes are told apart by the whirl of their orbits (:func:`~rotorsim.results.orbits.ellipse`);
     degenerate pairs (non-gyroscopic rotors) are first split into circular modes.
-    Cross-coupled stiffness (``kxy != kyx``) makes the pencil non-Hermitian: eigenvalues
-    that are not real are dropped (such modes have no undamped synchronous crossing).
+    Cross-coupled bearing stiffness (``kxy``, ``kyx``) would make the pencil
+    non-Hermitian, with no real undamped synchronous crossing. As in classical undamped
+    critical-speed analysis, the cross-coupled terms are dropped for a :class:`Rotor`
+    (recorded in ``options["cross_coupling"]``); use :func:`~rotorsim.campbell` and
+    :meth:`CampbellResult.critical_speeds` for the damped, cross-coupled crossings. An
+    assembled :class:`RotorSystem` with a non-symmetric stiffness is refused with a
+    :class:`ModelError` because its bearings can no longer be separated.
 
     Bearings tabulated against speed make ``K`` and ``M`` depend on ``W``: the ``j``-th
     critical speed is then the fixed point ``W = Wc_j(W)``, where ``Wc_j(W)`` is the
@@ -131,9 +137,31 @@ def critical_speeds(
     (['forward', 'forward'], True)
     """
     stats = Stats()
-    result = solve_critical_speeds(as_system(rotor), harmonic, num_modes, whirl, True, sparse,
-                              sigma, stats)
-    return dataclasses.replace(result, stats=stats.finish())
+    dropped = False
+    if isinstance(rotor, Rotor) and _cross_coupled(rotor):
+        rotor = rotor.with_bearings([_direct_only(b) for b in rotor.bearing_elements])
+        dropped = True
+    system = as_system(rotor)
+    K = system.matrices(0.0).K
+    if abs(K - K.T).max() > 1e-12 * abs(K).max():
+        raise ModelError("the stiffness matrix is not symmetric (cross-coupled bearings): "
+                         "undamped critical speeds need the Rotor, whose cross-coupling is "
+                         "then dropped, or use campbell(...).critical_speeds()",
+                         "critical_speeds")
+    result = solve_critical_speeds(system, harmonic, num_modes, whirl, True, sparse, sigma,
+                                   stats)
+    options = {**result.options, "cross_coupling": "dropped" if dropped else "none"}
+    return dataclasses.replace(result, options=options, stats=stats.finish())
+
+
+def _cross_coupled(rotor: Rotor) -> bool:
+    return any(np.any(b.coefficient(c, b.frequency if b.frequency is not None else 0.0) != 0)
+               for b in rotor.bearing_elements for c in ("kxy", "kyx"))
+
+
+def _direct_only(bearing: BearingElement) -> BearingElement:
+    """Copy of ``bearing`` without cross-coupled stiffness."""
+    return dataclasses.replace(bearing, kxy=0.0, kyx=0.0)
 
 
 def solve_critical_speeds(system: RotorSystem, harmonic: float, num_modes: int,

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import dataclasses
+
 import numpy as np
 import pytest
 
@@ -196,3 +198,17 @@ def test_map_bad_input_raises_model_error(args, kwargs) -> None:
 def test_map_needs_a_rotor() -> None:
     with pytest.raises(ModelError):
         critical_speed_map(rs.assemble(euler_shaft(4)))  # type: ignore[arg-type]
+
+
+def test_cross_coupled_bearings_are_dropped_for_a_rotor_and_refused_for_a_system() -> None:
+    """Classical undamped critical speeds use the direct bearing stiffness only."""
+    base = two_disk_rotor(6)
+    coupled = base.with_bearings([dataclasses.replace(b, kxy=3e5, kyx=-3e5)
+                                  for b in base.bearing_elements])
+    direct = critical_speeds(base, 1, num_modes=4)
+    result = critical_speeds(coupled, 1, num_modes=4)
+    assert result.options["cross_coupling"] == "dropped"
+    assert direct.options["cross_coupling"] == "none"
+    np.testing.assert_allclose(result.speed, direct.speed, rtol=1e-10)
+    with pytest.raises(ModelError, match="not symmetric"):
+        critical_speeds(rs.assemble(coupled), 1, num_modes=4)

@@ -1,0 +1,199 @@
+"""``rotorsim`` command line: thin subcommands over model files, analyses and result I/O.
+
+Every analysis writes ``<out>/<model>/<analysis>.h5`` (see docs/results_format.md) and a
+PNG figure, and prints a summary. Bad input ends with one line on stderr and exit code 2
+(``--debug`` shows the traceback instead).
+"""
+
+from __future__ import annotations
+
+import argparse
+import dataclasses
+import sys
+import time
+from collections.abc import Sequence
+from pathlib import Path
+from typing import Any
+
+EXIT_BAD_INPUT = 2
+EXIT_FAILED = 1
+
+_SUBCOMMAND_TYPES = {
+    "modal": "modal",
+    "campbell": "campbell",
+    "critical-speeds": "critical_speeds",
+    "map": "critical_speed_map",
+    "unbalance": "unbalance",
+    "static": "static",
+}
+
+
+def build_parser() -> argparse.ArgumentParser:
+    """The argument parser of ``rotorsim`` (all subcommands)."""
+    parser = argparse.ArgumentParser(
+        prog="rotorsim", description="Rotordynamics with finite elements.")
+    parser.add_argument("--debug", action="store_true", help="show tracebacks on errors")
+    sub = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
+
+    info = sub.add_parser("info", help="summary table of a model file")
+    info.add_argument("model", type=Path)
+
+    run = sub.add_parser("run", help="run the analyses a model file names")
+    run.add_argument("model", type=Path)
+    run.add_argument("analyses", nargs="*", help="names of analyses (default: all)")
+    _add_output_options(run)
+
+    for name, kind in _SUBCOMMAND_TYPES.items():
+        p = sub.add_parser(name, help=f"run a {kind.replace('_', ' ')} analysis")
+        p.add_argument("model", type=Path)
+        _add_output_options(p)
+        if kind in ("modal", "campbell", "critical_speeds", "critical_speed_map"):
+            p.add_argument("--num-modes", type=int, help="number of modes")
+        if kind == "modal":
+            p.add_argument("--speed", help='spin speed, e.g. "3000 rpm" (default 0)')
+        if kind in ("campbell", "unbalance"):
+            p.add_argument("--speeds", nargs=3, metavar=("START", "STOP", "NUM"),
+                           help='speed range, e.g. 0 "4500 rpm" 91 (numbers are rad/s)')
+        if kind == "critical_speed_map":
+            p.add_argument("--stiffness", nargs=3, metavar=("KMIN", "KMAX", "NUM"),
+                           help='support stiffness range, e.g. "0.1 MN/m" "1 GN/m" 40')
+    return parser
+
+
+def _add_output_options(p: argparse.ArgumentParser) -> None:
+    p.add_argument("--out", type=Path, default=Path("results"),
+                   help="output folder (default: results)")
+    p.add_argument("--units", choices=("rpm", "Hz", "rad/s"),
+                   help="units of speeds and frequencies in summaries and figures")
+    p.add_argument("--no-plots", action="store_true", help="do not write PNG figures")
+    p.add_argument("--no-progress", action="store_true",
+                   help="no progress bars (they are off anyway when stderr is not a terminal)")
+    p.add_argument("--fast", action="store_true", help="coarse grids (smoke runs)")
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """Entry point of the ``rotorsim`` command; returns the exit code."""
+    from rotorsim.errors import ConvergenceError, RotorsimError
+
+    args = build_parser().parse_args(argv)
+    try:
+        return _dispatch(args)
+    except (RotorsimError, FileNotFoundError, IsADirectoryError) as exc:
+        if args.debug:
+            raise
+        code = EXIT_FAILED if isinstance(exc, ConvergenceError) else EXIT_BAD_INPUT
+        print(f"rotorsim: error: {exc}", file=sys.stderr)
+        return code
+
+
+def _dispatch(args: argparse.Namespace) -> int:
+    from rotorsim.io.model_file import load_model
+
+    model = load_model(args.model)
+    if args.command == "info":
+        print(_info(model))
+        return 0
+    if args.command == "run":
+        names = list(args.analyses) or list(model.analyses)
+        if not names:
+            print(f"{model.name}: the model file names no analyses", file=sys.stderr)
+            return EXIT_BAD_INPUT
+        unknown = [n for n in names if n not in model.analyses]
+        if unknown:
+            from rotorsim.errors import ModelError
+
+            raise ModelError(f"no analysis {unknown[0]!r}; the model has "
+                             f"{', '.join(model.analyses)}", model.name)
+        jobs = [(name, None) for name in names]
+    else:
+        jobs = [_adhoc_job(model, args)]
+    print(_info(model))
+    t0 = time.perf_counter()
+    for name, spec in jobs:
+        _run_one(model, name, spec, args)
+    print(f"\n{len(jobs)} analyses in {time.perf_counter() - t0:.2f} s; results in "
+          f"{args.out / model.name}/")
+    return 0
+
+
+def _info(model: Any) -> str:
+    from rotorsim.cli.summaries import table
+
+    s = model.rotor.summary()
+    rows = [(k, f"{v:.4g}" if isinstance(v, float) else v) for k, v in s.items()]
+    rows.append(("analyses", ", ".join(model.analyses) or "-"))
+    head = f"model '{model.name}'" + (f": {model.description}" if model.description else "")
+    return head + "\n" + table(rows, ("quantity", "value"))
+
+
+def _adhoc_job(model: Any, args: argparse.Namespace) -> tuple[str, Any]:
+    """The model's first analysis of the subcommand's type (or a default one) with the
+    command-line overrides applied."""
+    from rotorsim.io.analysis_spec import SPEC_TYPES, Grid
+    from rotorsim.units import to_si
+
+    kind = _SUBCOMMAND_TYPES[args.command]
+    name, spec = next(((n, s) for n, s in model.analyses.items() if s.type == kind),
+                      (kind, None))
+    cls = SPEC_TYPES[kind]
+    changes: dict[str, Any] = {}
+    if getattr(args, "num_modes", None) is not None:
+        changes["num_modes"] = args.num_modes
+    if getattr(args, "speed", None) is not None:
+        changes["speed"] = to_si(args.speed, "speed", "--speed")
+    if getattr(args, "speeds", None) is not None:
+        start, stop, num = args.speeds
+        changes["speeds"] = Grid(to_si(start, "speed", "--speeds START"),
+                                 to_si(stop, "speed", "--speeds STOP"), _count(num))
+    if getattr(args, "stiffness", None) is not None:
+        kmin, kmax, num = args.stiffness
+        changes["stiffness"] = Grid(to_si(kmin, "stiffness", "--stiffness KMIN"),
+                                    to_si(kmax, "stiffness", "--stiffness KMAX"),
+                                    _count(num), "log")
+    if spec is None:
+        if kind in ("campbell", "unbalance") and "speeds" not in changes:
+            from rotorsim.errors import ModelError
+
+            raise ModelError("the model has no such analysis; give --speeds START STOP NUM",
+                             args.command)
+        spec = cls(**changes)
+    else:
+        spec = dataclasses.replace(spec, **changes)
+    return name, spec
+
+
+def _count(text: str) -> int:
+    from rotorsim.errors import ModelError
+
+    try:
+        value = int(text)
+    except ValueError:
+        raise ModelError(f"NUM must be an integer, got {text!r}", "command line") from None
+    if value < 1:
+        raise ModelError(f"NUM must be >= 1, got {value}", "command line")
+    return value
+
+
+def _run_one(model: Any, name: str, spec: Any, args: argparse.Namespace) -> None:
+    from rotorsim.cli.outputs import write_outputs
+    from rotorsim.cli.summaries import summarize
+    from rotorsim.io.analysis_spec import run_analysis
+
+    if spec is not None:
+        model = dataclasses.replace(model, analyses={**model.analyses, name: spec})
+    spec = model.analyses[name]
+    units = args.units or spec.units
+    print(f"\n== {name} ({spec.type}) ==")
+    t0 = time.perf_counter()
+    progress = not args.no_progress and sys.stderr.isatty()
+    result = run_analysis(model, name, fast=args.fast, progress=progress)
+    elapsed = time.perf_counter() - t0
+    options = {"units": units} if spec.type not in ("static",) else {}
+    print(summarize(result, **options))
+    files = write_outputs(result, args.out / model.name, name, units=units,
+                          plots=not args.no_plots)
+    print(f"[{elapsed:.2f} s] wrote " + ", ".join(str(f) for f in files))
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

@@ -1,0 +1,56 @@
+"""Files written by the command line for one analysis: HDF5 result and PNG figures."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Any
+
+MODE_FIGURES = 4
+"""Number of mode-shape figures written for a modal analysis."""
+
+
+def write_outputs(result: Any, folder: Path, name: str, *, units: str = "rpm",
+                  plots: bool = True) -> list[Path]:
+    """Save ``result`` to ``folder/name.h5`` and, with ``plots``, its figures as PNG.
+
+    Returns the paths written.
+    """
+    from rotorsim.io.hdf5 import save
+
+    folder.mkdir(parents=True, exist_ok=True)
+    written = [save(result, folder / f"{name}.h5")]
+    if plots:
+        written += _figures(result, folder, name, units)
+    return written
+
+
+def _figures(result: Any, folder: Path, name: str, units: str) -> list[Path]:
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from rotorsim.plotting import plot
+    from rotorsim.plotting.figures import DRAWERS
+
+    kind = type(result).__name__
+    if kind not in DRAWERS:
+        return []
+    figures: dict[str, Any] = {}
+    if kind == "ModalResult":
+        for j in range(min(MODE_FIGURES, result.n_modes)):
+            figures[f"{name}_mode_{j}.png"] = plot(result, mode=j, units="Hz")
+    elif kind == "StaticResult":
+        figures[f"{name}.png"] = plot(result)
+    elif kind == "FrequencyResponseResult":
+        figures[f"{name}.png"] = plot(result, units=units)
+        figures[f"{name}_polar.png"] = plot(result, polar=True)
+    else:
+        figures[f"{name}.png"] = plot(result, units=units)
+    paths = []
+    for file_name, fig in figures.items():
+        path = folder / file_name
+        fig.savefig(path, dpi=110, bbox_inches="tight")
+        plt.close(fig)
+        paths.append(path)
+    return paths

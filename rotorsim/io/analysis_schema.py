@@ -1,0 +1,178 @@
+"""Pydantic schema of the named analyses of a model file.
+
+Analyses are written as ``[analyses.<name>]`` tables or as an ``[[analyses]]`` array with a
+``name`` key (default: the type). Each has a ``type`` (see :data:`TABLES`), the options of
+that analysis and the common reporting options of :class:`AnalysisTable`.
+"""
+
+from typing import Annotated, Any, Literal
+
+from pydantic import Field, PlainValidator
+
+from rotorsim.errors import ModelError
+from rotorsim.io.analysis_spec import Grid
+from rotorsim.io.model_schema import UnbalanceTable
+from rotorsim.io.schema_types import (
+    Dof,
+    FrequencyGrid,
+    Located,
+    Name,
+    NodeIndex,
+    PositiveRatio,
+    Speed,
+    SpeedGrid,
+    StiffnessGrid,
+    Table,
+    fail,
+    format_path,
+    show,
+    suggest,
+    validate_table,
+)
+
+NumModes = Annotated[int, Field(ge=1, le=1000)]
+
+
+def _bearing_refs(value: Any) -> tuple[int | str, ...]:
+    """Bearings of a critical-speed map: indices into ``[[bearings]]`` or their tags."""
+    if not isinstance(value, list) or not value:
+        raise fail(f"expected a non-empty array of bearing indices or tags, got {show(value)}")
+    for i, item in enumerate(value):
+        ok_int = isinstance(item, int) and not isinstance(item, bool) and item >= 0
+        if not (ok_int or (isinstance(item, str) and item)):
+            raise fail(f"expected a bearing index (>= 0) or tag, got {show(item)}", f"[{i}]")
+    return tuple(value)
+
+
+def _lateral() -> list[Dof]:
+    return ["ux", "uy"]
+
+
+class AnalysisTable(Table):
+    """Options common to every analysis: a name, a description and what to report."""
+
+    type: str
+    name: Name | None = None
+    description: str = ""
+    units: Literal["rpm", "Hz", "rad/s"] = "rpm"
+    nodes: list[NodeIndex] | None = None
+    dofs: Annotated[list[Dof], Field(min_length=1)] = Field(default_factory=_lateral)
+
+
+class ModalTable(AnalysisTable):
+    type: Literal["modal"]
+    speed: Speed = 0.0
+    num_modes: NumModes = 12
+
+
+class CampbellTable(AnalysisTable):
+    type: Literal["campbell"]
+    speeds: SpeedGrid
+    num_modes: NumModes = 12
+    harmonics: Annotated[list[PositiveRatio], Field(min_length=1)] = Field(
+        default_factory=lambda: [1.0])
+
+
+class CriticalSpeedsTable(AnalysisTable):
+    type: Literal["critical_speeds"]
+    harmonic: PositiveRatio = 1.0
+    num_modes: NumModes = 8
+    whirl: Literal["forward", "backward"] | None = None
+
+
+class CriticalSpeedMapTable(AnalysisTable):
+    type: Literal["critical_speed_map"]
+    stiffness: StiffnessGrid = Grid(1e5, 1e10, 30, "log")
+    num_modes: NumModes = 4
+    harmonic: PositiveRatio = 1.0
+    bearings: Annotated[Any, PlainValidator(_bearing_refs)] = None
+    gyroscopic: bool = True
+    speeds: SpeedGrid = None
+
+
+class UnbalanceAnalysisTable(AnalysisTable):
+    type: Literal["unbalance"]
+    speeds: SpeedGrid
+    unbalance: Annotated[list[UnbalanceTable], Field(min_length=1)] | None = None
+
+
+class InputTable(Located):
+    dof: Dof
+
+
+class FrequencyResponseTable(AnalysisTable):
+    type: Literal["frequency_response"]
+    frequencies: FrequencyGrid
+    inputs: Annotated[list[InputTable], Field(min_length=1)]
+    speed: Speed | None = None
+
+
+class StaticTable(AnalysisTable):
+    type: Literal["static"]
+    speed: Speed = 0.0
+
+
+TABLES: dict[str, type[AnalysisTable]] = {
+    "modal": ModalTable,
+    "campbell": CampbellTable,
+    "critical_speeds": CriticalSpeedsTable,
+    "critical_speed_map": CriticalSpeedMapTable,
+    "unbalance": UnbalanceAnalysisTable,
+    "frequency_response": FrequencyResponseTable,
+    "static": StaticTable,
+}
+"""Analysis types of model files and their tables."""
+
+
+def validate_analyses(raw: Any) -> list[tuple[str, tuple[str | int, ...], AnalysisTable]]:
+    """Validate the ``analyses`` section.
+
+    Parameters
+    ----------
+    raw : dict, list or None
+        ``{name: table}`` (from ``[analyses.<name>]``) or a list of tables with ``name``.
+
+    Returns
+    -------
+    list of (name, key path, table)
+
+    Raises
+    ------
+    ModelError
+        Naming the key path of the first problem.
+    """
+    if raw is None:
+        return []
+    if isinstance(raw, dict):
+        items: list[tuple[str | None, tuple[str | int, ...], Any]] = [
+            (str(key), ("analyses", str(key)), body) for key, body in raw.items()]
+    elif isinstance(raw, list):
+        items = [(None, ("analyses", i), body) for i, body in enumerate(raw)]
+    else:
+        raise ModelError("expected named tables [analyses.<name>] or an array [[analyses]], "
+                         f"got {show(raw)}", "analyses")
+    out: list[tuple[str, tuple[str | int, ...], AnalysisTable]] = []
+    for key, loc, body in items:
+        table = _validate_one(body, loc)
+        name = key if key is not None else (table.name or table.type)
+        if key is not None and table.name is not None and table.name != key:
+            raise ModelError(f"must match the table key '{key}', got {show(table.name)}",
+                             format_path((*loc, "name")))
+        if any(name == other for other, _, _ in out):
+            raise ModelError(f"duplicate analysis name '{name}'", format_path((*loc, "name")))
+        out.append((name, loc, table))
+    return out
+
+
+def _validate_one(body: Any, loc: tuple[str | int, ...]) -> AnalysisTable:
+    where = format_path(loc)
+    if not isinstance(body, dict):
+        raise ModelError(f"expected a table, got {show(body)}", where)
+    kind = body.get("type")
+    if kind is None:
+        raise ModelError(f"field required (one of {', '.join(TABLES)})", f"{where}.type")
+    if not isinstance(kind, str) or kind not in TABLES:
+        hint = suggest(kind, tuple(TABLES)) if isinstance(kind, str) else ""
+        raise ModelError(f"unknown analysis type {show(kind)}{hint}; use one of "
+                         f"{', '.join(TABLES)}", f"{where}.type")
+    return validate_table(TABLES[kind], body, loc)

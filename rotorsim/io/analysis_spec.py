@@ -1,0 +1,327 @@
+"""Typed analysis specifications read from model files, and the runner that executes them.
+
+A model file names analyses (``[analyses.campbell]`` with ``type = "campbell"``); the
+loader turns each into one of the frozen specs below, in SI units with node numbers
+resolved. :func:`run_analysis` maps a spec onto the matching ``rotorsim`` call.
+
+Examples
+--------
+>>> grid = Grid(start=0.0, stop=100.0, num=5)
+>>> grid.array().tolist()
+[0.0, 25.0, 50.0, 75.0, 100.0]
+>>> grid.shrunk(3).num
+3
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, fields
+from typing import TYPE_CHECKING, Any, ClassVar, Literal
+
+import numpy as np
+
+from rotorsim.assembly.loads import STANDARD_GRAVITY
+from rotorsim.elements.base import FloatArray
+from rotorsim.errors import ModelError
+
+if TYPE_CHECKING:
+    from rotorsim.io.model_file import Model
+
+FAST_POINTS = 7
+"""Grid size used by ``run_analysis(..., fast=True)``."""
+
+
+@dataclass(frozen=True)
+class Grid:
+    """Values of a swept quantity in SI: a range ``start..stop`` with ``num`` points, or
+    explicit ``values``.
+
+    Parameters
+    ----------
+    start, stop : float
+        Ends of the range (SI).
+    num : int
+        Number of points (>= 1).
+    spacing : {"linear", "log"}
+        Linear or logarithmic spacing of the range.
+    values : tuple of float, optional
+        Explicit values; when given, the range fields are ignored.
+    """
+
+    start: float = 0.0
+    stop: float = 0.0
+    num: int = 1
+    spacing: Literal["linear", "log"] = "linear"
+    values: tuple[float, ...] | None = None
+
+    def array(self) -> FloatArray:
+        """The values as a float array."""
+        if self.values is not None:
+            return np.array(self.values, dtype=float)
+        if self.spacing == "log":
+            return np.geomspace(self.start, self.stop, self.num)
+        return np.linspace(self.start, self.stop, self.num)
+
+    def shrunk(self, num: int) -> Grid:
+        """Copy with at most ``num`` points spanning the same range."""
+        if self.values is not None:
+            if len(self.values) <= num:
+                return self
+            index = np.unique(np.linspace(0, len(self.values) - 1, num).round().astype(int))
+            return Grid(values=tuple(self.values[i] for i in index))
+        return Grid(self.start, self.stop, min(self.num, num), self.spacing)
+
+    def to_toml(self) -> dict[str, Any] | list[float]:
+        """Model-file form: a table ``{start, stop, num, spacing}`` or a list of values."""
+        if self.values is not None:
+            return list(self.values)
+        return {"start": self.start, "stop": self.stop, "num": self.num,
+                "spacing": self.spacing}
+
+
+Unbalance = tuple[tuple[int, float, float], ...]
+"""``(node, magnitude [kg m], phase [rad])`` of each unbalance."""
+
+
+@dataclass(frozen=True)
+class Loads:
+    """Loads of a model file.
+
+    Parameters
+    ----------
+    gravity : float or None
+        Acceleration of gravity [m/s^2]; ``None`` switches it off.
+    gravity_direction : (3,) tuple
+        Direction in which gravity acts (x, y, z).
+    unbalance : tuple of (node, magnitude, phase)
+        Unbalance distribution [kg m, rad].
+    point_loads : tuple of (node, dof, value)
+        Static forces [N] and moments [N m].
+    """
+
+    gravity: float | None = STANDARD_GRAVITY
+    gravity_direction: tuple[float, float, float] = (0.0, -1.0, 0.0)
+    unbalance: Unbalance = ()
+    point_loads: tuple[tuple[int, str, float], ...] = ()
+
+
+@dataclass(frozen=True, kw_only=True)
+class AnalysisSpec:
+    """Options shared by all analyses: a description and what to report.
+
+    Parameters
+    ----------
+    description : str
+        Free text.
+    units : {"rpm", "Hz", "rad/s"}
+        Unit of speeds and frequencies in printed summaries and figures.
+    nodes : tuple of int, optional
+        Nodes to report (responses, orbits); default chosen by the reporter.
+    dofs : tuple of str
+        DOFs to report at those nodes.
+    """
+
+    type: ClassVar[str] = ""
+    description: str = ""
+    units: str = "rpm"
+    nodes: tuple[int, ...] | None = None
+    dofs: tuple[str, ...] = ("ux", "uy")
+
+    def to_toml(self) -> dict[str, Any]:
+        """Model-file form in SI numbers (``None`` entries left out)."""
+        out: dict[str, Any] = {"type": self.type}
+        for f in fields(self):
+            value = getattr(self, f.name)
+            if value is None or (f.name == "description" and not value):
+                continue
+            out[f.name] = _toml_value(f.name, value)
+        return out
+
+
+def _toml_value(name: str, value: Any) -> Any:
+    if isinstance(value, Grid):
+        return value.to_toml()
+    if name == "unbalance":
+        return [{"node": n, "magnitude": me, "phase": a} for n, me, a in value]
+    if name == "inputs":
+        return [{"node": n, "dof": dof} for n, dof in value]
+    return list(value) if isinstance(value, tuple) else value
+
+
+@dataclass(frozen=True, kw_only=True)
+class ModalSpec(AnalysisSpec):
+    """Modes at one speed: :func:`rotorsim.modal`."""
+
+    type: ClassVar[str] = "modal"
+    speed: float = 0.0
+    num_modes: int = 12
+
+
+@dataclass(frozen=True, kw_only=True)
+class CampbellSpec(AnalysisSpec):
+    """Campbell diagram over ``speeds`` [rad/s]: :func:`rotorsim.campbell`; ``harmonics``
+    are the excitation orders whose critical speeds are reported."""
+
+    type: ClassVar[str] = "campbell"
+    speeds: Grid
+    num_modes: int = 12
+    harmonics: tuple[float, ...] = (1.0,)
+
+
+@dataclass(frozen=True, kw_only=True)
+class CriticalSpeedsSpec(AnalysisSpec):
+    """Exact undamped critical speeds: :func:`rotorsim.critical_speeds`."""
+
+    type: ClassVar[str] = "critical_speeds"
+    harmonic: float = 1.0
+    num_modes: int = 8
+    whirl: str | None = None
+
+
+@dataclass(frozen=True, kw_only=True)
+class CriticalSpeedMapSpec(AnalysisSpec):
+    """Critical speeds against support stiffness [N/m]: :func:`rotorsim.critical_speed_map`.
+    ``bearings`` are indices into the rotor's bearings (default all)."""
+
+    type: ClassVar[str] = "critical_speed_map"
+    stiffness: Grid = Grid(1e5, 1e10, 30, "log")
+    num_modes: int = 4
+    harmonic: float = 1.0
+    bearings: tuple[int, ...] | None = None
+    gyroscopic: bool = True
+    speeds: Grid | None = None
+
+
+@dataclass(frozen=True, kw_only=True)
+class UnbalanceSpec(AnalysisSpec):
+    """Unbalance response over ``speeds`` [rad/s]: :func:`rotorsim.unbalance_response`;
+    ``unbalance=None`` uses the model's ``[[loads.unbalance]]``."""
+
+    type: ClassVar[str] = "unbalance"
+    speeds: Grid
+    unbalance: Unbalance | None = None
+
+
+@dataclass(frozen=True, kw_only=True)
+class FrequencyResponseSpec(AnalysisSpec):
+    """Receptances over ``frequencies`` [rad/s]: :func:`rotorsim.frequency_response`;
+    ``speed=None`` is synchronous excitation."""
+
+    type: ClassVar[str] = "frequency_response"
+    frequencies: Grid
+    inputs: tuple[tuple[int, str], ...]
+    speed: float | None = None
+
+
+@dataclass(frozen=True, kw_only=True)
+class StaticSpec(AnalysisSpec):
+    """Static deflection under the model's gravity and point loads: :func:`rotorsim.static`."""
+
+    type: ClassVar[str] = "static"
+    speed: float = 0.0
+
+
+SPEC_TYPES: dict[str, type[AnalysisSpec]] = {
+    cls.type: cls for cls in (ModalSpec, CampbellSpec, CriticalSpeedsSpec,
+                              CriticalSpeedMapSpec, UnbalanceSpec, FrequencyResponseSpec,
+                              StaticSpec)
+}
+"""Analysis ``type`` names of model files and their spec classes."""
+
+
+def run_analysis(model: Model, name: str, *, fast: bool = False,
+                 progress: bool = False) -> Any:
+    """Run the analysis ``name`` of a loaded model.
+
+    Parameters
+    ----------
+    model : Model
+        From :func:`rotorsim.io.model_file.load_model`.
+    name : str
+        Key of the analysis in ``model.analyses``.
+    fast : bool
+        Shrink every grid to at most :data:`FAST_POINTS` points (tests, smoke runs).
+    progress : bool
+        Show progress bars on sweeps that support them.
+
+    Returns
+    -------
+    result
+        The analysis result (``ModalResult``, ``CampbellResult``, ``CriticalSpeeds``,
+        ``CriticalSpeedMapResult``, ``FrequencyResponseResult`` or ``StaticResult``).
+
+    Raises
+    ------
+    ModelError
+        ``name`` is not an analysis of the model.
+    """
+    if name not in model.analyses:
+        raise ModelError(f"no analysis {name!r}; the model has {sorted(model.analyses)}",
+                         model.name)
+    spec = model.analyses[name]
+    runner = _RUNNERS[spec.type]
+    return runner(model, spec, fast, progress)
+
+
+def _grid(grid: Grid, fast: bool) -> FloatArray:
+    return (grid.shrunk(FAST_POINTS) if fast else grid).array()
+
+
+def _modal(model: Model, spec: Any, fast: bool, progress: bool) -> Any:
+    from rotorsim.analyses.modal import modal
+
+    return modal(model.rotor, speed=spec.speed, num_modes=spec.num_modes)
+
+
+def _campbell(model: Model, spec: Any, fast: bool, progress: bool) -> Any:
+    from rotorsim.analyses.campbell import campbell
+
+    return campbell(model.rotor, _grid(spec.speeds, fast), num_modes=spec.num_modes,
+                    progress=progress)
+
+
+def _critical_speeds(model: Model, spec: Any, fast: bool, progress: bool) -> Any:
+    from rotorsim.analyses.critical_speeds import critical_speeds
+
+    return critical_speeds(model.rotor, harmonic=spec.harmonic, num_modes=spec.num_modes,
+                           whirl=spec.whirl)
+
+
+def _critical_speed_map(model: Model, spec: Any, fast: bool, progress: bool) -> Any:
+    from rotorsim.analyses.critical_speed_map import critical_speed_map
+
+    speeds = None if spec.speeds is None else _grid(spec.speeds, fast)
+    return critical_speed_map(model.rotor, stiffness=_grid(spec.stiffness, fast),
+                              num_modes=spec.num_modes, harmonic=spec.harmonic,
+                              bearings=spec.bearings, gyroscopic=spec.gyroscopic,
+                              speeds=speeds)
+
+
+def _unbalance(model: Model, spec: Any, fast: bool, progress: bool) -> Any:
+    from rotorsim.analyses.frequency_response import unbalance_response
+
+    unbalance = model.loads.unbalance if spec.unbalance is None else spec.unbalance
+    return unbalance_response(model.rotor, _grid(spec.speeds, fast), list(unbalance),
+                              progress=progress)
+
+
+def _frequency_response(model: Model, spec: Any, fast: bool, progress: bool) -> Any:
+    from rotorsim.analyses.frequency_response import frequency_response
+
+    return frequency_response(model.rotor, _grid(spec.frequencies, fast), list(spec.inputs),
+                              speed=spec.speed, progress=progress)
+
+
+def _static(model: Model, spec: Any, fast: bool, progress: bool) -> Any:
+    from rotorsim.analyses.static import static
+
+    loads = model.loads
+    return static(model.rotor, gravity=loads.gravity, direction=loads.gravity_direction,
+                  loads=list(loads.point_loads), speed=spec.speed)
+
+
+_RUNNERS = {
+    "modal": _modal, "campbell": _campbell, "critical_speeds": _critical_speeds,
+    "critical_speed_map": _critical_speed_map, "unbalance": _unbalance,
+    "frequency_response": _frequency_response, "static": _static,
+}

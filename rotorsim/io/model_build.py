@@ -1,0 +1,280 @@
+"""Build a :class:`~rotorsim.model.rotor.Rotor`, loads and analysis specs from validated
+model-file tables.
+
+This step resolves what the schema cannot check alone: material names, node numbers and
+axial positions (``z`` must be a node position within :data:`Z_TOLERANCE`), housing nodes,
+bearing references. Errors name the key path of the culprit
+(``disks[1].z: 0.512 m is not a node position; nearest nodes: 2 at 0.5 m, 3 at 0.75 m``).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, fields
+from typing import Any
+
+import numpy as np
+
+from rotorsim.elements.disk import DiskElement, PointMass
+from rotorsim.elements.linear_bearing import BearingElement
+from rotorsim.elements.shaft import ShaftElement
+from rotorsim.errors import ModelError
+from rotorsim.io import analysis_spec as spec
+from rotorsim.io.model_schema import BearingTable, ModelTable, ShaftSegment
+from rotorsim.io.schema_types import Located, format_path
+from rotorsim.model.material import Material
+from rotorsim.model.rotor import Rotor
+
+Z_TOLERANCE = 1e-9
+"""Largest distance [m] between a given ``z`` and the node it is mapped to."""
+
+
+def bare(err: ModelError) -> str:
+    """Message of ``err`` without its ``where`` prefix."""
+    text = str(err)
+    prefix = f"{err.where}: " if err.where else ""
+    return text[len(prefix):] if text.startswith(prefix) else text
+
+
+@dataclass(frozen=True)
+class Nodes:
+    """Node layout of a model being built: shaft node positions and housing nodes."""
+
+    z: np.ndarray
+    housings: frozenset[int]
+
+    @property
+    def n_shaft(self) -> int:
+        return int(self.z.size)
+
+    @property
+    def n_total(self) -> int:
+        return self.n_shaft + len(self.housings)
+
+    def shaft_node(self, item: Located, where: str) -> int:
+        """Node of an item that must sit on the shaft (by node number or z)."""
+        if item.z is not None:
+            return self._at(item.z, f"{where}.z")
+        assert item.node is not None
+        if item.node >= self.n_shaft:
+            raise ModelError(f"node {item.node} is not a shaft node (0..{self.n_shaft - 1})",
+                             f"{where}.node")
+        return item.node
+
+    def any_node(self, item: Located, where: str) -> int:
+        """Node of an item that may also sit on a housing node."""
+        if item.z is None and item.node is not None:
+            return self.check(item.node, f"{where}.node")
+        return self.shaft_node(item, where)
+
+    def check(self, node: int, where: str) -> int:
+        if node < self.n_shaft or node in self.housings:
+            return node
+        raise ModelError(f"node {node} is neither a shaft node (0..{self.n_shaft - 1}) nor a "
+                         "housing node with a point mass", where)
+
+    def _at(self, z: float, where: str) -> int:
+        gap = np.abs(self.z - z)
+        node = int(np.argmin(gap))
+        if gap[node] <= Z_TOLERANCE:
+            return node
+        near = np.argsort(gap)[:2]
+        listed = ", ".join(f"{i} at {self.z[i]:.6g} m" for i in sorted(near))
+        raise ModelError(f"{z:.6g} m is not a node position; nearest nodes: {listed}", where)
+
+
+def build_materials(table: ModelTable) -> dict[str, Material]:
+    out: dict[str, Material] = {}
+    for i, mat in enumerate(table.materials):
+        if mat.name in out:
+            raise ModelError(f"duplicate material '{mat.name}'", f"materials[{i}].name")
+        try:
+            out[mat.name] = Material(name=mat.name, E=mat.E, rho=mat.rho,
+                                     G_s=np.nan if mat.G_s is None else mat.G_s,
+                                     nu=np.nan if mat.nu is None else mat.nu)
+        except ModelError as err:
+            raise ModelError(bare(err), f"materials[{i}]") from None
+    return out
+
+
+def material(materials: dict[str, Material], name: str, where: str) -> Material:
+    if name in materials:
+        return materials[name]
+    known = ", ".join(materials) if materials else "none; add [[materials]]"
+    raise ModelError(f"unknown material '{name}' (defined: {known})", where)
+
+
+def segment_elements(seg: ShaftSegment, mat: Material, where: str) -> list[ShaftElement]:
+    """The equal-length elements of one shaft segment; diameters vary linearly along it."""
+    n = seg.n_elements
+    xi = np.linspace(0.0, 1.0, n + 1)
+    idl, odl, idr, odr = seg.diameters
+
+    def along(left: float, right: float) -> np.ndarray:
+        d = left + (right - left) * xi
+        d[0], d[-1] = left, right
+        return d
+
+    inner, outer = along(idl, idr), along(odl, odr)
+    try:
+        return [
+            ShaftElement(L=seg.element_size, idl=float(inner[j]), odl=float(outer[j]),
+                         idr=float(inner[j + 1]), odr=float(outer[j + 1]), material=mat,
+                         shear_effects=seg.shear_effects, rotary_inertia=seg.rotary_inertia,
+                         gyroscopic=seg.gyroscopic, axial_force=seg.axial_force,
+                         shear_coefficient=seg.shear_coefficient, alpha=seg.alpha,
+                         beta=seg.beta, tag=seg.tag)
+            for j in range(n)
+        ]
+    except ModelError as err:
+        raise ModelError(bare(err), where) from None
+
+
+def build_shaft(table: ModelTable, materials: dict[str, Material]) -> list[ShaftElement]:
+    shaft: list[ShaftElement] = []
+    for i, seg in enumerate(table.shaft):
+        mat = material(materials, seg.material, f"shaft[{i}].material")
+        shaft.extend(segment_elements(seg, mat, f"shaft[{i}]"))
+    return shaft
+
+
+def node_layout(table: ModelTable, shaft: list[ShaftElement]) -> Nodes:
+    """Shaft node positions (as :attr:`Rotor.nodes_pos`) and the housing nodes."""
+    z = np.concatenate([[0.0], np.cumsum([el.L for el in shaft])])
+    housing = {pm.node for pm in table.point_masses if pm.node is not None
+               and pm.node >= z.size}
+    expected = set(range(z.size, z.size + len(housing)))
+    if housing != expected:
+        bad = min(housing - expected)
+        j = next(j for j, pm in enumerate(table.point_masses) if pm.node == bad)
+        raise ModelError(f"housing node {bad}: nodes after the last shaft node "
+                         f"({z.size - 1}) must be numbered {z.size}, {z.size + 1}, ... "
+                         "without gaps", f"point_masses[{j}].node")
+    return Nodes(z=z, housings=frozenset(housing))
+
+
+def build_elements(table: ModelTable, materials: dict[str, Material], nodes: Nodes
+                   ) -> tuple[list[DiskElement], list[BearingElement], list[PointMass]]:
+    disks = []
+    for i, d in enumerate(table.disks):
+        where = f"disks[{i}]"
+        n = nodes.shaft_node(d, where)
+        try:
+            if d.m is not None:
+                assert d.Id is not None and d.Ip is not None
+                disks.append(DiskElement(n=n, m=d.m, Id=d.Id, Ip=d.Ip, tag=d.tag))
+            else:
+                assert d.material is not None and d.width is not None and d.o_d is not None
+                mat = material(materials, d.material, f"{where}.material")
+                disks.append(DiskElement.from_geometry(n, mat, d.width, d.i_d, d.o_d, d.tag))
+        except ModelError as err:
+            raise ModelError(bare(err), where) from None
+    bearings = [_bearing(b, nodes, f"bearings[{i}]") for i, b in enumerate(table.bearings)]
+    masses = []
+    for i, pm in enumerate(table.point_masses):
+        where = f"point_masses[{i}]"
+        n = nodes.any_node(pm, where)
+        try:
+            masses.append(PointMass(n=n, m=pm.m, mx=pm.mx, my=pm.my, mz=pm.mz, tag=pm.tag))
+        except ModelError as err:
+            raise ModelError(bare(err), where) from None
+    return disks, bearings, masses
+
+
+def _bearing(b: BearingTable, nodes: Nodes, where: str) -> BearingElement:
+    n = nodes.any_node(b, where)
+    link = None if b.n_link is None else nodes.check(b.n_link, f"{where}.n_link")
+    if link == n:
+        raise ModelError(f"must differ from the bearing node ({n})", f"{where}.n_link")
+    coefficients: dict[str, Any] = {}
+    for key in BearingTable.coefficient_names():
+        value = getattr(b, key)
+        if value is not None:
+            coefficients[key] = np.array(value) if isinstance(value, tuple) else value
+    frequency = None if b.frequency is None else b.frequency.array()
+    try:
+        return BearingElement(n=n, n_link=link, frequency=frequency, tag=b.tag, **coefficients)
+    except ModelError as err:
+        raise ModelError(bare(err), where) from None
+
+
+def build_rotor(table: ModelTable, name: str) -> tuple[Rotor, Nodes]:
+    """The rotor of a validated model file and its node layout."""
+    materials = build_materials(table)
+    shaft = build_shaft(table, materials)
+    nodes = node_layout(table, shaft)
+    disks, bearings, masses = build_elements(table, materials, nodes)
+    fixed = [(nodes.any_node(f, f"fixed[{i}]"), dof)
+             for i, f in enumerate(table.fixed) for dof in f.dofs]
+    rotor = Rotor(shaft, disks, bearings, masses, fixed=fixed, tag=name)
+    return rotor, nodes
+
+
+def build_loads(table: ModelTable, nodes: Nodes) -> spec.Loads:
+    loads = table.loads
+    unbalance = unbalance_list(loads.unbalance, nodes, "loads.unbalance")
+    point = tuple((nodes.any_node(p, f"loads.point_loads[{i}]"), str(p.dof), float(p.value))
+                  for i, p in enumerate(loads.point_loads))
+    gx, gy, gz = (float(v) for v in loads.gravity_direction)
+    return spec.Loads(gravity=loads.gravity, gravity_direction=(gx, gy, gz),
+                      unbalance=unbalance, point_loads=point)
+
+
+def unbalance_list(items: list[Any], nodes: Nodes, where: str) -> spec.Unbalance:
+    return tuple((nodes.shaft_node(u, f"{where}[{i}]"), float(u.magnitude), float(u.phase))
+                 for i, u in enumerate(items))
+
+
+def build_spec(table: Any, loc: tuple[str | int, ...], nodes: Nodes,
+               rotor: Rotor, loads: spec.Loads) -> spec.AnalysisSpec:
+    """The typed spec of one validated analysis table."""
+    where = format_path(loc)
+    common: dict[str, Any] = {
+        "description": table.description, "units": table.units, "dofs": tuple(table.dofs),
+        "nodes": None if table.nodes is None else tuple(
+            nodes.check(n, f"{where}.nodes[{i}]") for i, n in enumerate(table.nodes)),
+    }
+    cls = spec.SPEC_TYPES[table.type]
+    options: dict[str, Any] = {}
+    for f in fields(cls):
+        if f.name not in common and hasattr(table, f.name):
+            options[f.name] = getattr(table, f.name)
+    if table.type == "unbalance":
+        options["unbalance"] = _analysis_unbalance(table, nodes, loads, where)
+    elif table.type == "frequency_response":
+        options["inputs"] = tuple((nodes.any_node(item, f"{where}.inputs[{i}]"), str(item.dof))
+                                  for i, item in enumerate(table.inputs))
+    elif table.type == "critical_speed_map":
+        options["bearings"] = _bearing_indices(options["bearings"], rotor, f"{where}.bearings")
+    elif table.type == "campbell":
+        options["harmonics"] = tuple(options["harmonics"])
+    return cls(**common, **options)
+
+
+def _analysis_unbalance(table: Any, nodes: Nodes, loads: spec.Loads, where: str
+                        ) -> spec.Unbalance | None:
+    if table.unbalance is None:
+        if not loads.unbalance:
+            raise ModelError("no unbalance given: add [[loads.unbalance]] or unbalance = "
+                             "[...] to this analysis", where)
+        return None
+    return unbalance_list(table.unbalance, nodes, f"{where}.unbalance")
+
+
+def _bearing_indices(refs: tuple[int | str, ...] | None, rotor: Rotor, where: str
+                     ) -> tuple[int, ...] | None:
+    if refs is None:
+        return None
+    tags = [b.tag for b in rotor.bearing_elements]
+    out = []
+    for i, ref in enumerate(refs):
+        if isinstance(ref, str):
+            if ref not in tags:
+                raise ModelError(f"no bearing tagged '{ref}' (tags: "
+                                 f"{', '.join(str(t) for t in tags)})", f"{where}[{i}]")
+            out.append(tags.index(ref))
+        elif ref >= len(tags):
+            raise ModelError(f"bearing index {ref} out of range (the model has {len(tags)})",
+                             f"{where}[{i}]")
+        else:
+            out.append(ref)
+    return tuple(out)

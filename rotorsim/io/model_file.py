@@ -1,0 +1,203 @@
+"""Model files (TOML): load a rotor with its loads and named analyses, and save one back.
+
+A model file lists ``[model]``, ``[[materials]]``, ``[[shaft]]`` segments, ``[[disks]]``,
+``[[bearings]]``, ``[[point_masses]]``, ``[[fixed]]``, ``[loads]`` and named
+``[analyses.<name>]``; the reference is ``docs/model_files.md``. Values are SI numbers or
+strings with units (``"50 mm"``, ``"1 MN/m"``, ``"3000 rpm"``).
+
+Every problem in a file raises one :class:`~rotorsim.errors.ModelError` whose message
+starts with the key path (``shaft[3].od: must be > id (0.06 m)``); TOML syntax errors give
+the line and column.
+
+pydantic (and pint, for unit strings) is imported when a file is read, so importing this
+module stays light.
+
+Examples
+--------
+>>> import tempfile, pathlib
+>>> text = '''
+... [[materials]]
+... name = "steel"
+... E = "211 GPa"
+... G_s = "81.2 GPa"
+... rho = "7810 kg/m^3"
+...
+... [[shaft]]
+... length = "1.5 m"
+... n_elements = 6
+... od = "50 mm"
+... material = "steel"
+...
+... [[bearings]]
+... z = 0
+... kxx = "1 MN/m"
+...
+... [[bearings]]
+... z = "1.5 m"
+... kxx = "1 MN/m"
+...
+... [analyses.modes]
+... type = "modal"
+... num_modes = 4
+... '''
+>>> path = pathlib.Path(tempfile.mkdtemp()) / "shaft.toml"
+>>> _ = path.write_text(text)
+>>> model = load_model(path)
+>>> model.name, model.rotor.n_nodes, [b.n for b in model.rotor.bearing_elements]
+('shaft', 7, [0, 6])
+>>> result = run_analysis(model, "modes")
+>>> result.wn.size
+4
+"""
+
+from __future__ import annotations
+
+import os
+import tempfile
+import tomllib
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+from rotorsim.errors import ModelError
+from rotorsim.io.analysis_spec import AnalysisSpec, Loads, run_analysis
+from rotorsim.model.rotor import Rotor
+
+__all__ = ["Model", "load_model", "model_from_dict", "run_analysis", "save_model"]
+
+
+@dataclass(frozen=True, eq=False)
+class Model:
+    """A loaded model file: the rotor, its loads and its named analyses.
+
+    Parameters
+    ----------
+    name : str
+        ``[model] name``, or the file name without extension.
+    rotor : Rotor
+        The rotor (SI).
+    loads : Loads
+        Gravity, unbalance and static point loads.
+    analyses : mapping of str to AnalysisSpec
+        Named analyses in file order; run one with :func:`run_analysis`.
+    description : str
+        ``[model] description``.
+    source : Path, optional
+        The file the model was read from.
+    """
+
+    name: str
+    rotor: Rotor
+    loads: Loads = field(default_factory=Loads)
+    analyses: Mapping[str, AnalysisSpec] = field(default_factory=dict)
+    description: str = ""
+    source: Path | None = None
+
+
+def load_model(path: str | os.PathLike[str]) -> Model:
+    """Read a TOML model file.
+
+    Parameters
+    ----------
+    path : str or path-like
+        The ``.toml`` file.
+
+    Returns
+    -------
+    Model
+
+    Raises
+    ------
+    ModelError
+        Missing or unreadable file, TOML syntax error (with line and column), or an invalid
+        model; the message starts with the key path of the first problem.
+    """
+    path = Path(path)
+    try:
+        text = path.read_bytes().decode("utf-8")
+    except OSError as err:
+        raise ModelError(f"cannot read the file: {err.strerror or err}", str(path)) from None
+    except UnicodeDecodeError as err:
+        raise ModelError(f"not a UTF-8 text file ({err.reason} at byte {err.start})",
+                         str(path)) from None
+    try:
+        data = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as err:
+        raise ModelError(f"invalid TOML: {err}", str(path)) from None
+    return model_from_dict(data, source=path)
+
+
+def model_from_dict(data: Mapping[str, Any], *, source: str | os.PathLike[str] | None = None
+                    ) -> Model:
+    """Build a :class:`Model` from a parsed model file (the dict TOML gives).
+
+    Parameters
+    ----------
+    data : mapping
+        Model-file content.
+    source : path, optional
+        Where it came from; its stem is the default model name.
+
+    Returns
+    -------
+    Model
+
+    Raises
+    ------
+    ModelError
+        Naming the key path of the first problem.
+    """
+    from rotorsim.io import model_build as build
+    from rotorsim.io.analysis_schema import validate_analyses
+    from rotorsim.io.model_schema import validate_model
+
+    table = validate_model(dict(data) if isinstance(data, Mapping) else data)
+    analyses = validate_analyses(table.analyses)
+    src = None if source is None else Path(source)
+    name = table.model.name or (src.stem if src is not None else "rotor")
+    rotor, nodes = build.build_rotor(table, name)
+    loads = build.build_loads(table, nodes)
+    specs = {key: build.build_spec(t, loc, nodes, rotor, loads) for key, loc, t in analyses}
+    return Model(name=name, rotor=rotor, loads=loads, analyses=specs,
+                 description=table.model.description, source=src)
+
+
+def save_model(model: Model | Rotor, path: str | os.PathLike[str]) -> Path:
+    """Write a rotor or a model as a TOML model file in SI numbers.
+
+    Shaft elements are written as one ``[[shaft]]`` segment per run of identical
+    consecutive elements (tapered elements one by one), disks with ``m, Id, Ip``, bearings
+    with every coefficient that differs from its default and their tables over
+    ``frequency``. Loading the file rebuilds identical element matrices, loads and analyses.
+    The file is written to a temporary name and renamed, so it is never left half-written.
+
+    Parameters
+    ----------
+    model : Model or Rotor
+        What to write; a bare Rotor gets default loads and no analyses.
+    path : str or path-like
+        Output file.
+
+    Returns
+    -------
+    Path
+        ``path``.
+    """
+    from rotorsim.io.model_writer import model_to_dict, toml_text
+
+    if isinstance(model, Rotor):
+        model = Model(name=model.tag, rotor=model)
+    if not isinstance(model, Model):
+        raise ModelError(f"expected a Model or Rotor, got {type(model).__name__}", "save_model")
+    path = Path(path)
+    text = toml_text(model_to_dict(model))
+    handle, tmp = tempfile.mkstemp(dir=path.parent or ".", prefix=f".{path.name}.", suffix=".tmp")
+    try:
+        with os.fdopen(handle, "w", encoding="utf-8") as stream:
+            stream.write(text)
+        os.replace(tmp, path)
+    except BaseException:
+        Path(tmp).unlink(missing_ok=True)
+        raise
+    return path

@@ -1,0 +1,241 @@
+"""Turn a loaded :class:`~rotorsim.io.model_file.Model` back into model-file content (SI).
+
+The content is chosen so that loading it rebuilds bit-identical elements: a shaft segment
+per run of identical consecutive elements (its ``length`` only if ``length / n`` gives the
+element length back exactly, else ``element_length``), tapered elements one per segment
+with their four diameters, materials with both ``G_s`` and ``nu``. :func:`toml_text` lays
+it out as a person would write it: ``[model]``, ``[[materials]]``, ``[[shaft]]``, ...,
+``[analyses.<name>]``, with grids and short lists inline.
+"""
+
+from __future__ import annotations
+
+import itertools
+import json
+import math
+import re
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+from rotorsim.elements.disk import PointMass
+from rotorsim.elements.linear_bearing import COEFFICIENTS, BearingElement
+from rotorsim.elements.shaft import ShaftElement
+from rotorsim.io.analysis_spec import Loads
+from rotorsim.model.material import Material
+from rotorsim.model.rotor import Rotor
+
+if TYPE_CHECKING:
+    from rotorsim.io.model_file import Model
+
+
+def model_to_dict(model: Model) -> dict[str, Any]:
+    """Model-file content of ``model`` as a dict ready for ``tomli_w``."""
+    rotor = model.rotor
+    names = material_names(rotor)
+    info: dict[str, Any] = {"name": model.name}
+    if model.description:
+        info["description"] = model.description
+    out: dict[str, Any] = {
+        "model": info,
+        "materials": [_material(mat, name) for mat, name in names.items()],
+        "shaft": shaft_segments(rotor.shaft_elements, names),
+    }
+    optional = {
+        "disks": [{"node": int(d.n), "m": float(d.m), "Id": float(d.Id), "Ip": float(d.Ip),
+                   **_tag(d.tag)} for d in rotor.disk_elements],
+        "bearings": [bearing_entry(b) for b in rotor.bearing_elements],
+        "point_masses": [_point_mass(pm) for pm in rotor.point_mass_elements],
+        "fixed": _fixed(rotor),
+    }
+    out.update({key: value for key, value in optional.items() if value})
+    out["loads"] = _loads(model.loads)
+    if model.analyses:
+        out["analyses"] = {name: spec.to_toml() for name, spec in model.analyses.items()}
+    return out
+
+
+def material_names(rotor: Rotor) -> dict[Material, str]:
+    """Distinct materials of the shaft, each with a unique name."""
+    names: dict[Material, str] = {}
+    for el in rotor.shaft_elements:
+        mat = el.material
+        if mat in names:
+            continue
+        name, k = mat.name, 2
+        while name in names.values():
+            name, k = f"{mat.name}_{k}", k + 1
+        names[mat] = name
+    return names
+
+
+def _material(mat: Material, name: str) -> dict[str, Any]:
+    return {"name": name, "E": float(mat.E), "rho": float(mat.rho), "G_s": float(mat.G_s),
+            "nu": float(mat.nu)}
+
+
+def _tag(tag: str | None) -> dict[str, str]:
+    return {} if tag is None else {"tag": tag}
+
+
+def _signature(el: ShaftElement, index: int) -> tuple[Any, ...]:
+    key = (el.L, el.idl, el.odl, el.idr, el.odr, el.material, el.shear_effects,
+           el.rotary_inertia, el.gyroscopic, el.axial_force, el.shear_coefficient,
+           el.alpha, el.beta, el.tag)
+    return (*key, index) if el.tapered else key
+
+
+def shaft_segments(elements: Any, names: dict[Material, str]) -> list[dict[str, Any]]:
+    """One segment per run of identical consecutive (untapered) elements."""
+    out = []
+    runs = itertools.groupby(enumerate(elements), key=lambda item: _signature(item[1], item[0]))
+    for _, group in runs:
+        run = [el for _, el in group]
+        out.append(_segment(run[0], len(run), names[run[0].material]))
+    return out
+
+
+def _segment(el: ShaftElement, count: int, material: str) -> dict[str, Any]:
+    total = count * el.L
+    seg: dict[str, Any] = ({"length": float(total)} if total / count == el.L
+                           else {"element_length": float(el.L)})
+    seg["n_elements"] = count
+    if el.tapered:
+        seg.update(idl=float(el.idl), odl=float(el.odl), idr=float(el.idr),  # type: ignore[arg-type]
+                   odr=float(el.odr))  # type: ignore[arg-type]
+    else:
+        if el.idl:
+            seg["id"] = float(el.idl)
+        seg["od"] = float(el.odl)
+    seg["material"] = material
+    for key in ("shear_effects", "rotary_inertia", "gyroscopic"):
+        if not getattr(el, key):
+            seg[key] = False
+    for key in ("axial_force", "alpha", "beta"):
+        if getattr(el, key):
+            seg[key] = float(getattr(el, key))
+    if el.shear_coefficient is not None:
+        seg["shear_coefficient"] = float(el.shear_coefficient)
+    seg.update(_tag(el.tag))
+    return seg
+
+
+def bearing_entry(b: BearingElement) -> dict[str, Any]:
+    """Every coefficient that differs from its default (``kyy = kxx``, others 0)."""
+    entry: dict[str, Any] = {"node": int(b.n)}
+    if b.n_link is not None:
+        entry["n_link"] = int(b.n_link)
+    table = {key: np.atleast_1d(np.asarray(getattr(b, key), dtype=float))
+             for key in COEFFICIENTS}
+    for key in COEFFICIENTS:
+        value = table[key]
+        default_key = f"{key[0]}xx" if key[1:] == "yy" else None
+        if default_key is not None and np.array_equal(value, table[default_key]):
+            continue
+        if default_key is None and not np.any(value):
+            continue
+        entry[key] = float(value[0]) if value.size == 1 else [float(v) for v in value]
+    if b.frequency is not None:
+        entry["frequency"] = [float(v) for v in np.asarray(b.frequency)]
+    entry.update(_tag(b.tag))
+    return entry
+
+
+def _point_mass(pm: PointMass) -> dict[str, Any]:
+    entry: dict[str, Any] = {"node": int(pm.n), "m": float(pm.m)}
+    for key in ("mx", "my", "mz"):
+        if getattr(pm, key) is not None:
+            entry[key] = float(getattr(pm, key))
+    entry.update(_tag(pm.tag))
+    return entry
+
+
+def _fixed(rotor: Rotor) -> list[dict[str, Any]]:
+    by_node: dict[int, list[str]] = {}
+    for node, dof in rotor.fixed:
+        by_node.setdefault(int(node), []).append(dof)
+    return [{"node": node, "dofs": dofs} for node, dofs in by_node.items()]
+
+
+def _loads(loads: Loads) -> dict[str, Any]:
+    out: dict[str, Any] = {
+        "gravity": False if loads.gravity is None else float(loads.gravity),
+        "gravity_direction": [float(v) for v in loads.gravity_direction],
+    }
+    if loads.unbalance:
+        out["unbalance"] = [{"node": int(n), "magnitude": float(me), "phase": float(a)}
+                            for n, me, a in loads.unbalance]
+    if loads.point_loads:
+        out["point_loads"] = [{"node": int(n), "dof": dof, "value": float(v)}
+                              for n, dof, v in loads.point_loads]
+    return out
+
+
+# ---------------------------------------------------------------- TOML text
+_BARE_KEY = re.compile(r"^[A-Za-z0-9_-]+$")
+
+
+def toml_text(content: dict[str, Any]) -> str:
+    """TOML text of model-file content: sections for the first two levels of tables and
+    arrays of tables (``[loads]``, ``[[loads.unbalance]]``, ``[analyses.x]``), inline below.
+
+    Examples
+    --------
+    >>> print(toml_text({"model": {"name": "x"}, "shaft": [{"length": 1.0, "od": 0.05}]}))
+    [model]
+    name = "x"
+    <BLANKLINE>
+    [[shaft]]
+    length = 1.0
+    od = 0.05
+    <BLANKLINE>
+    """
+    lines: list[str] = []
+    _emit(lines, (), content, array=False)
+    return "\n".join(lines).lstrip("\n") + "\n"
+
+
+def _is_section(value: Any, depth: int) -> bool:
+    if depth >= 2:
+        return False
+    return isinstance(value, dict) or (isinstance(value, list) and bool(value)
+                                       and all(isinstance(v, dict) for v in value))
+
+
+def _emit(lines: list[str], path: tuple[str, ...], table: dict[str, Any], array: bool) -> None:
+    inline = {k: v for k, v in table.items() if not _is_section(v, len(path))}
+    if path and (inline or array or not table):
+        header = ".".join(_key(p) for p in path)
+        lines.extend(["", f"[[{header}]]" if array else f"[{header}]"])
+    lines.extend(f"{_key(k)} = {_value(v)}" for k, v in inline.items())
+    for key, value in table.items():
+        if key in inline:
+            continue
+        if isinstance(value, dict):
+            _emit(lines, (*path, key), value, array=False)
+        else:
+            for item in value:
+                _emit(lines, (*path, key), item, array=True)
+
+
+def _key(key: str) -> str:
+    return key if _BARE_KEY.match(key) else json.dumps(key)
+
+
+def _value(value: Any) -> str:
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, int):
+        return str(value)
+    if isinstance(value, float):
+        if not math.isfinite(value):
+            raise ValueError(f"cannot write the non-finite number {value} to a model file")
+        return repr(value)
+    if isinstance(value, str):
+        return json.dumps(value)
+    if isinstance(value, dict):
+        items = ", ".join(f"{_key(k)} = {_value(v)}" for k, v in value.items())
+        return f"{{ {items} }}" if items else "{}"
+    if isinstance(value, list | tuple):
+        return "[" + ", ".join(_value(v) for v in value) + "]"
+    raise TypeError(f"cannot write {type(value).__name__} to a model file")
