@@ -108,6 +108,10 @@ def _dispatch(args: argparse.Namespace) -> int:
     else:
         jobs = [_adhoc_job(model, args)]
     print(_info(model))
+    if not args.no_plots:
+        from rotorsim.cli.outputs import write_layout
+
+        print(f"layout drawing: {write_layout(model.rotor, args.out / model.name)}")
     t0 = time.perf_counter()
     for name, spec in jobs:
         _run_one(model, name, spec, args)

@@ -54,3 +54,20 @@ def _figures(result: Any, folder: Path, name: str, units: str) -> list[Path]:
         plt.close(fig)
         paths.append(path)
     return paths
+
+
+def write_layout(rotor: Any, folder: Path) -> Path:
+    """Draw the rotor layout to ``folder/layout.png``."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from rotorsim.plotting import plot
+
+    folder.mkdir(parents=True, exist_ok=True)
+    fig = plot(rotor)
+    path = folder / "layout.png"
+    fig.savefig(path, dpi=110, bbox_inches="tight")
+    plt.close(fig)
+    return path

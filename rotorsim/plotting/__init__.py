@@ -14,9 +14,9 @@ def plot(result: Any, ax: Any = None, **options: Any) -> Any:
 
     Parameters
     ----------
-    result : ModalResult, CampbellResult, CriticalSpeedMapResult, FrequencyResponseResult
-        or StaticResult
-        The result to draw.
+    result : ModalResult, CampbellResult, CriticalSpeedMapResult, FrequencyResponseResult,
+        StaticResult or Rotor
+        The result to draw (a Rotor gives its layout drawing).
     ax : matplotlib Axes, optional
         Axes to draw into (single-panel figures only); a new figure otherwise.
     **options

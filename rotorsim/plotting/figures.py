@@ -8,6 +8,7 @@ from typing import Any
 import matplotlib.pyplot as plt
 import numpy as np
 
+from rotorsim.plotting.layout import rotor_layout_figure
 from rotorsim.plotting.units import speed_factor
 
 WHIRL_STYLE = {
@@ -202,6 +203,7 @@ def critical_speed_map_figure(result: Any, ax: Any = None, *, units: str = "rpm"
 
 
 DRAWERS: dict[str, Callable[..., Any]] = {
+    "Rotor": rotor_layout_figure,
     "CriticalSpeedMapResult": critical_speed_map_figure,
     "FrequencyResponseResult": bode_figure,
     "StaticResult": static_figure,

@@ -27,6 +27,7 @@ def test_run_writes_results_and_figures(tmp_path, capsys):
                  "--out", str(tmp_path), "--fast"])
     assert code == 0
     folder = tmp_path / "default"
+    assert (folder / "layout.png").stat().st_size > 5000
     for name in ("campbell", "unbalance", "static"):
         assert (folder / f"{name}.h5").is_file()
         assert (folder / f"{name}.png").stat().st_size > 5000

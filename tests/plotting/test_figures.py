@@ -75,3 +75,11 @@ def test_critical_speed_map_with_bearing_curves():
     fig = plot(res)
     labels = [line.get_label() for line in fig.axes[0].get_lines()]
     assert "bearing 0 kxx" in labels and "intersections" in labels
+
+
+def test_rotor_layout_draws_every_part(rotor):
+    fig = plot(rotor)
+    ax = fig.axes[0]
+    # 2 patches per shaft element (upper and lower half), 1 per disk, 2 per bearing
+    assert len(ax.patches) == 2 * 6 + 2 + 2 * 2
+    assert "6 elements, 2 disks, 2 bearings" in ax.get_title()
