@@ -1,0 +1,70 @@
+"""Rolling-element kinematics: cage ratio and angular positions (DESIGN section 3).
+
+For a bearing whose inner ring turns with the shaft (angle ``phi``) and whose outer ring is
+fixed, the cage turns at ``kappa * phi`` with ``kappa = (1 - d cos(alpha0) / d_m) / 2``;
+element ``j`` sits at ``psi_j = psi_0 + 2 pi j / N + kappa * phi``. The element-pass
+(varying-compliance) frequency is ``N * kappa * W``.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from rotorsim.errors import ModelError
+
+FloatArray = NDArray[np.float64]
+
+
+def cage_ratio(element_diameter: float, pitch_diameter: float, contact_angle: float) -> float:
+    """Cage speed over shaft speed for a rotating inner and a fixed outer ring.
+
+    Parameters
+    ----------
+    element_diameter : float
+        Ball or (mean) roller diameter ``d`` [m].
+    pitch_diameter : float
+        Pitch diameter ``d_m`` [m].
+    contact_angle : float
+        Unloaded contact angle ``alpha0`` [rad].
+
+    Examples
+    --------
+    >>> round(cage_ratio(0.01, 0.05, 0.0), 6)
+    0.4
+    """
+    if not 0 < element_diameter < pitch_diameter:
+        raise ModelError(
+            f"element diameter {element_diameter} m must be in (0, pitch diameter "
+            f"{pitch_diameter} m)", "cage_ratio")
+    return 0.5 * (1.0 - element_diameter * math.cos(contact_angle) / pitch_diameter)
+
+
+def element_angles(n_elements: int, phi: ArrayLike = 0.0, kappa: float = 0.0,
+                   psi0: float = 0.0) -> FloatArray:
+    """Angular positions ``psi`` [rad] of the rolling elements, shape ``(S, N)``.
+
+    Parameters
+    ----------
+    n_elements : int
+        Number of rolling elements ``N``.
+    phi : array_like (S,) or float
+        Shaft rotation angle [rad] of each sample.
+    kappa : float
+        Cage ratio (0 holds the elements fixed: quasi-static studies).
+    psi0 : float
+        Position of element 0 at ``phi = 0`` [rad], measured from +x towards +y.
+
+    Examples
+    --------
+    >>> element_angles(4, [0.0, np.pi], kappa=0.5).round(6).tolist()
+    [[0.0, 1.570796, 3.141593, 4.712389], [1.570796, 3.141593, 4.712389, 6.283185]]
+    """
+    if not isinstance(n_elements, int | np.integer) or n_elements < 1:
+        raise ModelError(f"number of rolling elements must be >= 1, got {n_elements!r}",
+                         "element_angles")
+    phi_arr = np.atleast_1d(np.asarray(phi, dtype=float))
+    base = psi0 + 2.0 * np.pi * np.arange(n_elements) / n_elements
+    return base[None, :] + kappa * phi_arr[:, None]
