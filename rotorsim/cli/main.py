@@ -18,6 +18,14 @@ from typing import Any
 EXIT_BAD_INPUT = 2
 EXIT_FAILED = 1
 
+_SUBCOMMAND_HELP = {
+    "modal": "modes at one speed",
+    "campbell": "Campbell diagram and its critical speeds",
+    "critical-speeds": "exact undamped critical speeds",
+    "map": "undamped critical-speed map against support stiffness",
+    "unbalance": "unbalance response",
+    "static": "static deflection, bearing reactions and section forces",
+}
 _SUBCOMMAND_TYPES = {
     "modal": "modal",
     "campbell": "campbell",
@@ -44,7 +52,7 @@ def build_parser() -> argparse.ArgumentParser:
     _add_output_options(run)
 
     for name, kind in _SUBCOMMAND_TYPES.items():
-        p = sub.add_parser(name, help=f"run a {kind.replace('_', ' ')} analysis")
+        p = sub.add_parser(name, help=_SUBCOMMAND_HELP[name])
         p.add_argument("model", type=Path)
         _add_output_options(p)
         if kind in ("modal", "campbell", "critical_speeds", "critical_speed_map"):
@@ -192,10 +200,19 @@ def _run_one(model: Any, name: str, spec: Any, args: argparse.Namespace) -> None
     progress = not args.no_progress and sys.stderr.isatty()
     result = run_analysis(model, name, fast=args.fast, progress=progress)
     elapsed = time.perf_counter() - t0
-    options = {"units": units} if spec.type not in ("static",) else {}
-    print(summarize(result, **options))
+    summary_options: dict[str, Any] = {"units": units} if spec.type != "static" else {}
+    figure_options: dict[str, Any] = {}
+    if spec.type == "campbell":
+        summary_options["harmonics"] = spec.harmonics
+        figure_options["harmonics"] = spec.harmonics
+    if spec.type in ("unbalance", "frequency_response"):
+        figure_options["dofs"] = tuple(spec.dofs)
+        if spec.nodes:
+            figure_options["node"] = spec.nodes[0]
+            summary_options["nodes"] = tuple(spec.nodes)
+    print(summarize(result, **summary_options))
     files = write_outputs(result, args.out / model.name, name, units=units,
-                          plots=not args.no_plots)
+                          plots=not args.no_plots, figure_options=figure_options)
     print(f"[{elapsed:.2f} s] wrote " + ", ".join(str(f) for f in files))
 
 

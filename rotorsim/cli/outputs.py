@@ -10,21 +10,24 @@ MODE_FIGURES = 4
 
 
 def write_outputs(result: Any, folder: Path, name: str, *, units: str = "rpm",
-                  plots: bool = True) -> list[Path]:
+                  plots: bool = True, figure_options: dict[str, Any] | None = None
+                  ) -> list[Path]:
     """Save ``result`` to ``folder/name.h5`` and, with ``plots``, its figures as PNG.
 
-    Returns the paths written.
+    ``figure_options`` are passed to :func:`rotorsim.plotting.plot` (e.g. ``harmonics`` of a
+    Campbell diagram, ``node`` and ``dofs`` of a response). Returns the paths written.
     """
     from rotorsim.io.hdf5 import save
 
     folder.mkdir(parents=True, exist_ok=True)
     written = [save(result, folder / f"{name}.h5")]
     if plots:
-        written += _figures(result, folder, name, units)
+        written += _figures(result, folder, name, units, figure_options or {})
     return written
 
 
-def _figures(result: Any, folder: Path, name: str, units: str) -> list[Path]:
+def _figures(result: Any, folder: Path, name: str, units: str,
+             options: dict[str, Any]) -> list[Path]:
     import matplotlib
 
     matplotlib.use("Agg")
@@ -43,10 +46,10 @@ def _figures(result: Any, folder: Path, name: str, units: str) -> list[Path]:
     elif kind == "StaticResult":
         figures[f"{name}.png"] = plot(result)
     elif kind == "FrequencyResponseResult":
-        figures[f"{name}.png"] = plot(result, units=units)
-        figures[f"{name}_polar.png"] = plot(result, polar=True)
+        figures[f"{name}.png"] = plot(result, units=units, **options)
+        figures[f"{name}_polar.png"] = plot(result, polar=True, **options)
     else:
-        figures[f"{name}.png"] = plot(result, units=units)
+        figures[f"{name}.png"] = plot(result, units=units, **options)
     paths = []
     for file_name, fig in figures.items():
         path = folder / file_name

@@ -26,6 +26,11 @@ def table(rows: Sequence[Sequence[object]], header: Sequence[str]) -> str:
     return "\n".join([lines[0], "-" * len(lines[0]), *lines[1:]])
 
 
+def _fixed(value: float, digits: int) -> str:
+    """``value`` with ``digits`` decimals and no negative zero ("-0.0000" reads as a sign)."""
+    return f"{round(float(value), digits) + 0.0:.{digits}f}"
+
+
 def _factor(units: str) -> float:
     try:
         return SPEED_UNITS[units]
@@ -36,7 +41,7 @@ def _factor(units: str) -> float:
 def modal_summary(result: Any, units: str = "Hz") -> str:
     f = _factor(units)
     rows = [(i, f"{result.wn[i] * f:.3f}", f"{result.wd[i] * f:.3f}",
-             f"{result.damping_ratio[i]:.4f}", f"{result.log_dec[i]:.4f}", result.whirl[i],
+             _fixed(result.damping_ratio[i], 4), _fixed(result.log_dec[i], 4), result.whirl[i],
              result.kind[i]) for i in range(result.n_modes)]
     head = (f"modes at {result.speed * f:.4g} {units}; rigid-body modes: "
             f"{result.rigid_body_modes}")
@@ -61,7 +66,8 @@ def critical_speeds_summary(crit: Any, units: str = "rpm", title: str = "") -> s
                                       "log dec"))
 
 
-def campbell_summary(result: Any, units: str = "rpm") -> str:
+def campbell_summary(result: Any, units: str = "rpm",
+                     harmonics: Sequence[float] = (1.0,)) -> str:
     f = _factor(units)
     parts = [f"Campbell: {len(result.speeds)} speeds from {result.speeds[0] * f:.4g} to "
              f"{result.speeds[-1] * f:.4g} {units}, {result.wd.shape[1]} tracked modes"]
@@ -70,27 +76,31 @@ def campbell_summary(result: Any, units: str = "rpm") -> str:
         parts.append(f"{failed} speeds failed (status recorded)")
     lowest = float(np.nanmin(result.log_dec))
     verdict = "  (UNSTABLE)" if lowest < -1e-6 else "  (undamped mode)" if lowest < 1e-6 else ""
-    parts.append(f"lowest log dec over the map: {lowest:.4f}{verdict}")
-    parts.append(critical_speeds_summary(result.critical_speeds(harmonic=1), units,
-                                         "1X critical speeds (damped, Campbell crossings)"))
+    parts.append(f"lowest log dec over the map: {_fixed(lowest, 4)}{verdict}")
+    for k in harmonics:
+        parts.append(critical_speeds_summary(
+            result.critical_speeds(harmonic=k), units,
+            f"{k:g}X critical speeds (damped, Campbell crossings)"))
     return "\n".join(parts)
 
 
-def response_summary(result: Any, units: str = "rpm", amplitude_units: str = "um") -> str:
+def response_summary(result: Any, units: str = "rpm", amplitude_units: str = "um",
+                     nodes: Sequence[int] | None = None) -> str:
     f = _factor(units)
     scale = {"m": 1.0, "mm": 1e3, "um": 1e6}[amplitude_units]
     n_nodes = result.dof_map.n_nodes
     amp = np.nan_to_num(np.abs(result.response[:, :, 0])).reshape(len(result.frequencies),
                                                                     n_nodes, 6)
     peak_per_node = np.hypot(amp[:, :, 0], amp[:, :, 1]).max(axis=0)
-    order = np.argsort(peak_per_node)[::-1][:5]
+    order = list(nodes) if nodes else np.argsort(peak_per_node)[::-1][:5]
     rows = []
     for node in order:
         w_x, a_x = result.peak(int(node), "ux")
         w_y, a_y = result.peak(int(node), "uy")
         rows.append((int(node), f"{a_x * scale:.3f}", f"{w_x * f:.1f}", f"{a_y * scale:.3f}",
                      f"{w_y * f:.1f}"))
-    head = f"{result.kind} response: {len(result.frequencies)} points, largest peaks"
+    head = (f"{result.kind} response: {len(result.frequencies)} points, "
+            + ("peaks at the requested nodes" if nodes else "largest peaks"))
     return head + "\n" + table(rows, ("node", f"ux [{amplitude_units}]", f"at [{units}]",
                                       f"uy [{amplitude_units}]", f"at [{units}]"))
 
@@ -101,7 +111,7 @@ def static_summary(result: Any) -> str:
     lines = [f"static: max |ux| = {np.abs(ux).max() * 1e6:.2f} um, "
              f"max |uy| = {np.abs(uy).max() * 1e6:.2f} um"]
     if result.bearing_forces is not None:
-        rows = [(int(n), f"{fx:.2f}", f"{fy:.2f}", f"{fz:.2f}")
+        rows = [(int(n), *(_fixed(v, 2) for v in (fx, fy, fz)))
                 for n, (fx, fy, fz) in zip(result.bearing_nodes, result.bearing_forces,
                                            strict=True)]
         lines.append(table(rows, ("bearing node", "Fx [N]", "Fy [N]", "Fz [N]")))

@@ -27,7 +27,7 @@ def _axes(ax: Any, nrows: int = 1, ncols: int = 1, **kw: Any) -> tuple[Any, Any]
 
 
 def campbell_figure(result: Any, ax: Any = None, *, units: str = "rpm",
-                    harmonics: tuple[int, ...] = (1,), color_by: str | None = None,
+                    harmonics: tuple[float, ...] = (1,), color_by: str | None = None,
                     annotate: bool = True) -> Any:
     """Campbell diagram: damped frequencies vs speed, whirl marked, kX lines, criticals.
 
@@ -53,7 +53,7 @@ def campbell_figure(result: Any, ax: Any = None, *, units: str = "rpm",
                 ax.scatter(grid[mask], wd[mask], s=14, zorder=2, **style)
     top = np.nanmax(wd) * 1.05
     for k in harmonics:
-        ax.plot(speeds, k * speeds, "k--", lw=1, label=f"{k}X")
+        ax.plot(speeds, k * speeds, "k--", lw=1, label=f"{k:g}X")
         if annotate:
             crit = result.critical_speeds(harmonic=k)
             span = float(speeds.max() - speeds.min()) or 1.0

@@ -36,7 +36,7 @@ def test_run_writes_results_and_figures(tmp_path, capsys):
     with h5py.File(folder / "unbalance.h5") as f:
         assert f.attrs["format"] == "rotorsim-results"
     out = capsys.readouterr().out
-    assert "1X critical speeds" in out and "largest peaks" in out
+    assert "1X critical speeds" in out and "peaks at the requested nodes" in out
 
 
 def test_subcommand_overrides_with_units(tmp_path, capsys):
