@@ -35,6 +35,7 @@ from rotorsim.assembly.system import RotorSystem, SystemMatrices, assemble
 from rotorsim.elements.base import DOF_NAMES, ElementMatrices
 from rotorsim.elements.disk import DiskElement, PointMass
 from rotorsim.elements.linear_bearing import BearingElement
+from rotorsim.elements.rolling import BallBearing, RollerBearing
 from rotorsim.elements.shaft import ShaftElement, cowper_shear_coefficient
 from rotorsim.errors import ConvergenceError, ModelError, RotorsimError, Status
 from rotorsim.io.hdf5 import ResultsFileError, load, save
@@ -56,6 +57,7 @@ __version__ = "0.1.0"
 
 __all__ = [
     "DOF_NAMES",
+    "BallBearing",
     "BearingElement",
     "CampbellResult",
     "ConvergenceError",
@@ -74,6 +76,7 @@ __all__ = [
     "Normal",
     "PointMass",
     "ResultsFileError",
+    "RollerBearing",
     "Rotor",
     "RotorSystem",
     "RotorsimError",

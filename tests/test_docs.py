@@ -179,9 +179,11 @@ _KINDS = {
 
 
 def _same_default(obj: Any, name: str, actual: Any, documented: str) -> bool:
+    from rotorsim.elements.rolling import StraightProfile
     from rotorsim.io.analysis_spec import Loads
 
-    value = eval(documented, {"nan": math.nan, "Status": rs.Status, "Loads": Loads})
+    value = eval(documented, {"nan": math.nan, "Status": rs.Status, "Loads": Loads,
+                              "StraightProfile": StraightProfile})
     if repr(actual) == "<factory>":  # a dataclass field with default_factory
         [field] = [f for f in dataclasses.fields(obj) if f.name == name]
         actual = field.default_factory()  # type: ignore[operator]

@@ -44,6 +44,11 @@ class BearingElement:
         Damping [N s/m, N m s/rad]; ``cyy`` defaults to ``cxx``.
     mxx, mxy, myx, myy : float or array
         Added mass [kg] (seals); ``myy`` defaults to ``mxx``.
+    stiffness_matrix, damping_matrix : array (5, 5), optional
+        Full coupled stiffness [N/m, N, N m/rad] and damping on the relative DOFs
+        ``(x, y, z, rx, ry)``, added to the coefficients above (e.g. a rolling bearing
+        linearised at its static load, whose stiffness couples radial, axial and tilt
+        motion). Constant in speed.
     frequency : array, optional
         Spin speeds [rad/s] at which array coefficients are given, increasing. Between
         points coefficients are interpolated linearly; outside they are held at the end values.
@@ -79,6 +84,8 @@ class BearingElement:
     myy: float | FloatArray | None = None
     mxy: float | FloatArray = 0.0
     myx: float | FloatArray = 0.0
+    stiffness_matrix: FloatArray | None = None
+    damping_matrix: FloatArray | None = None
     frequency: FloatArray | None = None
     n_link: int | None = None
     tag: str | None = None
@@ -118,6 +125,15 @@ class BearingElement:
             if np.any(table[key] < 0):
                 raise ModelError(f"direct coefficient {key} must be >= 0", where)
         object.__setattr__(self, "_table", table)
+        for key in ("stiffness_matrix", "damping_matrix"):
+            value = getattr(self, key)
+            if value is None:
+                continue
+            matrix = np.asarray(value, dtype=float)
+            if matrix.shape != (5, 5) or not np.all(np.isfinite(matrix)):
+                raise ModelError(f"{key} must be a finite (5, 5) array on (x, y, z, rx, ry), "
+                                 f"got shape {matrix.shape}", where)
+            object.__setattr__(self, key, matrix)
 
     @property
     def label(self) -> str:
@@ -158,6 +174,9 @@ class BearingElement:
             if prefix != "m":
                 rr = float(self.coefficient(f"{prefix}rr", speed))
                 b[3, 3] = b[4, 4] = rr
+                full = self.stiffness_matrix if prefix == "k" else self.damping_matrix
+                if full is not None:
+                    b[:5, :5] += full
             blocks[prefix] = b if self.n_link is None else np.block([[b, -b], [-b, b]])
         zero = np.zeros_like(blocks["k"])
         return ElementMatrices(M=blocks["m"], C=blocks["c"], G=zero, K=blocks["k"])

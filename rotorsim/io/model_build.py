@@ -191,6 +191,9 @@ def _bearing(b: BearingTable, nodes: Nodes, where: str) -> BearingElement:
         if value is not None:
             coefficients[key] = np.array(value) if isinstance(value, tuple) else value
     frequency = None if b.frequency is None else b.frequency.array()
+    for key in ("stiffness_matrix", "damping_matrix"):  # full (5, 5) matrices, SI
+        if getattr(b, key) is not None:
+            coefficients[key] = np.array(getattr(b, key), dtype=float)
     try:
         return BearingElement(n=n, n_link=link, frequency=frequency, tag=b.tag, **coefficients)
     except ModelError as err:

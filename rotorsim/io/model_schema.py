@@ -197,6 +197,8 @@ class BearingTable(Located):
     myy: DirectAddedMass = None
     mxy: AddedMass = 0.0
     myx: AddedMass = 0.0
+    stiffness_matrix: list[list[float]] | None = None
+    damping_matrix: list[list[float]] | None = None
     frequency: FrequencyGrid | None = None
     tag: str | None = None
 

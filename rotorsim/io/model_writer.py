@@ -137,6 +137,10 @@ def bearing_entry(b: BearingElement) -> dict[str, Any]:
         entry[key] = float(value[0]) if value.size == 1 else [float(v) for v in value]
     if b.frequency is not None:
         entry["frequency"] = [float(v) for v in np.asarray(b.frequency)]
+    for key in ("stiffness_matrix", "damping_matrix"):
+        matrix = getattr(b, key)
+        if matrix is not None:
+            entry[key] = [[float(v) for v in row] for row in np.asarray(matrix)]
     entry.update(_tag(b.tag))
     return entry
 

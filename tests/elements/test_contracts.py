@@ -135,3 +135,19 @@ def test_speed_dependent_bearing_interpolates_and_clamps():
     assert b.matrices(50.0).K[0, 0] == pytest.approx(2e6)
     assert b.matrices(500.0).K[0, 0] == pytest.approx(3e6)
     assert b.matrices(50.0).C[1, 1] == pytest.approx(20.0)
+
+
+def test_full_stiffness_matrix_adds_to_the_coefficients():
+    K5 = np.arange(25, dtype=float).reshape(5, 5)
+    K5 = K5 + K5.T
+    b = rs.BearingElement(n=0, kxx=1e6, stiffness_matrix=K5, damping_matrix=2 * K5)
+    mats = b.matrices()
+    expected = K5.copy()
+    expected[0, 0] += 1e6
+    expected[1, 1] += 1e6
+    assert np.array_equal(mats.K[:5, :5], expected)
+    assert np.array_equal(mats.C[:5, :5], 2 * K5)
+    linked = rs.BearingElement(n=0, n_link=1, stiffness_matrix=K5).matrices()
+    assert np.array_equal(linked.K[6:11, :5], -K5)
+    with pytest.raises(rs.ModelError, match=r"stiffness_matrix must be a finite \(5, 5\)"):
+        rs.BearingElement(n=0, stiffness_matrix=np.ones((3, 3)))

@@ -143,7 +143,7 @@ class BallBearing:
                              f"({math.degrees(self.contact_angle):.4g} deg) outside "
                              "[0, 90] deg (give it in radians)", where)
         if self.cage not in CAGES:
-            raise ModelError(f"cage must be one of {CAGES}, got {self.cage!r}", where)
+            raise TypeError(f"{where}: cage must be one of {CAGES}, got {self.cage!r}")
         a0 = self._resolve_a0(where)
         clearance = self._resolve_clearance(where)
         arm = self._resolve_arm(a0, where)

@@ -227,13 +227,19 @@ GOOD = dict(n_balls=12, pitch_diameter=40e-3, ball_diameter=8e-3, Kn=1e10, A0=0.
     (dict(radial_clearance=1e-6, diametral_clearance=1e-6), "diametral_clearance"),
     (dict(radial_clearance=0.05), "check the units"),
     (dict(radial_clearance=math.inf), "radial_clearance must be finite"),
-    (dict(cage="spinning"), "cage"), (dict(groove_center_radius=-0.02), "groove_center"),
+    (dict(groove_center_radius=-0.02), "groove_center"),
     (dict(psi0="a"), "psi0 must be a number"),
 ])
 def test_bad_input_raises_model_error_naming_the_bearing(change, match):
     with pytest.raises(ModelError, match=match) as info:
         BallBearing(**{**GOOD, "tag": "B1", **change})
     assert "BallBearing 'B1'" in str(info.value)
+
+
+def test_unknown_cage_is_a_type_error_listing_the_options():
+    """STYLE practice 6: unknown option values raise TypeError naming the valid ones."""
+    with pytest.raises(TypeError, match=r"cage must be one of \('rotating', 'fixed'\)"):
+        BallBearing(**{**GOOD, "cage": "spinning"})
 
 
 def test_bad_state_input():
