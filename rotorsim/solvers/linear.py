@@ -31,6 +31,7 @@ class Factorization:
     _dense: Any = None
     _sparse: Any = None
     _stats: Stats | None = None
+    _complex: bool = False
 
     def solve(self, b: NDArray) -> NDArray:
         """Solve ``A x = b`` for ``b`` of shape ``(n,)`` or ``(n, k)``."""
@@ -39,13 +40,9 @@ class Factorization:
         if self._dense is not None:
             return sl.lu_solve(self._dense, b, check_finite=False)
         b = np.asarray(b)
-        if np.iscomplexobj(b) and not self._sparse_is_complex:
+        if np.iscomplexobj(b) and not self._complex:
             return self._sparse.solve(b.real) + 1j * self._sparse.solve(b.imag)
         return self._sparse.solve(b)
-
-    @property
-    def _sparse_is_complex(self) -> bool:
-        return bool(np.iscomplexobj(self._sparse.L.data[:1]))
 
 
 def factorize(
@@ -83,7 +80,7 @@ def factorize(
         lu_sparse = spl.splu(sp.csc_matrix(A))
     except RuntimeError as exc:  # SuperLU: "Factor is exactly singular"
         raise ConvergenceError(f"matrix is singular ({exc})", where) from exc
-    return Factorization(n, _sparse=lu_sparse, _stats=stats)
+    return Factorization(n, _sparse=lu_sparse, _stats=stats, _complex=bool(np.iscomplexobj(A)))
 
 
 def _reciprocal_condition(A: NDArray, lu: NDArray) -> float:
