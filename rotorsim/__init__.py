@@ -17,6 +17,7 @@ All quantities are SI (m, kg, s, N, rad, rad/s). Importing rotorsim pulls in num
 scipy only; plotting imports matplotlib lazily.
 """
 
+from rotorsim.analyses.bearing_statics import bearing_equilibrium, stiffness_over_pass
 from rotorsim.analyses.campbell import campbell
 from rotorsim.analyses.critical_speed_map import critical_speed_map
 from rotorsim.analyses.critical_speeds import critical_speeds
@@ -36,6 +37,7 @@ from rotorsim.elements.base import DOF_NAMES, ElementMatrices
 from rotorsim.elements.disk import DiskElement, PointMass
 from rotorsim.elements.linear_bearing import BearingElement
 from rotorsim.elements.rolling import BallBearing, RollerBearing
+from rotorsim.elements.rolling.element import RollingBearing
 from rotorsim.elements.shaft import ShaftElement, cowper_shear_coefficient
 from rotorsim.errors import ConvergenceError, ModelError, RotorsimError, Status
 from rotorsim.io.hdf5 import ResultsFileError, load, save
@@ -45,6 +47,7 @@ from rotorsim.io.vtk import export_vtk
 from rotorsim.model.material import Material
 from rotorsim.model.rotor import Rotor
 from rotorsim.plotting import plot
+from rotorsim.results.bearing import BearingEquilibriumResult
 from rotorsim.results.campbell import CampbellResult
 from rotorsim.results.critical_speeds import CriticalSpeedMapResult, CriticalSpeeds
 from rotorsim.results.frequency_response import FrequencyResponseResult
@@ -59,6 +62,7 @@ __all__ = [
     "DOF_NAMES",
     "BallBearing",
     "BearingElement",
+    "BearingEquilibriumResult",
     "CampbellResult",
     "ConvergenceError",
     "CriticalSpeedMapResult",
@@ -77,6 +81,7 @@ __all__ = [
     "PointMass",
     "ResultsFileError",
     "RollerBearing",
+    "RollingBearing",
     "Rotor",
     "RotorSystem",
     "RotorsimError",
@@ -88,6 +93,7 @@ __all__ = [
     "SystemMatrices",
     "Uniform",
     "assemble",
+    "bearing_equilibrium",
     "campbell",
     "cowper_shear_coefficient",
     "critical_speed_map",
@@ -104,6 +110,7 @@ __all__ = [
     "save",
     "save_model",
     "static",
+    "stiffness_over_pass",
     "sweep",
     "unbalance_response",
 ]

@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Protocol, runtime_checkable
+from typing import Any, Protocol, runtime_checkable
 
 import numpy as np
 from numpy.typing import NDArray
@@ -38,6 +38,42 @@ class LinearElement(Protocol):
     def nodes(self) -> tuple[int, ...]: ...
 
     def matrices(self, speed: float = 0.0) -> ElementMatrices: ...
+
+
+@dataclass(frozen=True, eq=False)
+class ElementForce:
+    """Restoring force and tangents of a nonlinear element for ``S`` samples.
+
+    Attributes
+    ----------
+    f : array (S, n)
+        Restoring force on the element DOFs [N, N m] (enters the equation of motion as
+        ``+ r(q, q')``).
+    K : array (S, n, n)
+        ``df/du``.
+    C : array (S, n, n)
+        ``df/dv``.
+    internal : None or array
+        Converged internal DOFs to warm-start the next call (none for rigid rings).
+    """
+
+    f: FloatArray
+    K: FloatArray
+    C: FloatArray
+    internal: Any = None
+
+
+@runtime_checkable
+class NonlinearElement(Protocol):
+    """An element with a nonlinear restoring force, batched over ``S`` samples
+    (DESIGN section 4): ``u, v`` are ``(S, n)`` DOF displacements and velocities, ``phi`` and
+    ``speed`` ``(S,)`` shaft angles and spin speeds; ``internal`` warm-starts internal DOFs."""
+
+    @property
+    def nodes(self) -> tuple[int, ...]: ...
+
+    def force(self, u: FloatArray, v: FloatArray, phi: FloatArray, speed: FloatArray,
+              internal: Any = None) -> ElementForce: ...
 
 
 def check_finite(value: float, name: str, where: str, *, positive: bool = False,

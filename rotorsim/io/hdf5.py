@@ -24,6 +24,7 @@ from datetime import UTC, datetime
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
+import rotorsim.io.result_types  # noqa: F401  (registers every result type)
 from rotorsim.io.serialize import ResultsFileError, read_result, result_type, write_result
 
 if TYPE_CHECKING:

@@ -29,16 +29,6 @@ import numpy as np
 
 from rotorsim.assembly.dof_map import DofMap
 from rotorsim.errors import ModelError, Status
-from rotorsim.results.campbell import CampbellResult
-from rotorsim.results.critical_speeds import (
-    CriticalSpeedMapResult,
-    CriticalSpeeds,
-    MapIntersections,
-)
-from rotorsim.results.frequency_response import DeflectedShape, FrequencyResponseResult
-from rotorsim.results.modal import ModalResult
-from rotorsim.results.orbits import Ellipse
-from rotorsim.results.static import StaticResult
 
 if TYPE_CHECKING:
     import h5py
@@ -103,36 +93,6 @@ def register_result_type(cls: type, units: Mapping[str, str] | None = None) -> t
     return cls
 
 
-_ANGULAR = "rad/s"
-register_result_type(ModalResult, {
-    "speed": _ANGULAR, "eigenvalues": _ANGULAR, "wn": _ANGULAR, "wd": _ANGULAR,
-    "damping_ratio": "1", "log_dec": "1", "whirl_ratio": "1", "mode_shapes": "1",
-    "rigid_body_shapes": "1", "nodes_pos": "m"})
-register_result_type(CampbellResult, {
-    "speeds": _ANGULAR, "wd": _ANGULAR, "wn": _ANGULAR, "log_dec": "1",
-    "damping_ratio": "1", "whirl_ratio": "1", "tracking_mac": "1"})
-register_result_type(CriticalSpeeds, {
-    "speed": _ANGULAR, "frequency": _ANGULAR, "log_dec": "1", "harmonic": "1",
-    "mode_shapes": "1"})
-register_result_type(MapIntersections, {"stiffness": "N/m", "speed": _ANGULAR})
-register_result_type(CriticalSpeedMapResult, {
-    "stiffness": "N/m", "critical_speeds": _ANGULAR, "harmonic": "1", "speeds": _ANGULAR,
-    "bearing_kxx": "N/m", "bearing_kyy": "N/m"})
-register_result_type(FrequencyResponseResult, {
-    "frequencies": _ANGULAR, "speeds": _ANGULAR, "response": "m, rad (per unit input)",
-    "nodes_pos": "m"})
-register_result_type(DeflectedShape, {
-    "frequency": _ANGULAR, "speed": _ANGULAR, "nodes_pos": "m", "ux": "m", "uy": "m"})
-register_result_type(StaticResult, {
-    "displacement": "m, rad", "load": "N, N m", "nodes_pos": "m", "speed": _ANGULAR,
-    "bearing_forces": "N", "bearing_moments": "N m", "constraint_reactions": "N, N m",
-    "element_z": "m", "shear_force": "N", "bending_moment": "N m", "axial_force": "N",
-    "torque": "N m", "residual": "1"})
-register_result_type(Ellipse, {
-    "major": "m", "minor": "m", "inclination": "rad", "forward_radius": "m",
-    "backward_radius": "m", "whirl_ratio": "1"})
-
-
 def result_type(value: object) -> ResultType:
     """The registry entry of ``value``'s class; :class:`ResultsFileError` if not registered."""
     entry = RESULT_TYPES.get(type(value).__name__)
@@ -187,6 +147,13 @@ def _write_field(group: h5py.Group, name: str, value: Any, units: str | None,
     if kind is not None and _fits_attr(value):
         group.attrs[name] = value
         return kind
+    if type(value) is tuple and value and all(
+            dataclasses.is_dataclass(v) and not isinstance(v, type) for v in value):
+        sub = group.create_group(name)  # tuple of results: items "0", "1", ... in order
+        sub.attrs["length"] = len(value)
+        for i, item in enumerate(value):
+            write_result(sub.create_group(str(i)), item)
+        return "group_tuple"
     if type(value) is tuple and all(type(v) is str and "\0" not in v for v in value):
         _write_strings(group, name, np.array(value, dtype=object).reshape(len(value)))
         return "str_tuple"
@@ -295,6 +262,9 @@ def _read_field(group: h5py.Group, name: str, kind: str) -> Any:
         return DofMap(int(sub.attrs["n_nodes"]), np.asarray(sub["fixed"][()], dtype=np.int64))
     if kind == "group":
         return _read_result(group[name])
+    if kind == "group_tuple":
+        sub = group[name]
+        return tuple(_read_result(sub[str(i)]) for i in range(int(sub.attrs["length"])))
     if kind == "array":
         return _read_array(group[name])
     if kind == "str_tuple":

@@ -117,12 +117,26 @@ def results() -> dict[str, Any]:
         "deflected_shape": unb.deflected_shape(2),
         "ellipse": ellipse(np.array([1.0, 2.0j, np.nan]), np.array([-1j, 0.5, 1.0])),
         "intersections": MapIntersections.empty(),
+        **_bearing_results(),
     }
+
+
+def _bearing_results() -> dict[str, Any]:
+    from rotorsim.analyses.bearing_statics import bearing_equilibrium, stiffness_over_pass
+    from rotorsim.elements.rolling import BallBearing
+
+    bearing = BallBearing(n_balls=10, pitch_diameter=0.05, ball_diameter=0.008, Kn=8e9,
+                          A0=0.1e-3, contact_angle=0.3, radial_clearance=5e-6)
+    load = [800.0, -200.0, 300.0, 0.0, 0.0]
+    found = bearing_equilibrium(bearing, load, method="global")
+    return {"bearing_equilibrium": found, "energy_minimum": found.minima[0],
+            "stiffness_over_pass": stiffness_over_pass(bearing, load, 6)}
 
 
 RESULT_NAMES = ["modal", "campbell", "critical_exact", "critical_campbell", "map",
                 "unbalance", "receptance", "static", "static_system", "deflected_shape",
-                "ellipse", "intersections"]
+                "ellipse", "intersections", "bearing_equilibrium", "energy_minimum",
+                "stiffness_over_pass"]
 
 
 @pytest.mark.parametrize("name", RESULT_NAMES)

@@ -1,0 +1,238 @@
+"""The 2-node rolling-bearing element: a rigid-ring bearing model between two nodes.
+
+DESIGN section 4 (``NonlinearElement``): the inner ring sits on shaft node ``n``, the outer
+ring on node ``n_link`` (a housing) or on ground. With ``u`` the element DOFs (6 per node:
+``ux, uy, uz, rx, ry, rz``) the bearing acts on ``delta = u_inner[:5] - u_outer[:5]``
+(DESIGN section 3); the inner node gets ``+F``, the outer ``-F`` (``F = dU/d delta``, the
+restoring force of the equation of motion ``... + r(q, q') = f``). ``rz`` carries nothing.
+
+Contact damping: ``"none"``, or ``"proportional"``: ``F_d = beta_c K(delta) delta'`` with the
+contact stiffness ``K`` (stiffness-proportional, Rayleigh type; ``beta_c`` [s]). Then
+``C = dF/d delta' = beta_c K`` exactly, and ``dF/d delta`` gains ``beta_c (dK/d delta)
+delta'``, the derivative of the tangent along the velocity, evaluated by a central
+difference of the exact tangent (step 1e-9 m in the scaled displacement; an algorithmic
+tangent, DESIGN section 4). The lubricated-contact (EHL) damping of seed 002 is a later
+model.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from rotorsim.elements.base import ElementForce
+from rotorsim.elements.linear_bearing import BearingElement
+from rotorsim.errors import ModelError
+
+FloatArray = NDArray[np.float64]
+CONTACT_DAMPING = ("none", "proportional")
+"""Contact damping models of :class:`RollingBearing`."""
+_FD_STEP = 1e-9
+"""Scaled step [m] of the central difference of the tangent along the velocity."""
+
+
+@dataclass(frozen=True, eq=False)
+class RollingBearing:
+    """A rolling bearing between shaft node ``n`` and node ``n_link`` (or ground).
+
+    Parameters
+    ----------
+    bearing : BallBearing or RollerBearing
+        The rigid-ring model (:mod:`~rotorsim.elements.rolling.ball`,
+        :mod:`~rotorsim.elements.rolling.roller`).
+    n : int
+        Shaft node of the inner ring.
+    n_link : int, optional
+        Node of the outer ring (housing, pedestal); ``None`` = ground.
+    tag : str, optional
+        Name used in messages.
+    contact_damping : {"none", "proportional"}
+        Contact damping model (module docstring).
+    damping_factor : float
+        ``beta_c`` [s] of ``"proportional"`` damping.
+
+    Examples
+    --------
+    >>> from rotorsim.elements.rolling.ball import BallBearing
+    >>> ball = BallBearing(n_balls=8, pitch_diameter=0.04, ball_diameter=0.008, Kn=8e9,
+    ...                    f_i=0.52, f_o=0.52)
+    >>> rb = RollingBearing(ball, n=0)
+    >>> u = np.zeros((1, 6)); u[0, 0] = 1e-5
+    >>> out = rb.force(u, np.zeros((1, 6)), 0.0, 0.0)
+    >>> out.f.shape, out.K.shape, bool(out.f[0, 0] > 0)
+    ((1, 6), (1, 6, 6), True)
+    """
+
+    bearing: Any
+    n: int
+    n_link: int | None = None
+    tag: str | None = None
+    contact_damping: str = "none"
+    damping_factor: float = 0.0
+
+    def __post_init__(self) -> None:
+        where = self.label
+        for key, node in (("n", self.n), ("n_link", self.n_link)):
+            if node is None and key == "n_link":
+                continue
+            if isinstance(node, bool) or not isinstance(node, int | np.integer) or node < 0:
+                raise ModelError(f"{key} must be a non-negative integer, got {node!r}", where)
+        if self.n_link is not None and self.n_link == self.n:
+            raise ModelError(f"n_link must differ from n (both {self.n})", where)
+        for attr in ("state", "element_angles", "n_elements"):
+            if not hasattr(self.bearing, attr):
+                raise ModelError(f"bearing must be a rolling-bearing model with `{attr}` "
+                                 f"(BallBearing, RollerBearing), got "
+                                 f"{type(self.bearing).__name__}", where)
+        if self.contact_damping not in CONTACT_DAMPING:
+            raise TypeError(f"{where}: unknown contact_damping {self.contact_damping!r}; "
+                            f"valid: {CONTACT_DAMPING}")
+        beta = self.damping_factor
+        if not (isinstance(beta, int | float) and math.isfinite(beta) and beta >= 0):
+            raise ModelError(f"damping_factor must be a finite number >= 0 s, got {beta!r}",
+                             where)
+        if self.contact_damping == "none" and beta != 0:
+            raise ModelError("damping_factor is given but contact_damping is 'none' (use "
+                             "contact_damping='proportional')", where)
+
+    @property
+    def label(self) -> str:
+        return f"RollingBearing '{self.tag}'" if self.tag else f"RollingBearing(n={self.n})"
+
+    @property
+    def nodes(self) -> tuple[int, ...]:
+        return (int(self.n),) if self.n_link is None else (int(self.n), int(self.n_link))
+
+    @property
+    def n_dofs(self) -> int:
+        return 6 * len(self.nodes)
+
+    @property
+    def beta(self) -> float:
+        """Stiffness-proportional damping factor ``beta_c`` [s] (0 without damping)."""
+        return float(self.damping_factor) if self.contact_damping == "proportional" else 0.0
+
+    def relative(self, u: ArrayLike) -> FloatArray:
+        """``delta = u_inner[:5] - u_outer[:5]`` (S, 5) from element DOFs ``u`` (S, n)."""
+        arr = np.asarray(u, dtype=float)
+        arr = arr[None, :] if arr.ndim == 1 else arr
+        if arr.ndim != 2 or arr.shape[1] != self.n_dofs:
+            raise ModelError(f"element DOFs must have shape (S, {self.n_dofs}), got "
+                             f"{np.shape(u)}", self.label)
+        if not np.all(np.isfinite(arr)):
+            raise ModelError("element DOFs must be finite", self.label)
+        return arr[:, :5] - arr[:, 6:11] if self.n_link is not None else arr[:, :5].copy()
+
+    def force(self, u: ArrayLike, v: ArrayLike, phi: ArrayLike, speed: ArrayLike,
+              internal: Any = None) -> ElementForce:
+        """Restoring force and its exact tangents for ``S`` samples.
+
+        Parameters
+        ----------
+        u, v : array (S, n)
+            Displacements and velocities of the element DOFs (``n = 6`` to ground, 12
+            node-to-node).
+        phi : array (S,) or float
+            Shaft angle [rad]: places the rolling elements (cage kinematics).
+        speed : array (S,) or float
+            Spin speed [rad/s] (unused by rigid-ring models; kept for the protocol).
+        internal : None
+            No internal DOFs.
+
+        Returns
+        -------
+        ElementForce
+            ``f`` (S, n), ``K = df/du`` and ``C = df/dv`` (S, n, n).
+        """
+        delta, rate = self.relative(u), self.relative(v)
+        n_samples = delta.shape[0]
+        if rate.shape[0] != n_samples:
+            raise ModelError(f"u and v have {n_samples} and {rate.shape[0]} samples",
+                             self.label)
+        phis = np.broadcast_to(np.asarray(phi, dtype=float).reshape(-1), (n_samples,))
+        np.broadcast_to(np.asarray(speed, dtype=float).reshape(-1), (n_samples,))
+        psi = self.bearing.element_angles(phis)
+        f5, k5, c5 = self._tangents(delta, rate, psi)
+        return ElementForce(self._expand_vector(f5), self._expand_matrix(k5),
+                            self._expand_matrix(c5))
+
+    def _tangents(self, delta: FloatArray, rate: FloatArray,
+                  psi: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray]:
+        """Force (S, 5), ``dF/d delta`` and ``dF/d delta'`` (S, 5, 5)."""
+        beta = self.beta
+        if beta == 0.0 or not np.any(rate):
+            st = self.bearing.state(delta, psi)
+            return st.force + beta * np.einsum("sij,sj->si", st.stiffness, rate), \
+                st.stiffness.copy(), beta * st.stiffness
+        arm = self._arm()
+        scale = np.array([1.0, 1.0, 1.0, arm, arm])  # scaled rate: rotations x arm [m]
+        size = np.linalg.norm(rate * scale, axis=1)
+        unit = rate / np.where(size > 0, size, 1.0)[:, None]
+        h = _FD_STEP
+        n_samples = delta.shape[0]
+        st = self.bearing.state(np.vstack([delta, delta + h * unit, delta - h * unit]),
+                                np.vstack([psi, psi, psi]))
+        k0 = st.stiffness[:n_samples]
+        dk = (st.stiffness[n_samples:2 * n_samples] - st.stiffness[2 * n_samples:]) / (2 * h)
+        force = st.force[:n_samples] + beta * np.einsum("sij,sj->si", k0, rate)
+        return force, k0 + beta * dk * size[:, None, None], beta * k0
+
+    def _arm(self) -> float:
+        return float(getattr(self.bearing, "moment_arm", 0.5 * self.bearing.pitch_diameter))
+
+    def _expand_vector(self, f5: FloatArray) -> FloatArray:
+        out = np.zeros((f5.shape[0], self.n_dofs))
+        out[:, :5] = f5
+        if self.n_link is not None:
+            out[:, 6:11] = -f5
+        return out
+
+    def _expand_matrix(self, k5: FloatArray) -> FloatArray:
+        out = np.zeros((k5.shape[0], self.n_dofs, self.n_dofs))
+        out[:, :5, :5] = k5
+        if self.n_link is not None:
+            out[:, 6:11, 6:11] = k5
+            out[:, :5, 6:11] = -k5
+            out[:, 6:11, :5] = -k5
+        return out
+
+    def linearize(self, load: ArrayLike | None = None, displacement: ArrayLike | None = None,
+                  phi: float = 0.0, **options: Any) -> BearingElement:
+        """Linear bearing element at a static equilibrium (for modal, Campbell, critical
+        speeds).
+
+        Parameters
+        ----------
+        load : array (5,), optional
+            ``[Fx, Fy, Fz, Mx, My]`` on the inner ring [N, N m]: the equilibrium
+            displacement is solved first
+            (:func:`~rotorsim.analyses.bearing_statics.bearing_equilibrium`, ``options``
+            are passed on).
+        displacement : array (5,), optional
+            Relative displacement ``delta`` instead of a load.
+        phi : float
+            Shaft angle [rad] (element positions).
+
+        Returns
+        -------
+        BearingElement
+            ``stiffness_matrix`` = the 5x5 tangent at the equilibrium, ``damping_matrix``
+            = ``beta_c`` times it (``None`` without contact damping), same nodes and tag.
+        """
+        if (load is None) == (displacement is None):
+            raise ModelError("give exactly one of load and displacement", self.label)
+        if load is not None:
+            # analyses sit downstream of elements: imported here, at call time
+            from rotorsim.analyses.bearing_statics import bearing_equilibrium
+
+            k5 = bearing_equilibrium(self.bearing, load, phi=phi, **options).stiffness
+        else:
+            d = np.asarray(displacement, dtype=float).reshape(1, 5)
+            k5 = self.bearing.state(d, self.bearing.element_angles(float(phi))).stiffness[0]
+        c5 = self.beta * k5 if self.beta > 0 else None
+        return BearingElement(n=int(self.n), n_link=self.n_link, stiffness_matrix=k5,
+                              damping_matrix=c5, tag=self.tag)

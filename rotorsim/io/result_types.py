@@ -1,0 +1,56 @@
+"""Registration of every rotorsim result type with the HDF5 serializer, with the units of
+its physical fields (imported by :mod:`rotorsim.io.hdf5`)."""
+
+from __future__ import annotations
+
+from rotorsim.io.serialize import register_result_type
+from rotorsim.results.bearing import BearingEquilibriumResult, EnergyMinimum, StiffnessVariation
+from rotorsim.results.campbell import CampbellResult
+from rotorsim.results.critical_speeds import (
+    CriticalSpeedMapResult,
+    CriticalSpeeds,
+    MapIntersections,
+)
+from rotorsim.results.frequency_response import DeflectedShape, FrequencyResponseResult
+from rotorsim.results.modal import ModalResult
+from rotorsim.results.orbits import Ellipse
+from rotorsim.results.static import StaticResult
+
+_ANGULAR = "rad/s"
+register_result_type(ModalResult, {
+    "speed": _ANGULAR, "eigenvalues": _ANGULAR, "wn": _ANGULAR, "wd": _ANGULAR,
+    "damping_ratio": "1", "log_dec": "1", "whirl_ratio": "1", "mode_shapes": "1",
+    "rigid_body_shapes": "1", "nodes_pos": "m"})
+register_result_type(CampbellResult, {
+    "speeds": _ANGULAR, "wd": _ANGULAR, "wn": _ANGULAR, "log_dec": "1",
+    "damping_ratio": "1", "whirl_ratio": "1", "tracking_mac": "1"})
+register_result_type(CriticalSpeeds, {
+    "speed": _ANGULAR, "frequency": _ANGULAR, "log_dec": "1", "harmonic": "1",
+    "mode_shapes": "1"})
+register_result_type(MapIntersections, {"stiffness": "N/m", "speed": _ANGULAR})
+register_result_type(CriticalSpeedMapResult, {
+    "stiffness": "N/m", "critical_speeds": _ANGULAR, "harmonic": "1", "speeds": _ANGULAR,
+    "bearing_kxx": "N/m", "bearing_kyy": "N/m"})
+register_result_type(FrequencyResponseResult, {
+    "frequencies": _ANGULAR, "speeds": _ANGULAR, "response": "m, rad (per unit input)",
+    "nodes_pos": "m"})
+register_result_type(DeflectedShape, {
+    "frequency": _ANGULAR, "speed": _ANGULAR, "nodes_pos": "m", "ux": "m", "uy": "m"})
+register_result_type(StaticResult, {
+    "displacement": "m, rad", "load": "N, N m", "nodes_pos": "m", "speed": _ANGULAR,
+    "bearing_forces": "N", "bearing_moments": "N m", "constraint_reactions": "N, N m",
+    "element_z": "m", "shear_force": "N", "bending_moment": "N m", "axial_force": "N",
+    "torque": "N m", "residual": "1"})
+register_result_type(Ellipse, {
+    "major": "m", "minor": "m", "inclination": "rad", "forward_radius": "m",
+    "backward_radius": "m", "whirl_ratio": "1"})
+register_result_type(EnergyMinimum, {"displacement": "m, rad", "energy": "J",
+                                     "hessian_eigenvalues": "N/m, N, N m/rad"})
+register_result_type(BearingEquilibriumResult, {
+    "displacement": "m, rad", "load": "N, N m", "force": "N, N m", "phi": "rad",
+    "element_angles": "rad", "element_load": "N", "contact_angle": "rad", "deflection": "m",
+    "stiffness": "N/m, N, N m/rad", "energy": "J", "strain_energy": "J", "residual": "1"})
+register_result_type(StiffnessVariation, {
+    "position": "1", "cage_angle": "rad", "shaft_angle": "rad", "displacement": "m, rad",
+    "force": "N, N m", "stiffness": "N/m, N, N m/rad", "max_element_load": "N",
+    "load": "N, N m"})
