@@ -77,7 +77,7 @@ def modal(
     tol = rigid_tol if rigid_tol is not None else 1e-6 * np.sqrt(diag_k.max() / diag_m.max())
 
     n = system.n_free
-    extra = 8
+    extra = 4
     while True:
         k = 2 * num_modes + extra
         pairs = quadratic_eigen(mats.M, D, mats.K, k, sigma=sigma, sparse=sparse, stats=stats)
