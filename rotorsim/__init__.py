@@ -22,6 +22,11 @@ from rotorsim.analyses.campbell import campbell
 from rotorsim.analyses.critical_speed_map import critical_speed_map
 from rotorsim.analyses.critical_speeds import critical_speeds
 from rotorsim.analyses.frequency_response import frequency_response, unbalance_response
+from rotorsim.analyses.linearized_rotor import (
+    LinearizationPoint,
+    LinearizedRotor,
+    linearize_rolling_bearings,
+)
 from rotorsim.analyses.modal import modal
 from rotorsim.analyses.static import static
 from rotorsim.analyses.sweep import (
@@ -36,7 +41,7 @@ from rotorsim.assembly.system import RotorSystem, SystemMatrices, assemble
 from rotorsim.elements.base import DOF_NAMES, ElementMatrices
 from rotorsim.elements.disk import DiskElement, PointMass
 from rotorsim.elements.linear_bearing import BearingElement
-from rotorsim.elements.rolling import BallBearing, RollerBearing
+from rotorsim.elements.rolling import BallBearing, ReversedBearing, RollerBearing
 from rotorsim.elements.rolling.element import RollingBearing
 from rotorsim.elements.shaft import ShaftElement, cowper_shear_coefficient
 from rotorsim.errors import ConvergenceError, ModelError, RotorsimError, Status
@@ -47,7 +52,7 @@ from rotorsim.io.vtk import export_vtk
 from rotorsim.model.material import Material
 from rotorsim.model.rotor import Rotor
 from rotorsim.plotting import plot
-from rotorsim.results.bearing import BearingEquilibriumResult
+from rotorsim.results.bearing import BearingEquilibriumResult, StiffnessVariation
 from rotorsim.results.campbell import CampbellResult
 from rotorsim.results.critical_speeds import CriticalSpeedMapResult, CriticalSpeeds
 from rotorsim.results.frequency_response import FrequencyResponseResult
@@ -73,6 +78,8 @@ __all__ = [
     "Ellipse",
     "FrequencyResponseResult",
     "Grid",
+    "LinearizationPoint",
+    "LinearizedRotor",
     "Material",
     "ModalResult",
     "Model",
@@ -80,6 +87,7 @@ __all__ = [
     "Normal",
     "PointMass",
     "ResultsFileError",
+    "ReversedBearing",
     "RollerBearing",
     "RollingBearing",
     "Rotor",
@@ -89,6 +97,7 @@ __all__ = [
     "ShaftElement",
     "StaticResult",
     "Status",
+    "StiffnessVariation",
     "SweepResult",
     "SystemMatrices",
     "Uniform",
@@ -101,6 +110,7 @@ __all__ = [
     "ellipse",
     "export_vtk",
     "frequency_response",
+    "linearize_rolling_bearings",
     "load",
     "load_model",
     "load_sweep",

@@ -226,15 +226,19 @@ def stiffness_over_pass(
 
 
 def linearized_bearings(bearings: Sequence[Any], loads: Sequence[ArrayLike], *,
-                        phi: float = 0.0) -> tuple[Any, ...]:
+                        phi: float = 0.0, speed: float | None = None,
+                        frequency: float = 0.0) -> tuple[Any, ...]:
     """Linear ``BearingElement`` of each 2-node ``RollingBearing`` at its static load.
 
     ``loads[i]`` is the load ``[Fx, Fy, Fz, Mx, My]`` on the inner ring of ``bearings[i]``
-    (e.g. minus the bearing reaction of a static analysis).
+    (e.g. minus the bearing reaction of a static analysis). ``speed`` [rad/s] and
+    ``frequency`` [rad/s] are needed by lubricated (EHL) contact damping.
     """
     if len(bearings) != len(loads):
         raise ModelError(f"{len(bearings)} bearings but {len(loads)} loads",
                          "linearized_bearings")
-    return tuple(b.linearize(load=f, phi=phi) for b, f in zip(bearings, loads, strict=True))
+    options: dict[str, Any] = {} if speed is None else {"speed": speed, "frequency": frequency}
+    return tuple(b.linearize(load=f, phi=phi, **options)
+                 for b, f in zip(bearings, loads, strict=True))
 
 

@@ -26,6 +26,7 @@ _SUBCOMMAND_HELP = {
     "unbalance": "unbalance response",
     "static": "static deflection, bearing reactions and section forces",
 }
+_BEARING_HELP = "load distribution and stiffness matrix of each rolling bearing"
 _SUBCOMMAND_TYPES = {
     "modal": "modal",
     "campbell": "campbell",
@@ -65,6 +66,15 @@ def build_parser() -> argparse.ArgumentParser:
         if kind == "critical_speed_map":
             p.add_argument("--stiffness", nargs=3, metavar=("KMIN", "KMAX", "NUM"),
                            help='support stiffness range, e.g. "0.1 MN/m" "1 GN/m" 40')
+
+    bearing = sub.add_parser("bearing", help=_BEARING_HELP)
+    bearing.add_argument("model", type=Path)
+    bearing.add_argument("--tag", help="only the rolling bearing with this tag (or index)")
+    bearing.add_argument("--out", type=Path, default=Path("results"),
+                         help="output folder (default: results)")
+    bearing.add_argument("--no-plots", action="store_true", help="do not write PNG figures")
+    bearing.add_argument("--fast", action="store_true",
+                         help="6 instead of 24 positions over one element pass (smoke runs)")
     return parser
 
 
@@ -101,6 +111,8 @@ def _dispatch(args: argparse.Namespace) -> int:
     if args.command == "info":
         print(_info(model))
         return 0
+    if args.command == "bearing":
+        return _bearing(model, args)
     if args.command == "run":
         names = list(args.analyses) or list(model.analyses)
         if not names:
@@ -116,10 +128,14 @@ def _dispatch(args: argparse.Namespace) -> int:
     else:
         jobs = [_adhoc_job(model, args)]
     print(_info(model))
+    if model.rolling_bearings:
+        from rotorsim.cli.summaries import linearization_summary
+
+        print(linearization_summary(model.linearized()))
     if not args.no_plots:
         from rotorsim.cli.outputs import write_layout
 
-        print(f"layout drawing: {write_layout(model.rotor, args.out / model.name)}")
+        print(f"layout drawing: {write_layout(_drawn_rotor(model), args.out / model.name)}")
     t0 = time.perf_counter()
     for name, spec in jobs:
         _run_one(model, name, spec, args)
@@ -133,9 +149,48 @@ def _info(model: Any) -> str:
 
     s = model.rotor.summary()
     rows = [(k, f"{v:.4g}" if isinstance(v, float) else v) for k, v in s.items()]
+    if model.rolling_bearings:
+        tags = [rb.tag or str(i) for i, rb in enumerate(model.rolling_bearings)]
+        rows.append(("rolling_bearings", ", ".join(tags)))
     rows.append(("analyses", ", ".join(model.analyses) or "-"))
     head = f"model '{model.name}'" + (f": {model.description}" if model.description else "")
     return head + "\n" + table(rows, ("quantity", "value"))
+
+
+def _drawn_rotor(model: Any) -> Any:
+    """The rotor with a zero-stiffness placeholder at each rolling bearing (drawing only)."""
+    from rotorsim.elements.linear_bearing import BearingElement
+
+    extra = [BearingElement(n=int(rb.n), n_link=rb.n_link, tag=rb.tag)
+             for rb in model.rolling_bearings]
+    return model.rotor.with_bearings([*model.rotor.bearing_elements, *extra])
+
+
+def _bearing(model: Any, args: argparse.Namespace) -> int:
+    """``rotorsim bearing``: each rolling bearing at its linearisation point."""
+    from rotorsim.cli.outputs import write_bearing_outputs
+    from rotorsim.cli.summaries import linearization_summary
+    from rotorsim.errors import ModelError
+
+    if not model.rolling_bearings:
+        raise ModelError("the model has no [[rolling_bearings]]", model.name)
+    linear = model.linearized()
+    chosen = list(range(len(model.rolling_bearings)))
+    if args.tag is not None:
+        chosen = [i for i, tag in enumerate(linear.tags) if tag == args.tag]
+        if not chosen:
+            raise ModelError(f"no rolling bearing tagged {args.tag!r}; the model has "
+                             f"{', '.join(linear.tags)}", "--tag")
+    print(_info(model))
+    print(linearization_summary(linear))
+    t0 = time.perf_counter()
+    for i in chosen:
+        write_bearing_outputs(model.rolling_bearings[i], linear.equilibria[i], linear.tags[i],
+                              args.out / model.name, plots=not args.no_plots,
+                              n_points=6 if args.fast else 24)
+    print(f"\n{len(chosen)} bearings in {time.perf_counter() - t0:.2f} s; results in "
+          f"{args.out / model.name}/")
+    return 0
 
 
 def _adhoc_job(model: Any, args: argparse.Namespace) -> tuple[str, Any]:

@@ -43,7 +43,7 @@ def _figures(result: Any, folder: Path, name: str, units: str,
     if kind == "ModalResult":
         for j in range(min(MODE_FIGURES, result.n_modes)):
             figures[f"{name}_mode_{j}.png"] = plot(result, mode=j, units="Hz")
-    elif kind == "StaticResult":
+    elif kind in ("StaticResult", "BearingEquilibriumResult", "StiffnessVariation"):
         figures[f"{name}.png"] = plot(result)
     elif kind == "FrequencyResponseResult":
         figures[f"{name}.png"] = plot(result, units=units, **options)
@@ -74,3 +74,30 @@ def write_layout(rotor: Any, folder: Path) -> Path:
     fig.savefig(path, dpi=110, bbox_inches="tight")
     plt.close(fig)
     return path
+
+
+def write_bearing_outputs(rolling: Any, equilibrium: Any, tag: str, folder: Path, *,
+                          plots: bool = True, n_points: int = 24) -> list[Path]:
+    """Print and write one rolling bearing at its linearisation point.
+
+    Writes ``bearing_<tag>.h5`` (the ``BearingEquilibriumResult``) and
+    ``bearing_<tag>_pass.h5`` (its ``StiffnessVariation`` over one element pass at the same
+    load), with their figures as PNG. Returns the paths written.
+    """
+    from rotorsim.analyses.bearing_statics import stiffness_over_pass
+    from rotorsim.cli.summaries import bearing_summary, stiffness_variation_summary
+    from rotorsim.errors import ConvergenceError
+
+    print(f"\n== bearing {tag} ==")
+    print(bearing_summary(equilibrium, tag))
+    try:
+        variation = stiffness_over_pass(rolling.bearing, equilibrium.load, n_points)
+    except ConvergenceError:  # Newton may stall in very soft directions; energy does not
+        variation = stiffness_over_pass(rolling.bearing, equilibrium.load, n_points,
+                                        method="energy")
+    print(stiffness_variation_summary(variation))
+    name = f"bearing_{tag}"
+    files = write_outputs(equilibrium, folder, name, plots=plots)
+    files += write_outputs(variation, folder, f"{name}_pass", plots=plots)
+    print("wrote " + ", ".join(str(f) for f in files))
+    return files

@@ -143,6 +143,67 @@ def map_summary(result: Any, units: str = "rpm") -> str:
     return "\n".join(lines)
 
 
+_DOFS = ("x", "y", "z", "rx", "ry")
+
+
+def _si(value: float, index: int, kind: str) -> str:
+    """A displacement (um, mrad) or a load (N, N m) of relative DOF ``index``."""
+    return _fixed(value * (1e6 if index < 3 else 1e3) if kind == "displacement" else value, 4)
+
+
+def bearing_summary(result: Any, tag: str = "") -> str:
+    """Displacement, load zone, element loads and stiffness matrix of a bearing equilibrium."""
+    name = tag or result.summary.get("tag") or "bearing"
+    head = (f"bearing '{name}' ({result.summary.get('bearing', '')}, {result.n_elements} "
+            f"elements): loaded {result.load_zone.size}/{result.n_elements}, load zone "
+            f"{np.degrees(result.load_zone_extent):.1f} deg, Qmax "
+            f"{result.max_element_load:.2f} N")
+    rows = [(d + (" (held)" if d in result.held_dofs else ""),
+             _si(result.displacement[i], i, "displacement"), "um" if i < 3 else "mrad",
+             _si(result.load[i], i, "load"), "N" if i < 3 else "N m")
+            for i, d in enumerate(_DOFS)]
+    parts = [head, table(rows, ("dof", "displacement", "unit", "load", "unit"))]
+    elements = [(j, f"{np.degrees(result.element_angles[j]) % 360.0:.1f}",
+                 f"{result.element_load[j]:.3f}", f"{np.degrees(result.contact_angle[j]):.3f}",
+                 f"{result.deflection[j] * 1e6:.4f}") for j in range(result.n_elements)]
+    parts.append(table(elements, ("element", "angle [deg]", "load [N]", "contact angle [deg]",
+                                  "deflection [um]")))
+    rows_k = ("Fx [N]", "Fy [N]", "Fz [N]", "Mx [N m]", "My [N m]")
+    stiff = [(label, *(f"{result.stiffness[i, j]:.4e}" for j in range(5)))
+             for i, label in enumerate(rows_k)]
+    parts.append("stiffness matrix K_ij = dF_i/d delta_j: rows force [N] or moment [N m], "
+                 "columns per m or per rad")
+    parts.append(table(stiff, ("", *(f"{d} [{'m' if j < 3 else 'rad'}]"
+                                      for j, d in enumerate(_DOFS)))))
+    return "\n".join(parts + [f"note: {n}" for n in result.notes])
+
+
+def stiffness_variation_summary(result: Any) -> str:
+    """Mean and peak-to-peak of the direct stiffness coefficients over one element pass."""
+    mean, ptp = result.mean_stiffness, result.stiffness_fluctuation
+    rows = [(f"K{d}{d}", f"{mean[i, i]:.4e}", f"{ptp[i, i]:.4e}",
+             f"{100 * ptp[i, i] / mean[i, i]:.2f}" if mean[i, i] else "-")
+            for i, d in enumerate(_DOFS)]
+    head = f"stiffness over one element pass ({result.position.size} positions)"
+    return head + "\n" + table(rows, ("coefficient", "mean", "peak-to-peak", "% of mean"))
+
+
+def linearization_summary(linear: Any) -> str:
+    """Loads and direct stiffness of rolling bearings linearised in a rotor."""
+    kinds = {p.kind for p in linear.points}
+    how = ("at their static loads" if kinds == {"static"} else "at "
+           + ", ".join(sorted(kinds)) + " points")
+    head = (f"rolling bearings linearised {how} ({linear.iterations} static iterations, "
+            f"residual {linear.residual:.1e})")
+    rows = [(tag, point.kind, *(_fixed(v, 3) for v in load),
+             *(f"{k:.3e}" for k in np.diagonal(el.stiffness_matrix)[:3]))
+            for tag, point, load, el in zip(linear.tags, linear.points, linear.loads,
+                                            linear.bearings, strict=True)]
+    return head + "\n" + table(rows, ("bearing", "at", "Fx [N]", "Fy [N]", "Fz [N]",
+                                       "Mx [N m]", "My [N m]", "kxx [N/m]", "kyy [N/m]",
+                                       "kzz [N/m]"))
+
+
 SUMMARIES: dict[str, Callable[..., str]] = {
     "ModalResult": modal_summary,
     "CampbellResult": campbell_summary,
@@ -150,6 +211,8 @@ SUMMARIES: dict[str, Callable[..., str]] = {
     "FrequencyResponseResult": response_summary,
     "StaticResult": static_summary,
     "CriticalSpeedMapResult": map_summary,
+    "BearingEquilibriumResult": bearing_summary,
+    "StiffnessVariation": stiffness_variation_summary,
 }
 
 

@@ -15,6 +15,7 @@ Examples
 
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass, fields
 from typing import TYPE_CHECKING, Any, ClassVar, Literal
 
@@ -26,6 +27,7 @@ from rotorsim.errors import ModelError
 
 if TYPE_CHECKING:
     from rotorsim.io.model_file import Model
+    from rotorsim.model.rotor import Rotor
 
 FAST_POINTS = 7
 """Grid size used by ``run_analysis(..., fast=True)``."""
@@ -254,69 +256,86 @@ def run_analysis(model: Model, name: str, *, fast: bool = False,
     ------
     ModelError
         ``name`` is not an analysis of the model.
+
+    Notes
+    -----
+    A model with rolling bearings is analysed on :meth:`Model.linearized` (the bearings
+    linearised at their static loads, computed once per model and speed: the spec's
+    ``speed`` for ``modal`` and ``static``, else 0); the result's ``options`` then hold
+    ``rolling_bearings`` (tags, loads, iterations). A ``static`` analysis returns that
+    nonlinear static equilibrium.
     """
     if name not in model.analyses:
         raise ModelError(f"no analysis {name!r}; the model has {sorted(model.analyses)}",
                          model.name)
     spec = model.analyses[name]
     runner = _RUNNERS[spec.type]
-    return runner(model, spec, fast, progress)
+    if not model.rolling_bearings:
+        return runner(model.rotor, model, spec, fast, progress)
+    linear = model.linearized(float(getattr(spec, "speed", None) or 0.0)
+                              if spec.type in ("modal", "static") else 0.0)
+    result = linear.static if spec.type == "static" else runner(linear.rotor, model, spec,
+                                                                  fast, progress)
+    return dataclasses.replace(result, options={**result.options,
+                                                "rolling_bearings": linear.describe()})
 
 
 def _grid(grid: Grid, fast: bool) -> FloatArray:
     return (grid.shrunk(FAST_POINTS) if fast else grid).array()
 
 
-def _modal(model: Model, spec: Any, fast: bool, progress: bool) -> Any:
+def _modal(rotor: Rotor, model: Model, spec: Any, fast: bool, progress: bool) -> Any:
     from rotorsim.analyses.modal import modal
 
-    return modal(model.rotor, speed=spec.speed, num_modes=spec.num_modes)
+    return modal(rotor, speed=spec.speed, num_modes=spec.num_modes)
 
 
-def _campbell(model: Model, spec: Any, fast: bool, progress: bool) -> Any:
+def _campbell(rotor: Rotor, model: Model, spec: Any, fast: bool, progress: bool) -> Any:
     from rotorsim.analyses.campbell import campbell
 
-    return campbell(model.rotor, _grid(spec.speeds, fast), num_modes=spec.num_modes,
+    return campbell(rotor, _grid(spec.speeds, fast), num_modes=spec.num_modes,
                     progress=progress)
 
 
-def _critical_speeds(model: Model, spec: Any, fast: bool, progress: bool) -> Any:
+def _critical_speeds(rotor: Rotor, model: Model, spec: Any, fast: bool, progress: bool) -> Any:
     from rotorsim.analyses.critical_speeds import critical_speeds
 
-    return critical_speeds(model.rotor, harmonic=spec.harmonic, num_modes=spec.num_modes,
+    return critical_speeds(rotor, harmonic=spec.harmonic, num_modes=spec.num_modes,
                            whirl=spec.whirl)
 
 
-def _critical_speed_map(model: Model, spec: Any, fast: bool, progress: bool) -> Any:
+def _critical_speed_map(rotor: Rotor, model: Model, spec: Any, fast: bool,
+                        progress: bool) -> Any:
     from rotorsim.analyses.critical_speed_map import critical_speed_map
 
     speeds = None if spec.speeds is None else _grid(spec.speeds, fast)
-    return critical_speed_map(model.rotor, stiffness=_grid(spec.stiffness, fast),
+    return critical_speed_map(rotor, stiffness=_grid(spec.stiffness, fast),
                               num_modes=spec.num_modes, harmonic=spec.harmonic,
                               bearings=spec.bearings, gyroscopic=spec.gyroscopic,
                               speeds=speeds)
 
 
-def _unbalance(model: Model, spec: Any, fast: bool, progress: bool) -> Any:
+def _unbalance(rotor: Rotor, model: Model, spec: Any, fast: bool, progress: bool) -> Any:
     from rotorsim.analyses.frequency_response import unbalance_response
 
     unbalance = model.loads.unbalance if spec.unbalance is None else spec.unbalance
-    return unbalance_response(model.rotor, _grid(spec.speeds, fast), list(unbalance),
+    return unbalance_response(rotor, _grid(spec.speeds, fast), list(unbalance),
                               progress=progress)
 
 
-def _frequency_response(model: Model, spec: Any, fast: bool, progress: bool) -> Any:
+def _frequency_response(rotor: Rotor, model: Model, spec: Any, fast: bool,
+                        progress: bool) -> Any:
     from rotorsim.analyses.frequency_response import frequency_response
 
-    return frequency_response(model.rotor, _grid(spec.frequencies, fast), list(spec.inputs),
+    return frequency_response(rotor, _grid(spec.frequencies, fast), list(spec.inputs),
                               speed=spec.speed, progress=progress)
 
 
-def _static(model: Model, spec: Any, fast: bool, progress: bool) -> Any:
+def _static(rotor: Rotor, model: Model, spec: Any, fast: bool, progress: bool) -> Any:
     from rotorsim.analyses.static import static
 
     loads = model.loads
-    return static(model.rotor, gravity=loads.gravity, direction=loads.gravity_direction,
+    return static(rotor, gravity=loads.gravity, direction=loads.gravity_direction,
                   loads=list(loads.point_loads), speed=spec.speed)
 
 

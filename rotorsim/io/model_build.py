@@ -14,12 +14,30 @@ from typing import Any
 
 import numpy as np
 
+from rotorsim.analyses.linearized_rotor import LinearizationPoint
 from rotorsim.elements.disk import DiskElement, PointMass
 from rotorsim.elements.linear_bearing import BearingElement
+from rotorsim.elements.rolling.ball import BallBearing
+from rotorsim.elements.rolling.element import RollingBearing
+from rotorsim.elements.rolling.reversed import ReversedBearing
+from rotorsim.elements.rolling.roller import RollerBearing
+from rotorsim.elements.rolling.roller_profile import (
+    CircularCrown,
+    LogarithmicProfile,
+    StraightProfile,
+)
 from rotorsim.elements.shaft import ShaftElement
 from rotorsim.errors import ModelError
 from rotorsim.io import analysis_spec as spec
-from rotorsim.io.model_schema import BearingTable, ModelTable, ShaftSegment
+from rotorsim.io.model_schema import (
+    BallTable,
+    BearingTable,
+    ModelTable,
+    ProfileTable,
+    RollerTable,
+    RollingTable,
+    ShaftSegment,
+)
 from rotorsim.io.schema_types import Located, format_path
 from rotorsim.model.material import Material
 from rotorsim.model.rotor import Rotor
@@ -227,9 +245,70 @@ def unbalance_list(items: list[Any], nodes: Nodes, where: str) -> spec.Unbalance
                  for i, u in enumerate(items))
 
 
+def build_rolling(tables: list[RollingTable], nodes: Nodes
+                  ) -> tuple[tuple[RollingBearing, ...], tuple[LinearizationPoint, ...]]:
+    """The rolling-bearing elements of validated ``[[rolling_bearings]]`` tables and where
+    each is linearised."""
+    elements, points = [], []
+    for i, t in enumerate(tables):
+        where = f"rolling_bearings[{i}]"
+        n = nodes.any_node(t, where)
+        link = None if t.n_link is None else nodes.check(t.n_link, f"{where}.n_link")
+        if link == n:
+            raise ModelError(f"must differ from the bearing node ({n})", f"{where}.n_link")
+        try:
+            model = _rolling_model(t)
+            element = RollingBearing(
+                ReversedBearing(model) if t.axial_direction == "-z" else model, n=n,
+                n_link=link, tag=t.tag, contact_damping=t.contact_damping,
+                damping_factor=t.damping_factor)
+            points.append(LinearizationPoint(*t.linearize))
+        except ModelError as err:
+            raise ModelError(bare(err), where) from None
+        elements.append(element)
+    return tuple(elements), tuple(points)
+
+
+_ROLLING_COMMON = ("pitch_diameter", "contact_angle", "radial_clearance", "diametral_clearance",
+                   "exponent", "psi0", "cage")
+
+
+def _rolling_model(t: RollingTable) -> BallBearing | RollerBearing:
+    keys = {k: getattr(t, k) for k in _ROLLING_COMMON if getattr(t, k) is not None}
+    if isinstance(t, BallTable):
+        for k in ("n_balls", "ball_diameter", "f_i", "f_o", "A0", "groove_center_radius"):
+            if getattr(t, k) is not None:
+                keys[k] = getattr(t, k)
+        if t.Kn is not None:
+            return BallBearing(Kn=t.Kn, tag=t.tag, **keys)
+        return BallBearing.from_geometry(tag=t.tag, **keys)  # schema: f_i, f_o given
+    assert isinstance(t, RollerTable)
+    return RollerBearing(n_rollers=t.n_rollers, roller_diameter=t.roller_diameter,
+                         effective_length=t.effective_length, Kn=t.Kn,
+                         profile=_profile(t.profile), model=t.model, n_slices=t.n_slices,
+                         tag=t.tag or "", **keys)
+
+
+def _profile(p: ProfileTable | None) -> Any:
+    if p is None or p.type == "straight":
+        return StraightProfile()
+    if p.type == "crowned":
+        if p.crown_radius is not None:
+            assert p.crown_length is not None
+            return CircularCrown.from_radius(p.crown_radius, p.crown_length)
+        assert p.crown_drop is not None
+        return CircularCrown(crown_drop=p.crown_drop, crown_length=p.crown_length)
+    assert p.scale is not None
+    if p.end_drop is not None:
+        return LogarithmicProfile.with_end_drop(p.scale, p.end_drop)
+    return LogarithmicProfile(scale=p.scale, shape=1.0 if p.shape is None else p.shape)
+
+
 def build_spec(table: Any, loc: tuple[str | int, ...], nodes: Nodes,
-               rotor: Rotor, loads: spec.Loads) -> spec.AnalysisSpec:
-    """The typed spec of one validated analysis table."""
+               rotor: Rotor, loads: spec.Loads, rolling_tags: tuple[str | None, ...] = ()
+               ) -> spec.AnalysisSpec:
+    """The typed spec of one validated analysis table (``rolling_tags``: tags of the rolling
+    bearings, appended to the rotor's bearings once linearised)."""
     where = format_path(loc)
     common: dict[str, Any] = {
         "description": table.description, "units": table.units, "dofs": tuple(table.dofs),
@@ -247,7 +326,8 @@ def build_spec(table: Any, loc: tuple[str | int, ...], nodes: Nodes,
         options["inputs"] = tuple((nodes.any_node(item, f"{where}.inputs[{i}]"), str(item.dof))
                                   for i, item in enumerate(table.inputs))
     elif table.type == "critical_speed_map":
-        options["bearings"] = _bearing_indices(options["bearings"], rotor, f"{where}.bearings")
+        options["bearings"] = _bearing_indices(options["bearings"], rotor, rolling_tags,
+                                               f"{where}.bearings")
     elif table.type == "campbell":
         options["harmonics"] = tuple(options["harmonics"])
     return cls(**common, **options)
@@ -263,11 +343,11 @@ def _analysis_unbalance(table: Any, nodes: Nodes, loads: spec.Loads, where: str
     return unbalance_list(table.unbalance, nodes, f"{where}.unbalance")
 
 
-def _bearing_indices(refs: tuple[int | str, ...] | None, rotor: Rotor, where: str
-                     ) -> tuple[int, ...] | None:
+def _bearing_indices(refs: tuple[int | str, ...] | None, rotor: Rotor,
+                     rolling_tags: tuple[str | None, ...], where: str) -> tuple[int, ...] | None:
     if refs is None:
         return None
-    tags = [b.tag for b in rotor.bearing_elements]
+    tags = [*(b.tag for b in rotor.bearing_elements), *rolling_tags]
     out = []
     for i, ref in enumerate(refs):
         if isinstance(ref, str):

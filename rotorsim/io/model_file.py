@@ -1,8 +1,10 @@
 """Model files (TOML): load a rotor with its loads and named analyses, and save one back.
 
 A model file lists ``[model]``, ``[[materials]]``, ``[[shaft]]`` segments, ``[[disks]]``,
-``[[bearings]]``, ``[[point_masses]]``, ``[[fixed]]``, ``[loads]`` and named
-``[analyses.<name>]``; the reference is ``docs/model_files.md``. Values are SI numbers or
+``[[bearings]]``, ``[[rolling_bearings]]``, ``[[point_masses]]``, ``[[fixed]]``, ``[loads]``
+and named ``[analyses.<name>]``; the reference is ``docs/model_files.md``. Rolling bearings
+stay out of ``Model.rotor``: the analyses run on :meth:`Model.linearized`, the rotor with
+each rolling bearing linearised (by default at its static load). Values are SI numbers or
 strings with units (``"50 mm"``, ``"1 MN/m"``, ``"3000 rpm"``).
 
 Every problem in a file raises one :class:`~rotorsim.errors.ModelError` whose message
@@ -58,11 +60,15 @@ import tomllib
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from rotorsim.errors import ModelError
 from rotorsim.io.analysis_spec import AnalysisSpec, Loads, run_analysis
 from rotorsim.model.rotor import Rotor
+
+if TYPE_CHECKING:
+    from rotorsim.analyses.linearized_rotor import LinearizationPoint, LinearizedRotor
+    from rotorsim.elements.rolling.element import RollingBearing
 
 __all__ = ["Model", "load_model", "model_from_dict", "run_analysis", "save_model"]
 
@@ -85,6 +91,11 @@ class Model:
         ``[model] description``.
     source : Path, optional
         The file the model was read from.
+    rolling_bearings : tuple of RollingBearing
+        Nonlinear rolling bearings (``[[rolling_bearings]]``); not part of ``rotor``.
+    linearize : tuple of LinearizationPoint
+        Where each rolling bearing is linearised for the linear analyses (default: all at
+        their static loads).
     """
 
     name: str
@@ -93,6 +104,34 @@ class Model:
     analyses: Mapping[str, AnalysisSpec] = field(default_factory=dict)
     description: str = ""
     source: Path | None = None
+    rolling_bearings: tuple[RollingBearing, ...] = ()
+    linearize: tuple[LinearizationPoint, ...] = ()
+    _linearized: dict[float, LinearizedRotor] = field(default_factory=dict, init=False,
+                                                       repr=False)
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "rolling_bearings", tuple(self.rolling_bearings))
+        object.__setattr__(self, "linearize", tuple(self.linearize))
+        if self.linearize and len(self.linearize) != len(self.rolling_bearings):
+            raise ModelError(f"{len(self.rolling_bearings)} rolling bearings but "
+                             f"{len(self.linearize)} linearisation points", self.name)
+
+    def linearized(self, speed: float = 0.0) -> LinearizedRotor:
+        """The rotor with its rolling bearings linearised (computed once per speed).
+
+        Static bearings are linearised at the static equilibrium under ``loads`` (gravity
+        and point loads) with speed-dependent linear bearings evaluated at ``speed``
+        [rad/s]; see :func:`rotorsim.analyses.linearized_rotor.linearize_rolling_bearings`.
+        """
+        from rotorsim.analyses.linearized_rotor import linearize_rolling_bearings
+
+        key = float(speed)
+        if key not in self._linearized:
+            self._linearized[key] = linearize_rolling_bearings(
+                self.rotor, self.rolling_bearings, points=self.linearize or None,
+                gravity=self.loads.gravity, direction=self.loads.gravity_direction,
+                loads=self.loads.point_loads, speed=key)
+        return self._linearized[key]
 
 
 def load_model(path: str | os.PathLike[str]) -> Model:
@@ -150,17 +189,22 @@ def model_from_dict(data: Mapping[str, Any], *, source: str | os.PathLike[str] |
     """
     from rotorsim.io import model_build as build
     from rotorsim.io.analysis_schema import validate_analyses
-    from rotorsim.io.model_schema import validate_model
+    from rotorsim.io.model_schema import validate_model, validate_rolling_bearings
 
     table = validate_model(dict(data) if isinstance(data, Mapping) else data)
+    rolling_tables = validate_rolling_bearings(table.rolling_bearings)
     analyses = validate_analyses(table.analyses)
     src = None if source is None else Path(source)
     name = table.model.name or (src.stem if src is not None else "rotor")
     rotor, nodes = build.build_rotor(table, name)
+    rolling, points = build.build_rolling(rolling_tables, nodes)
     loads = build.build_loads(table, nodes)
-    specs = {key: build.build_spec(t, loc, nodes, rotor, loads) for key, loc, t in analyses}
+    tags = tuple(rb.tag for rb in rolling)
+    specs = {key: build.build_spec(t, loc, nodes, rotor, loads, tags)
+             for key, loc, t in analyses}
     return Model(name=name, rotor=rotor, loads=loads, analyses=specs,
-                 description=table.model.description, source=src)
+                 description=table.model.description, source=src, rolling_bearings=rolling,
+                 linearize=points)
 
 
 def save_model(model: Model | Rotor, path: str | os.PathLike[str]) -> Path:

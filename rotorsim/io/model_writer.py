@@ -10,6 +10,7 @@ it out as a person would write it: ``[model]``, ``[[materials]]``, ``[[shaft]]``
 
 from __future__ import annotations
 
+import dataclasses
 import itertools
 import json
 import math
@@ -18,9 +19,19 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from rotorsim.analyses.linearized_rotor import LinearizationPoint
 from rotorsim.elements.disk import PointMass
 from rotorsim.elements.linear_bearing import COEFFICIENTS, BearingElement
+from rotorsim.elements.rolling.ball import BallBearing
+from rotorsim.elements.rolling.reversed import ReversedBearing
+from rotorsim.elements.rolling.roller import RollerBearing
+from rotorsim.elements.rolling.roller_profile import (
+    CircularCrown,
+    LogarithmicProfile,
+    StraightProfile,
+)
 from rotorsim.elements.shaft import ShaftElement
+from rotorsim.errors import ModelError
 from rotorsim.io.analysis_spec import Loads
 from rotorsim.model.material import Material
 from rotorsim.model.rotor import Rotor
@@ -45,6 +56,9 @@ def model_to_dict(model: Model) -> dict[str, Any]:
         "disks": [{"node": int(d.n), "m": float(d.m), "Id": float(d.Id), "Ip": float(d.Ip),
                    **_tag(d.tag)} for d in rotor.disk_elements],
         "bearings": [bearing_entry(b) for b in rotor.bearing_elements],
+        "rolling_bearings": [rolling_entry(rb, p) for rb, p in zip(
+            model.rolling_bearings, model.linearize or [None] * len(model.rolling_bearings),
+            strict=True)],
         "point_masses": [_point_mass(pm) for pm in rotor.point_mass_elements],
         "fixed": _fixed(rotor),
     }
@@ -143,6 +157,67 @@ def bearing_entry(b: BearingElement) -> dict[str, Any]:
             entry[key] = [[float(v) for v in row] for row in np.asarray(matrix)]
     entry.update(_tag(b.tag))
     return entry
+
+
+_ROLLING_KEYS = {
+    BallBearing: ("n_balls", "pitch_diameter", "ball_diameter", "Kn", "contact_angle", "f_i",
+                  "f_o", "A0", "radial_clearance", "diametral_clearance", "exponent", "psi0",
+                  "cage", "groove_center_radius"),
+    RollerBearing: ("n_rollers", "pitch_diameter", "roller_diameter", "effective_length", "Kn",
+                    "contact_angle", "radial_clearance", "diametral_clearance", "exponent",
+                    "model", "n_slices", "psi0", "cage"),
+}
+"""Model-file keys of each rolling-bearing model (the dataclass fields of the same name)."""
+
+
+def rolling_entry(rb: Any, point: LinearizationPoint | None) -> dict[str, Any]:
+    """``[[rolling_bearings]]`` table of a RollingBearing: every parameter that differs from
+    its default, SI."""
+    model = rb.bearing.bearing if isinstance(rb.bearing, ReversedBearing) else rb.bearing
+    keys = _ROLLING_KEYS.get(type(model))
+    if keys is None:
+        raise ModelError(f"cannot write a {type(model).__name__} to a model file", rb.label)
+    entry: dict[str, Any] = {"type": "ball" if isinstance(model, BallBearing) else "roller",
+                             "node": int(rb.n)}
+    if rb.n_link is not None:
+        entry["n_link"] = int(rb.n_link)
+    defaults = {f.name: f.default for f in dataclasses.fields(model)}
+    unwritten = [f.name for f in dataclasses.fields(model) if f.init and f.name not in keys
+                 and f.name not in ("tag", "profile") and getattr(model, f.name) != f.default]
+    if unwritten:
+        raise ModelError(f"model files have no key for {', '.join(unwritten)}", rb.label)
+    for key in keys:
+        value = getattr(model, key)
+        if value is not None and value != defaults[key]:
+            entry[key] = value if isinstance(value, str) else (
+                int(value) if key.startswith("n_") else float(value))
+    profile = getattr(model, "profile", None)
+    if profile is not None and not isinstance(profile, StraightProfile):
+        entry["profile"] = _profile_entry(profile)
+    if isinstance(rb.bearing, ReversedBearing):
+        entry["axial_direction"] = "-z"
+    if rb.contact_damping not in ("none", "proportional"):
+        raise ModelError(f"model files have no keys for {rb.contact_damping!r} contact "
+                         "damping yet", rb.label)
+    if rb.contact_damping != "none":
+        entry.update(contact_damping=rb.contact_damping, damping_factor=float(rb.damping_factor))
+    if point is not None and point.kind != "static":
+        entry["linearize"] = {point.kind: list(point.value or ())}
+    entry.update(_tag(rb.tag))
+    return entry
+
+
+def _profile_entry(profile: Any) -> dict[str, Any]:
+    if isinstance(profile, CircularCrown):
+        out: dict[str, Any] = {"type": "crowned", "crown_drop": float(profile.crown_drop)}
+        if profile.crown_length is not None:
+            out["crown_length"] = float(profile.crown_length)
+        return out
+    if isinstance(profile, LogarithmicProfile):
+        return {"type": "logarithmic", "scale": float(profile.scale),
+                "shape": float(profile.shape)}
+    raise ModelError(f"cannot write a {type(profile).__name__} profile to a model file",
+                     "rolling_bearings")
 
 
 def _point_mass(pm: PointMass) -> dict[str, Any]:

@@ -156,6 +156,48 @@ def _range_grid(value: dict[str, Any], dimension: str, sign: str, spacing: str) 
     return Grid(start=start, stop=stop, num=num, spacing=kind)
 
 
+# ---------------------------------------------------------------- rolling bearings
+_POINT_DIMENSIONS = {"load": ("force",) * 3 + ("moment",) * 2,
+                     "displacement": ("length",) * 3 + ("angle",) * 2}
+
+
+def _linearize(value: Any) -> tuple[str, tuple[float, ...] | None]:
+    """``"static"``, ``{load = [5 values]}`` or ``{displacement = [5 values]}``."""
+    if value == "static":
+        return "static", None
+    if not isinstance(value, dict):
+        raise fail(f'expected "static", {{load = [...]}} or {{displacement = [...]}}, got '
+                   f"{show(value)}")
+    if len(value) != 1 or next(iter(value)) not in _POINT_DIMENSIONS:
+        key = next((k for k in value if k not in _POINT_DIMENSIONS), "")
+        raise fail("give exactly one of load, displacement" + (
+            f" (unknown key '{key}'{suggest(key, tuple(_POINT_DIMENSIONS))})" if key else ""))
+    (kind, items), = value.items()
+    if not isinstance(items, list) or len(items) != 5:
+        raise fail(f"expected 5 values [x, y, z, rx, ry], got {show(items)}", f".{kind}")
+    dims = _POINT_DIMENSIONS[kind]
+    return kind, tuple(number(v, d, None, f".{kind}[{i}]")
+                       for i, (v, d) in enumerate(zip(items, dims, strict=True)))
+
+
+def load_deflection_constant(value: Any, exponent: float, subpath: str = "") -> float:
+    """``Kn`` [N/m^exponent] from an SI number or a string such as ``"8.5e9 N/m^1.5"``
+    (its unit times ``m^exponent`` must be a force: that is how it is converted)."""
+    if isinstance(value, str):
+        magnitude, _, unit = value.strip().partition(" ")
+        text = f"{magnitude} ({unit}) * m^{exponent!r}" if unit.strip() else magnitude
+        try:
+            out = convert(text, "force")
+        except UnitParseError:
+            raise fail(f"{show(value)} is not a load-deflection constant in N/m^{exponent:.6g}"
+                       f' (e.g. "8.5e9 N/m^{exponent:.6g}")', subpath) from None
+    else:
+        out = number(value, "dimensionless", None, subpath)
+    if out <= 0:
+        raise fail(f"must be > 0, got {show(value)}", subpath)
+    return out
+
+
 # ---------------------------------------------------------------- tables
 # Annotated types: a quantity of a dimension (SI number or unit string), with a sign rule.
 Length = Annotated[float, PlainValidator(_quantity("length", "positive"))]
@@ -173,6 +215,8 @@ Time = Annotated[float, PlainValidator(_quantity("time", "nonnegative"))]
 UnbalanceMagnitude = Annotated[float, PlainValidator(_quantity("unbalance", "nonnegative"))]
 Angle = Annotated[float, PlainValidator(_quantity("angle"))]
 Speed = Annotated[float, PlainValidator(_quantity("speed", "nonnegative"))]
+SignedLength = Annotated[float, PlainValidator(_quantity("length"))]
+LinearizationValue = Annotated[Any, PlainValidator(_linearize)]
 # constant or tabulated (over frequency) bearing coefficients
 Stiffness = Annotated[Any, PlainValidator(_coefficient("stiffness", None))]
 DirectStiffness = Annotated[Any, PlainValidator(_coefficient("stiffness", "nonnegative"))]

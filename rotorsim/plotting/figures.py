@@ -8,6 +8,10 @@ from typing import Any
 import matplotlib.pyplot as plt
 import numpy as np
 
+from rotorsim.plotting.bearing_figures import (
+    load_distribution_figure,
+    stiffness_variation_figure,
+)
 from rotorsim.plotting.layout import rotor_layout_figure
 from rotorsim.plotting.units import speed_factor
 
@@ -209,4 +213,6 @@ DRAWERS: dict[str, Callable[..., Any]] = {
     "StaticResult": static_figure,
     "CampbellResult": campbell_figure,
     "ModalResult": mode_shape_figure,
+    "BearingEquilibriumResult": load_distribution_figure,
+    "StiffnessVariation": stiffness_variation_figure,
 }

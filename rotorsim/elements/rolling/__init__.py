@@ -1,6 +1,8 @@
 """Nonlinear rolling-element bearings (rigid rings: seed 000; flexible rings: seed 001)."""
 
 from rotorsim.elements.rolling.ball import BallBearing
+from rotorsim.elements.rolling.ehl import Lubricant, LubricatedContacts
+from rotorsim.elements.rolling.reversed import ReversedBearing
 from rotorsim.elements.rolling.roller import RollerBearing
 from rotorsim.elements.rolling.roller_profile import (
     CircularCrown,
@@ -14,6 +16,9 @@ __all__ = [
     "BearingState",
     "CircularCrown",
     "LogarithmicProfile",
+    "Lubricant",
+    "LubricatedContacts",
+    "ReversedBearing",
     "RollerBearing",
     "StraightProfile",
 ]

@@ -321,13 +321,15 @@ class BallBearing:
             ``force`` (S, 5) = dU/d delta [N, N m] (seed 000 eq 4), ``stiffness``
             (S, 5, 5) (eq 27), ``energy`` (S,), ball loads ``Q_j`` (S, N), loaded contact
             angles ``atan2(Z_j, R_j)`` (S, N; for unloaded balls the angle of the
-            groove-centre line) and deflections (S, N).
+            groove-centre line), deflections (S, N), the unit-load directions ``g_j``
+            (S, N, 5; ``force = sum_j Q_j g_j``) and the contact stiffnesses
+            ``n Kn delta_j^(n-1)`` (S, N).
         """
         d, p = self._inputs(delta, psi)
         c, s = np.cos(p), np.sin(p)
         axial, radial, dist, deflection = self._contacts(d, c, s)
         load, slope = self._load(deflection)
-        inv = 1.0 / np.where(deflection > 0, dist, 1.0)
+        inv = 1.0 / np.where(dist > 0, dist, 1.0)  # unloaded balls: load and slope are 0
         sin_a, cos_a = axial * inv, radial * inv
         w_geo = load * inv  # Q / A: the curvature term of the distance A
         sin2, cos2 = sin_a * sin_a, cos_a * cos_a
@@ -349,7 +351,10 @@ class BallBearing:
         return BearingState(force=force, stiffness=stiffness,
                             energy=(load * deflection).sum(axis=1) / (self.exponent + 1.0),
                             element_load=load, contact_angle=np.arctan2(axial, radial),
-                            deflection=deflection)
+                            deflection=deflection,
+                            contact_direction=_directions(sin_a, cos_a, c, s,
+                                                          self._geo.arm),
+                            element_stiffness=slope)
 
 
 # Stiffness entries (row, column) from the ball sums: (row of ``rows``, basis column,
@@ -385,6 +390,24 @@ def _assemble(sums: FloatArray, arm: float) -> tuple[FloatArray, FloatArray]:
     k[:, _K_LOWER] = values
     k[:, _K_UPPER] = values
     return flat[:, _F_SOURCE] * f_scale, k.reshape(n_samples, 5, 5)
+
+
+def _directions(sin_a: FloatArray, cos_a: FloatArray, c: FloatArray, s: FloatArray,
+                arm: float) -> FloatArray:
+    """Unit-load directions ``g_j = dA_j/d delta`` (S, N, 5) (seed 000 eq 4).
+
+    ``(cos a c, cos a s, sin a, r sin a s, -r sin a c)`` with ``tan a = Z_j / R_j`` (also
+    for unloaded balls, where it is the direction of the groove-centre line).
+    """
+    g = np.empty((*c.shape, 5))
+    np.multiply(cos_a, c, out=g[..., 0])
+    np.multiply(cos_a, s, out=g[..., 1])
+    g[..., 2] = sin_a
+    arm_sin = arm * sin_a
+    np.multiply(arm_sin, s, out=g[..., 3])
+    np.multiply(arm_sin, c, out=g[..., 4])
+    np.negative(g[..., 4], out=g[..., 4])
+    return g
 
 
 def _finite(value: object, key: str, where: str) -> float:

@@ -11,14 +11,24 @@ contact stiffness ``K`` (stiffness-proportional, Rayleigh type; ``beta_c`` [s]).
 ``C = dF/d delta' = beta_c K`` exactly, and ``dF/d delta`` gains ``beta_c (dK/d delta)
 delta'``, the derivative of the tangent along the velocity, evaluated by a central
 difference of the exact tangent (step 1e-9 m in the scaled displacement; an algorithmic
-tangent, DESIGN section 4). The lubricated-contact (EHL) damping of seed 002 is a later
-model.
+tangent, DESIGN section 4).
+
+``"ehl"``: the lubricated-contact model of seed 002 section 3.2
+(:mod:`~rotorsim.elements.rolling.ehl`): ``F_d = C(delta, W) delta'`` with
+``C = sum_p c_p g_p g_p^T`` from the squeeze-film damping ``c_p`` of every loaded ball or
+roller slice (inner and outer contact in series, eq 3.5 at zero frequency) along its
+unit-load direction ``g_p``; ``C = dF/d delta'`` exactly and ``dF/d delta`` gains the
+exact derivative of ``C delta'`` (analytic: the load dependence of ``c_p`` and, for balls,
+the turning of ``g_p``). The shaft speed ``W`` sets the entrainment speed and must not be
+zero. The EHL-softened stiffness (Hertz and film in series, eq 3.1) is not the Jacobian of
+any force: it is offered for linear analyses only (``linearize`` with
+``ehl_stiffness=True``); ``force().K`` is always the exact Jacobian.
 """
 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
@@ -26,10 +36,11 @@ from numpy.typing import ArrayLike, NDArray
 
 from rotorsim.elements.base import ElementForce
 from rotorsim.elements.linear_bearing import BearingElement
+from rotorsim.elements.rolling.ehl import Lubricant, LubricatedContacts
 from rotorsim.errors import ModelError
 
 FloatArray = NDArray[np.float64]
-CONTACT_DAMPING = ("none", "proportional")
+CONTACT_DAMPING = ("none", "proportional", "ehl")
 """Contact damping models of :class:`RollingBearing`."""
 _FD_STEP = 1e-9
 """Scaled step [m] of the central difference of the tangent along the velocity."""
@@ -50,10 +61,15 @@ class RollingBearing:
         Node of the outer ring (housing, pedestal); ``None`` = ground.
     tag : str, optional
         Name used in messages.
-    contact_damping : {"none", "proportional"}
+    contact_damping : {"none", "proportional", "ehl"}
         Contact damping model (module docstring).
     damping_factor : float
         ``beta_c`` [s] of ``"proportional"`` damping.
+    lubricant : Lubricant, optional
+        Lubricant of ``"ehl"`` damping (viscosity, pressure-viscosity coefficient, ``E'``).
+    ehl_stiffness : bool
+        ``"ehl"`` only: :meth:`linearize` returns the EHL-softened stiffness (Hertz and
+        film in series, seed 002 eqs 3.1, 3.15, 3.19) instead of the Hertz tangent.
 
     Examples
     --------
@@ -73,6 +89,9 @@ class RollingBearing:
     tag: str | None = None
     contact_damping: str = "none"
     damping_factor: float = 0.0
+    lubricant: Lubricant | None = None
+    ehl_stiffness: bool = False
+    _ehl: LubricatedContacts | None = field(init=False, repr=False, default=None)
 
     def __post_init__(self) -> None:
         where = self.label
@@ -95,9 +114,24 @@ class RollingBearing:
         if not (isinstance(beta, int | float) and math.isfinite(beta) and beta >= 0):
             raise ModelError(f"damping_factor must be a finite number >= 0 s, got {beta!r}",
                              where)
-        if self.contact_damping == "none" and beta != 0:
-            raise ModelError("damping_factor is given but contact_damping is 'none' (use "
-                             "contact_damping='proportional')", where)
+        if self.contact_damping != "proportional" and beta != 0:
+            raise ModelError(f"damping_factor is given but contact_damping is "
+                             f"{self.contact_damping!r} (use 'proportional')", where)
+        self._check_ehl(where)
+
+    def _check_ehl(self, where: str) -> None:
+        ehl = self.contact_damping == "ehl"
+        if ehl and self.lubricant is None:  # a missing argument: TypeError, as in Python
+            raise TypeError(f"{where}: contact_damping='ehl' needs lubricant=Lubricant(...) "
+                            f"(other models: 'none', 'proportional')")
+        if self.lubricant is not None and not ehl:
+            raise ModelError("a lubricant is given but contact_damping is "
+                             f"{self.contact_damping!r} (use 'ehl')", where)
+        if self.ehl_stiffness and not ehl:
+            raise ModelError("ehl_stiffness=True needs contact_damping='ehl'", where)
+        if ehl:
+            assert self.lubricant is not None
+            object.__setattr__(self, "_ehl", LubricatedContacts(self.bearing, self.lubricant))
 
     @property
     def label(self) -> str:
@@ -139,7 +173,8 @@ class RollingBearing:
         phi : array (S,) or float
             Shaft angle [rad]: places the rolling elements (cage kinematics).
         speed : array (S,) or float
-            Spin speed [rad/s] (unused by rigid-ring models; kept for the protocol).
+            Spin speed [rad/s]: the entrainment speed of ``"ehl"`` damping (non-zero);
+            unused otherwise.
         internal : None
             No internal DOFs.
 
@@ -154,9 +189,15 @@ class RollingBearing:
             raise ModelError(f"u and v have {n_samples} and {rate.shape[0]} samples",
                              self.label)
         phis = np.broadcast_to(np.asarray(phi, dtype=float).reshape(-1), (n_samples,))
-        np.broadcast_to(np.asarray(speed, dtype=float).reshape(-1), (n_samples,))
+        speeds = np.broadcast_to(np.asarray(speed, dtype=float).reshape(-1), (n_samples,))
         psi = self.bearing.element_angles(phis)
-        f5, k5, c5 = self._tangents(delta, rate, psi)
+        if self._ehl is not None:
+            st = self.bearing.state(delta, psi)
+            ehl = self._ehl.matrices(delta, psi, speeds, rate=rate, state=st)
+            f5, k5, c5 = (st.force + ehl.damping_force, st.stiffness + ehl.damping_tangent,
+                          ehl.damping)
+        else:
+            f5, k5, c5 = self._tangents(delta, rate, psi)
         return ElementForce(self._expand_vector(f5), self._expand_matrix(k5),
                             self._expand_matrix(c5))
 
@@ -201,7 +242,8 @@ class RollingBearing:
         return out
 
     def linearize(self, load: ArrayLike | None = None, displacement: ArrayLike | None = None,
-                  phi: float = 0.0, **options: Any) -> BearingElement:
+                  phi: float = 0.0, *, speed: float | None = None, frequency: float = 0.0,
+                  **options: Any) -> BearingElement:
         """Linear bearing element at a static equilibrium (for modal, Campbell, critical
         speeds).
 
@@ -216,23 +258,40 @@ class RollingBearing:
             Relative displacement ``delta`` instead of a load.
         phi : float
             Shaft angle [rad] (element positions).
+        speed : float, optional
+            Shaft speed [rad/s]; required by ``"ehl"`` damping (entrainment speed).
+        frequency : float
+            ``"ehl"``: vibration frequency ``w`` [rad/s] at which the inner and outer
+            contacts are combined (seed 002 eq 3.5); 0 = quasi-static.
 
         Returns
         -------
         BearingElement
-            ``stiffness_matrix`` = the 5x5 tangent at the equilibrium, ``damping_matrix``
-            = ``beta_c`` times it (``None`` without contact damping), same nodes and tag.
+            ``stiffness_matrix`` = the 5x5 tangent at the equilibrium (``"ehl"`` with
+            ``ehl_stiffness``: the EHL-softened stiffness, for linear analyses only),
+            ``damping_matrix`` = ``beta_c`` times the tangent (``"proportional"``), the EHL
+            damping matrix (``"ehl"``) or ``None``; same nodes and tag.
         """
         if (load is None) == (displacement is None):
             raise ModelError("give exactly one of load and displacement", self.label)
+        if self._ehl is not None and (speed is None or not math.isfinite(speed)
+                                      or speed == 0.0):
+            raise ModelError(f"EHL damping needs the shaft speed: linearize(..., speed=...) "
+                             f"with a finite non-zero speed [rad/s], got {speed!r}", self.label)
         if load is not None:
             # analyses sit downstream of elements: imported here, at call time
             from rotorsim.analyses.bearing_statics import bearing_equilibrium
 
-            k5 = bearing_equilibrium(self.bearing, load, phi=phi, **options).stiffness
+            eq = bearing_equilibrium(self.bearing, load, phi=phi, **options)
+            k5, d = eq.stiffness, np.asarray(eq.displacement, dtype=float).reshape(1, 5)
         else:
             d = np.asarray(displacement, dtype=float).reshape(1, 5)
             k5 = self.bearing.state(d, self.bearing.element_angles(float(phi))).stiffness[0]
         c5 = self.beta * k5 if self.beta > 0 else None
+        if self._ehl is not None:
+            ehl = self._ehl.matrices(d, self.bearing.element_angles(float(phi)),
+                                     float(speed or 0.0), frequency=frequency)
+            c5 = ehl.damping[0]
+            k5 = ehl.stiffness[0] if self.ehl_stiffness else k5
         return BearingElement(n=int(self.n), n_link=self.n_link, stiffness_matrix=k5,
                               damping_matrix=c5, tag=self.tag)

@@ -339,13 +339,15 @@ class RollerBearing:
         """Force, exact tangent, energy and roller loads at ``delta`` (S, 5), ``psi`` (S, Z).
 
         ``force = dU/d delta`` [N, N m] (seed 000 eq 10), ``stiffness = d force / d delta``
-        (eq 27, Appendix A2), symmetric.
+        (eq 27, Appendix A2), symmetric; ``contact_direction`` ``g_j`` (S, Z, 5) with
+        ``force = sum_j Q_j g_j`` and ``element_stiffness`` ``dQ_j/dV_j`` (S, Z).
         """
         d, p = self._inputs(delta, psi)
         parts = [self._state_block(d[block], p[block]) for block in self._blocks(d.shape[0])]
         if len(parts) == 1:
             return parts[0]
-        names = ("force", "stiffness", "energy", "element_load", "contact_angle", "deflection")
+        names = ("force", "stiffness", "energy", "element_load", "contact_angle", "deflection",
+                 "contact_direction", "element_stiffness")
         return BearingState(**{k: np.concatenate([getattr(x, k) for x in parts]) for k in names})
 
     def _state_block(self, d: FloatArray, p: FloatArray) -> BearingState:
@@ -362,10 +364,34 @@ class RollerBearing:
         w1 = r_sa * w0 - length * ints.tangent1
         w2 = r_sa**2 * w0 - 2.0 * r_sa * length * ints.tangent1 + length**2 * ints.tangent2
         stiffness = n * kn * _assemble_tangent(c, s, w0, w1, w2, ca, sa)
+        # unit-load direction g_j = dF/dQ_j: the moment arm r_p sin a0 - e_j of eq 10
+        unit_arm = np.where(q > 0.0, arm / np.where(q > 0.0, q, 1.0), r_sa)
+        direction = np.empty((*q.shape, 5))
+        np.multiply(c, ca, out=direction[..., 0])
+        np.multiply(s, ca, out=direction[..., 1])
+        direction[..., 2] = sa
+        np.multiply(unit_arm, s, out=direction[..., 3])
+        np.multiply(unit_arm, -c, out=direction[..., 4])
         return BearingState(
             force=force, stiffness=stiffness, energy=kn * ints.energy.sum(axis=1),
             element_load=q, contact_angle=np.full(q.shape, self.contact_angle),
-            deflection=ints.peak)
+            deflection=ints.peak, contact_direction=direction,
+            element_stiffness=n * kn * w0)
+
+    def slice_deflections(self, delta: ArrayLike, psi: ArrayLike) -> FloatArray:
+        """Deflection at the ``n_slices`` slice centres, ``(S, Z, K)`` [m] (negative: open).
+
+        ``delta_k = V_j + xi_k L omega_j - c(xi_k)`` (seed 000 eq 6, seed 002 eq 2.2); for
+        the tilt-integral model the same straight roller sampled at the slice centres.
+
+        Examples
+        --------
+        >>> b = RollerBearing(14, 0.0425, 0.0075, 0.01, Kn=3e8, n_slices=4)
+        >>> b.slice_deflections([[10e-6, 0, 0, 0, 2e-4]], b.element_angles())[0, 0] * 1e6
+        array([ 9.25,  9.75, 10.25, 10.75])
+        """
+        _, _, v, lw = self._kinematics(*self._inputs(delta, psi))
+        return np.asarray(v[..., None] + lw[..., None] * self._slice_xi - self._slice_drop)
 
     def roller_loads(self, delta: ArrayLike, psi: ArrayLike) -> RollerLoads:
         """Per-roller load, eccentricity (seed 000 eq 9) and loaded zone (eq 8)."""

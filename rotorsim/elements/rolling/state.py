@@ -35,6 +35,18 @@ class BearingState:
     deflection : array (S, N)
         Contact deflection ``delta_j`` [m] (rollers: the largest along the length), 0 when
         unloaded.
+    contact_direction : array (S, N, 5), optional
+        Unit-load direction ``g_j = dF/dQ_j`` of each element in the 5 relative DOFs [-, m]
+        (force per unit contact load): ``force = sum_j Q_j g_j`` exactly. Balls:
+        ``(cos a cos psi, cos a sin psi, sin a, r sin a sin psi, -r sin a cos psi)``
+        (seed 000 eq 4); rollers: ``(cos a0 cos psi, cos a0 sin psi, sin a0,
+        (r_p sin a0 - e_j) sin psi, -(r_p sin a0 - e_j) cos psi)`` (seed 000 eq 10).
+        ``None`` when a model does not provide it.
+    element_stiffness : array (S, N), optional
+        Contact stiffness of each element [N/m]: balls ``dQ_j/d delta_j =
+        n Kn delta_j^(n-1)``; rollers ``dQ_j/dV_j = n Kn int delta^(n-1) dxi``, the
+        derivative of the roller load with respect to a uniform approach ``V_j``. 0 when
+        unloaded; ``None`` when not provided.
     """
 
     force: FloatArray
@@ -43,6 +55,8 @@ class BearingState:
     element_load: FloatArray
     contact_angle: FloatArray
     deflection: FloatArray
+    contact_direction: FloatArray | None = None
+    element_stiffness: FloatArray | None = None
 
     @property
     def loaded(self) -> NDArray[np.bool_]:

@@ -151,7 +151,9 @@ def test_bad_input():
         RollingBearing(BALL, n=2, n_link=2)
     with pytest.raises(ModelError, match="rolling-bearing model"):
         RollingBearing(object(), n=0)
-    with pytest.raises(TypeError, match="proportional"):
+    with pytest.raises(TypeError, match=r"unknown contact_damping 'magic'; valid: .*'ehl'"):
+        RollingBearing(BALL, n=0, contact_damping="magic")
+    with pytest.raises(TypeError, match=r"contact_damping='ehl' needs lubricant"):
         RollingBearing(BALL, n=0, contact_damping="ehl")
     with pytest.raises(ModelError, match="damping_factor"):
         RollingBearing(BALL, n=0, damping_factor=1e-5)
