@@ -50,7 +50,7 @@ from rotorsim.analyses.bearing_problem import (
     solve_global,
     solve_local,
 )
-from rotorsim.errors import ModelError, Status
+from rotorsim.errors import ConvergenceError, ModelError, Status
 from rotorsim.results.bearing import (
     BearingEquilibriumResult,
     StiffnessVariation,
@@ -65,7 +65,7 @@ def bearing_equilibrium(
     load: ArrayLike,
     *,
     phi: float = 0.0,
-    method: str = "newton",
+    method: str = "auto",
     x0: ArrayLike | None = None,
     tol: float = 1e-10,
     max_iter: int = 50,
@@ -84,8 +84,10 @@ def bearing_equilibrium(
         ``[Fx, Fy, Fz, Mx, My]`` applied to the inner ring [N, N m].
     phi : float
         Shaft angle [rad]: places the rolling elements (``bearing.element_angles(phi)``).
-    method : {"newton", "energy", "global"}
-        Solution method (module docstring).
+    method : {"auto", "newton", "energy", "global"}
+        Solution method (module docstring). ``"auto"`` tries Newton, then the energy
+        minimisation, then the global search (which also diagnoses a load without
+        equilibrium); the result names the method that succeeded and notes the failures.
     x0 : array (5,), optional
         Starting displacement (local methods); default: the load-direction ray guess.
     tol : float
@@ -120,8 +122,13 @@ def bearing_equilibrium(
     >>> round(float(r.displacement[2]) * 1e6, 3), r.load_zone.size, r.held_dofs
     (15.615, 12, ())
     """
+    if method == "auto":
+        return _auto(bearing, load, phi=phi, x0=x0, tol=tol, max_iter=max_iter,
+                     load_stiffness=load_stiffness, max_displacement=max_displacement,
+                     n_starts=n_starts, seed=seed)
     if method not in METHODS:
-        raise TypeError(f"bearing_equilibrium: unknown method {method!r}; valid: {METHODS}")
+        raise TypeError(f"bearing_equilibrium: unknown method {method!r}; valid: "
+                        f"{('auto', *METHODS)}")
     if not math.isfinite(phi):
         raise ModelError(f"phi must be finite, got {phi!r}", "bearing_equilibrium")
     check_positive(tol, max_iter, n_starts)
@@ -139,6 +146,21 @@ def bearing_equilibrium(
         minima = ()
     result = make_result(setup, delta, method, float(phi), iterations, minima, stats, options)
     return dataclasses.replace(result, search=search) if search else result
+
+
+def _auto(bearing: Any, load: ArrayLike, **options: Any) -> BearingEquilibriumResult:
+    """Newton, then energy minimisation, then the global search; failures are noted."""
+    failures: list[str] = []
+    for method in METHODS:
+        try:
+            result = bearing_equilibrium(bearing, load, method=method, **options)
+        except ConvergenceError as exc:
+            failures.append(f"{method}: {exc}")
+            continue
+        notes = tuple(f"{f} (then tried the next method)" for f in failures)
+        return dataclasses.replace(result, notes=(*result.notes, *notes))
+    raise ConvergenceError("no method converged: " + "; ".join(failures),
+                           "bearing_equilibrium")
 
 
 def stiffness_over_pass(

@@ -257,7 +257,7 @@ def _equilibrium(rb: Any, load: FloatArray, x0: FloatArray | None, phi: float, t
                  context: str = "at its static load") -> BearingEquilibriumResult:
     where = f"rolling bearing '{tag}'"
     try:
-        eq = _solve_bearing(rb.bearing, load, x0, phi)
+        eq = bearing_equilibrium(rb.bearing, load, phi=phi, x0=x0, method="auto")
     except ModelError as err:
         raise ModelError(f"{context}: {err}", where) from None
     if eq.load_zone.size == 0:
@@ -266,19 +266,6 @@ def _equilibrium(rb: Any, load: FloatArray, x0: FloatArray | None, phi: float, t
             "stiffness is zero: add a load or a preload (negative clearance), or linearise it "
             "at a given load", where)
     return eq
-
-
-def _solve_bearing(bearing: Any, load: FloatArray, x0: FloatArray | None, phi: float
-                   ) -> BearingEquilibriumResult:
-    """Newton; the energy method where Newton stalls (very soft tilt or axial directions of
-    a deep-groove bearing); the global search where the tangent is singular (one element
-    loaded)."""
-    for method in ("newton", "energy"):
-        try:
-            return bearing_equilibrium(bearing, load, phi=phi, x0=x0, method=method)
-        except ConvergenceError:
-            pass
-    return bearing_equilibrium(bearing, load, phi=phi, method="global")
 
 
 def _static_equilibrium(case: _Case, tol: float, max_iter: int, stats: Stats

@@ -301,3 +301,26 @@ def test_small_load_selects_the_minimum_nearest_its_direction():
     assert all(m.energy > res.minima[0].energy for m in res.minima[1:])
     assert np.allclose(res.displacement, first) and res.energy == pytest.approx(
         res.minima[0].energy, rel=1e-9)
+
+
+def test_auto_falls_back_from_newton_and_names_the_method():
+    """A deep-groove bearing with clearance under a small moment: Newton stalls (the tilt
+    stiffness is tiny), the energy method converges; "auto" returns that solution and notes
+    the Newton failure. A load without equilibrium still gives the specific ModelError."""
+    import math
+
+    import rotorsim as rs
+
+    ball = rs.BallBearing(n_balls=9, pitch_diameter=38.5e-3, ball_diameter=7.94e-3, Kn=8.5e9,
+                          f_i=0.52, f_o=0.52, radial_clearance=5e-6)
+    load = [15.0, -35.34, 0.0, 1e-3, 0.0]
+    auto = bearing_equilibrium(ball, load)
+    energy = bearing_equilibrium(ball, load, method="energy")
+    assert auto.method == "energy" and any("newton" in n for n in auto.notes)
+    np.testing.assert_allclose(auto.displacement, energy.displacement, rtol=1e-9)
+    np.testing.assert_allclose(auto.force, load, atol=1e-6)
+    tapered = rs.RollerBearing(n_rollers=17, pitch_diameter=0.06, roller_diameter=0.008,
+                               effective_length=0.012, contact_angle=math.radians(15),
+                               radial_clearance=-2e-6)
+    with pytest.raises(rs.ModelError, match="no equilibrium for the load"):
+        bearing_equilibrium(tapered, [0.0, -2000.0, 0.0, 0.0, 0.0])
