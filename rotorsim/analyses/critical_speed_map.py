@@ -160,10 +160,18 @@ def _bearing_indices(rotor: Rotor, bearings: Sequence[int] | None) -> list[int]:
 
 
 def _support(bearing: BearingElement, stiffness: float) -> BearingElement:
-    """Isotropic undamped support of lateral stiffness ``stiffness`` at ``bearing``'s place."""
+    """Isotropic undamped support of lateral stiffness ``stiffness`` at ``bearing``'s place;
+    its axial and tilt stiffness (``kzz``, ``krr`` and the z/rx/ry part of a full matrix,
+    e.g. of a linearised rolling bearing) is kept."""
+    full = None
+    if bearing.stiffness_matrix is not None:
+        full = np.array(bearing.stiffness_matrix, dtype=float)
+        full[:2, :] = 0.0
+        full[:, :2] = 0.0
     return BearingElement(n=bearing.n, n_link=bearing.n_link, kxx=stiffness, kyy=stiffness,
                           kzz=float(bearing.coefficient("kzz", 0.0)),
-                          krr=float(bearing.coefficient("krr", 0.0)), tag=bearing.tag)
+                          krr=float(bearing.coefficient("krr", 0.0)), stiffness_matrix=full,
+                          tag=bearing.tag)
 
 
 def _curve_speeds(speeds: ArrayLike | None, table: FloatArray, curves: list[int],

@@ -107,7 +107,9 @@ def critical_speeds(
         Number of critical speeds returned (after the ``whirl`` filter).
     whirl : {"forward", "backward"}, optional
         Keep only modes that whirl this way (forward-only is what unbalance excites on
-        isotropic supports). ``None`` keeps all, axial and torsional modes included.
+        isotropic supports); a mode whose node orbits whirl both ways ("mixed", common on
+        anisotropic supports) counts with its predominant direction (amplitude-weighted
+        whirl ratio). ``None`` keeps all, axial and torsional modes included.
     sparse : bool, optional
         Force the sparse or dense eigen solver; default sparse above
         ``DENSE_EIGEN_THRESHOLD`` free DOFs.
@@ -209,7 +211,11 @@ def _lowest(system: RotorSystem, speed: float, k: float, gyroscopic: bool, count
         if whirl == "forward" and not gyroscopic:  # x/y line modes count, one per pair
             keep = (modes.kind == "lateral") & (modes.whirl != "backward")
         elif whirl is not None:
-            keep = modes.whirl == whirl
+            # elliptical ("mixed") orbits on anisotropic supports count with the direction
+            # in which they predominantly whirl
+            ratio = whirl_of(modes.shapes)[1] if modes.w.size else np.zeros(0)
+            sense = ratio > 0 if whirl == "forward" else ratio < 0
+            keep = (modes.whirl == whirl) | ((modes.whirl == "mixed") & sense)
         index = np.flatnonzero(keep)[:count]
         if index.size >= count or not use_sparse or n_eig >= n - 2:
             return modes.take(index)

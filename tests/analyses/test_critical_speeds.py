@@ -212,3 +212,28 @@ def test_cross_coupled_bearings_are_dropped_for_a_rotor_and_refused_for_a_system
     np.testing.assert_allclose(result.speed, direct.speed, rtol=1e-10)
     with pytest.raises(ModelError, match="not symmetric"):
         critical_speeds(rs.assemble(coupled), 1, num_modes=4)
+
+
+def test_forward_filter_keeps_predominantly_forward_elliptical_modes() -> None:
+    """Strongly anisotropic supports make elliptical orbits; the forward critical speeds
+    must still be found (classic: each mode pair splits into two crossings)."""
+    base = two_disk_rotor(6)
+    aniso = base.with_bearings([dataclasses.replace(b, kxx=1e6, kyy=4e6)
+                                for b in base.bearing_elements])
+    every = critical_speeds(aniso, 1, num_modes=8)
+    forward = critical_speeds(aniso, 1, num_modes=3, whirl="forward")
+    assert forward.speed.size == 3
+    np.testing.assert_allclose(forward.speed, every.speed[[1, 3, 7]], rtol=1e-10)
+    assert forward.whirl.tolist() == ["forward", "forward", "mixed"]  # the third elliptical
+
+
+def test_map_keeps_axial_and_tilt_part_of_a_full_bearing_matrix() -> None:
+    import rotorsim.analyses.critical_speed_map as csm
+
+    K5 = np.diag([5e7, 6e7, 2e7, 3e4, 4e4])
+    K5[2, 3] = K5[3, 2] = 1e5
+    support = csm._support(rs.BearingElement(n=0, stiffness_matrix=K5), 1e6)
+    assert support.stiffness_matrix is not None
+    np.testing.assert_array_equal(support.stiffness_matrix[2:, 2:], K5[2:, 2:])
+    assert not support.stiffness_matrix[:2].any() and not support.stiffness_matrix[:, :2].any()
+    assert support.matrices().K[0, 0] == 1e6 and support.matrices().K[1, 1] == 1e6
