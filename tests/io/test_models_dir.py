@@ -67,7 +67,7 @@ TEXTBOOK = {
     "friswell_5_9_5": textbook.friswell_5_9_5,
     "friswell_5_9_9": textbook.friswell_5_9_9,
     "tapered": textbook.tapered_rotor,
-    "default": lambda: textbook.friswell_5_9_5(n_elements=24),
+    "friswell_5_9_5_fine": lambda: textbook.friswell_5_9_5(n_elements=24),
 }
 
 
@@ -85,15 +85,22 @@ def test_textbook_files_build_the_builder_rotors_exactly(name):
 
 
 def test_default_model_is_the_showcase():
+    """The Friswell two-disk rotor (24 elements) on two ball bearings of the seed 000 model,
+    with every analysis of the showcase."""
     model = load_model(MODELS / "default.toml")
     assert len(model.rotor.shaft_elements) == 24
+    built = textbook.friswell_5_9_5(n_elements=24)
+    assert [d.m for d in model.rotor.disk_elements] == [d.m for d in built.disk_elements]
+    assert not model.rotor.bearing_elements  # the supports are the rolling bearings
+    assert [rb.tag for rb in model.rolling_bearings] == ["DE", "NDE"]
+    assert all(type(rb.bearing).__name__ == "BallBearing" for rb in model.rolling_bearings)
     a = model.analyses
     assert {"campbell", "critical_speeds", "unbalance", "static",
-            "critical_speed_map"} <= set(a)
+            "critical_speed_map", "modes"} <= set(a)
     speeds = a["campbell"].speeds.array()
     assert speeds[0] == 0.0 and speeds[-1] == pytest.approx(4500 * RPM, rel=1e-15)
-    # 0.1 g m at the 350 mm disk (z = 1.0 m, node 16 of 24)
-    assert model.loads.unbalance == ((16, 1e-4, 0.0),)
+    # 0.2 g m at the 350 mm disk (z = 1.0 m, node 16 of 24)
+    assert model.loads.unbalance == ((16, 2e-4, 0.0),)
     assert model.rotor.disk_elements[1].tag == "disk_350" \
         and model.rotor.disk_elements[1].n == 16
 
