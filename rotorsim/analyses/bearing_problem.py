@@ -16,7 +16,8 @@ from rotorsim.results.bearing import (
     BearingEquilibriumResult,
     EnergyMinimum,
 )
-from rotorsim.solvers.minimize import GlobalSearch, minimize_energy
+from rotorsim.solvers.global_search import GlobalSearch
+from rotorsim.solvers.minimize import minimize_energy
 from rotorsim.solvers.newton import Newton, ResidualProblem
 from rotorsim.solvers.stats import Stats
 

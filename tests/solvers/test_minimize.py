@@ -6,11 +6,8 @@ import numpy as np
 import pytest
 
 from rotorsim.errors import ConvergenceError, ModelError
-from rotorsim.solvers.minimize import (
-    GlobalSearch,
-    minimize_energy,
-    trust_region_batch,
-)
+from rotorsim.solvers.global_search import GlobalSearch, trust_region_batch
+from rotorsim.solvers.minimize import minimize_energy
 from rotorsim.solvers.stats import Stats
 
 # Himmelblau's function: four minima with f = 0, one maximum and four saddles
