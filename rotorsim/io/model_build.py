@@ -29,15 +29,8 @@ from rotorsim.elements.rolling.roller_profile import (
 from rotorsim.elements.shaft import ShaftElement
 from rotorsim.errors import ModelError
 from rotorsim.io import analysis_spec as spec
-from rotorsim.io.model_schema import (
-    BallTable,
-    BearingTable,
-    ModelTable,
-    ProfileTable,
-    RollerTable,
-    RollingTable,
-    ShaftSegment,
-)
+from rotorsim.io.model_schema import BearingTable, ModelTable, ShaftSegment
+from rotorsim.io.rolling_schema import BallTable, ProfileTable, RollerTable, RollingTable
 from rotorsim.io.schema_types import Located, format_path
 from rotorsim.model.material import Material
 from rotorsim.model.rotor import Rotor

@@ -189,7 +189,8 @@ def model_from_dict(data: Mapping[str, Any], *, source: str | os.PathLike[str] |
     """
     from rotorsim.io import model_build as build
     from rotorsim.io.analysis_schema import validate_analyses
-    from rotorsim.io.model_schema import validate_model, validate_rolling_bearings
+    from rotorsim.io.model_schema import validate_model
+    from rotorsim.io.rolling_schema import validate_rolling_bearings
 
     table = validate_model(dict(data) if isinstance(data, Mapping) else data)
     rolling_tables = validate_rolling_bearings(table.rolling_bearings)

@@ -1,5 +1,5 @@
 """Pydantic schema of rotorsim model files (TOML): model, materials, shaft, disks,
-bearings, rolling bearings, point masses, fixed DOFs and loads.
+bearings, point masses, fixed DOFs and loads (rolling bearings: :mod:`rotorsim.io.rolling_schema`).
 
 Every table forbids unknown keys; quantities take SI numbers or unit strings.
 :func:`validate_model` raises one :class:`~rotorsim.errors.ModelError` whose message starts
@@ -10,7 +10,7 @@ resolved by :mod:`rotorsim.io.model_build`; analyses are validated by
 """
 
 import math
-from typing import Annotated, Any, Literal
+from typing import Annotated, Any
 
 from pydantic import Field, PlainValidator, model_validator
 
@@ -31,7 +31,6 @@ from rotorsim.io.schema_types import (
     FrequencyGrid,
     Inertia,
     Length,
-    LinearizationValue,
     Located,
     Mass,
     Modulus,
@@ -42,17 +41,14 @@ from rotorsim.io.schema_types import (
     PositiveRatio,
     Rate,
     Ratio,
-    SignedLength,
     Stiffness,
     Table,
     Time,
     UnbalanceMagnitude,
     fail,
     fmt,
-    load_deflection_constant,
     number,
     show,
-    suggest,
     validate_table,
 )
 
@@ -298,121 +294,3 @@ def validate_model(data: Any) -> ModelTable:
     if not isinstance(data, dict):
         raise ModelError(f"expected a table of model sections, got {show(data)}", "top level")
     return validate_table(ModelTable, data)
-
-
-# ---------------------------------------------------------------- rolling bearings
-class ProfileTable(Table):
-    """Roller profile: straight, crowned (circular) or logarithmic."""
-
-    type: Literal["straight", "crowned", "logarithmic"]
-    crown_drop: NonNegLength | None = None
-    crown_length: Length | None = None
-    crown_radius: Length | None = None
-    scale: Length | None = None
-    shape: PositiveRatio | None = None
-    end_drop: Length | None = None
-
-    @model_validator(mode="after")
-    def _keys(self) -> "ProfileTable":
-        allowed = {"straight": (), "crowned": ("crown_drop", "crown_length", "crown_radius"),
-                   "logarithmic": ("scale", "shape", "end_drop")}[self.type]
-        for key in ("crown_drop", "crown_length", "crown_radius", "scale", "shape", "end_drop"):
-            if getattr(self, key) is not None and key not in allowed:
-                raise fail(f"is not a key of a {self.type} profile (keys: "
-                           f"{', '.join(allowed) or 'none'})", f".{key}")
-        pairs = {"crowned": ("crown_drop", "crown_radius"), "logarithmic": ("shape", "end_drop")}
-        if self.type in pairs:
-            a, b = pairs[self.type]
-            if getattr(self, a) is not None and getattr(self, b) is not None:
-                raise fail(f"give {a} or {b}, not both", f".{b}")
-        if self.type == "crowned" and self.crown_drop is None and self.crown_radius is None:
-            raise fail("give crown_drop (or crown_radius and crown_length)", ".crown_drop")
-        if self.crown_radius is not None and self.crown_length is None:
-            raise fail("field required with crown_radius", ".crown_length")
-        if self.type == "logarithmic" and self.scale is None:
-            raise fail("field required", ".scale")
-        return self
-
-
-class RollingTable(Located):
-    """Keys shared by ball and roller bearings."""
-
-    type: str
-    n_link: NodeIndex | None = None
-    tag: str | None = None
-    pitch_diameter: Length
-    Kn: Any = None
-    contact_angle: Angle = 0.0
-    radial_clearance: SignedLength | None = None
-    diametral_clearance: SignedLength | None = None
-    exponent: PositiveRatio | None = None
-    psi0: Angle = 0.0
-    cage: Literal["rotating", "fixed"] = "rotating"
-    contact_damping: Literal["none", "proportional"] = "none"
-    damping_factor: Time = 0.0
-    axial_direction: Literal["+z", "-z"] = "+z"
-    linearize: LinearizationValue = ("static", None)
-
-    @model_validator(mode="after")
-    def _common(self) -> "RollingTable":
-        if not 0.0 <= self.contact_angle <= 0.5 * math.pi:
-            raise fail(f"must be in [0, 90] deg, got {math.degrees(self.contact_angle):.6g} "
-                       "deg", ".contact_angle")
-        if self.n_link is not None and self.n_link == self.node:
-            raise fail(f"must differ from node ({self.node})", ".n_link")
-        if self.exponent is not None and self.exponent < 1.0:
-            raise fail(f"must be >= 1 (3/2 points, 10/9 lines), got {self.exponent}",
-                       ".exponent")
-        if self.Kn is not None:
-            default = 1.5 if self.type == "ball" else 10.0 / 9.0
-            exponent = default if self.exponent is None else self.exponent
-            object.__setattr__(self, "Kn", load_deflection_constant(self.Kn, exponent, ".Kn"))
-        return self
-
-
-class BallTable(RollingTable):
-    type: Literal["ball"]
-    n_balls: Annotated[int, Field(ge=1, le=10_000)]
-    ball_diameter: Length
-    f_i: PositiveRatio | None = None
-    f_o: PositiveRatio | None = None
-    A0: Length | None = None
-    groove_center_radius: Length | None = None
-
-    @model_validator(mode="after")
-    def _kn_source(self) -> "BallTable":
-        if self.Kn is None and (self.f_i is None or self.f_o is None):
-            raise fail("field required (or give f_i and f_o: Kn from Hertz theory)", ".Kn")
-        return self
-
-
-class RollerTable(RollingTable):
-    type: Literal["roller"]
-    n_rollers: Annotated[int, Field(ge=1, le=10_000)]
-    roller_diameter: Length
-    effective_length: Length
-    profile: ProfileTable | None = None
-    model: Literal["tilt_integral", "slices"] = "tilt_integral"
-    n_slices: Annotated[int, Field(ge=1, le=10_000)] = 20
-
-
-ROLLING_TABLES: dict[str, type[RollingTable]] = {"ball": BallTable, "roller": RollerTable}
-"""Rolling-bearing ``type`` names of model files and their tables."""
-
-
-def validate_rolling_bearings(raw: list[Any]) -> list[RollingTable]:
-    """Validate the ``[[rolling_bearings]]`` tables (dispatched on ``type``)."""
-    out = []
-    for i, body in enumerate(raw):
-        where = f"rolling_bearings[{i}]"
-        if not isinstance(body, dict):
-            raise ModelError(f"expected a table, got {show(body)}", where)
-        kind = body.get("type")
-        if kind is None:
-            raise ModelError("field required (ball or roller)", f"{where}.type")
-        if not isinstance(kind, str) or kind not in ROLLING_TABLES:
-            hint = suggest(kind, tuple(ROLLING_TABLES)) if isinstance(kind, str) else ""
-            raise ModelError(f"unknown bearing type {show(kind)}{hint}; use ball or roller",
-                             f"{where}.type")
-        out.append(validate_table(ROLLING_TABLES[kind], body, ("rolling_bearings", i)))
-    return out
