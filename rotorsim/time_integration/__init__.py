@@ -1,0 +1,36 @@
+"""Rotor-agnostic implicit time integration (DESIGN sections 1 and 6).
+
+Build a :class:`SecondOrderProblem` (``M a + (C + s(t) G) v + K q + r(q, v, t) = f(t)``),
+pick a stepper (:class:`Newmark` family, optionally wrapped in :class:`Adaptive`) and call
+:func:`integrate` with an :class:`OutputSpec`; long runs write checkpoints and resume from
+them.
+"""
+
+from rotorsim.time_integration.adaptive import Adaptive
+from rotorsim.time_integration.base import Counters, State, TimeStepper, cubic_hermite
+from rotorsim.time_integration.checkpoint import (
+    CheckpointError,
+    load_checkpoint,
+    save_checkpoint,
+)
+from rotorsim.time_integration.integrate import IntegrationResult, integrate
+from rotorsim.time_integration.newmark import Newmark
+from rotorsim.time_integration.output import OutputSpec, Reducer
+from rotorsim.time_integration.problem import SecondOrderProblem
+
+__all__ = [
+    "Adaptive",
+    "CheckpointError",
+    "Counters",
+    "IntegrationResult",
+    "Newmark",
+    "OutputSpec",
+    "Reducer",
+    "SecondOrderProblem",
+    "State",
+    "TimeStepper",
+    "cubic_hermite",
+    "integrate",
+    "load_checkpoint",
+    "save_checkpoint",
+]
