@@ -41,7 +41,12 @@ from rotorsim.assembly.system import RotorSystem, SystemMatrices, assemble
 from rotorsim.elements.base import DOF_NAMES, ElementMatrices
 from rotorsim.elements.disk import DiskElement, PointMass
 from rotorsim.elements.linear_bearing import BearingElement
-from rotorsim.elements.rolling import BallBearing, ReversedBearing, RollerBearing
+from rotorsim.elements.rolling import (
+    BallBearing,
+    CentrifugalBearing,
+    ReversedBearing,
+    RollerBearing,
+)
 from rotorsim.elements.rolling.element import RollingBearing
 from rotorsim.elements.shaft import ShaftElement, cowper_shear_coefficient
 from rotorsim.errors import ConvergenceError, ModelError, RotorsimError, Status
@@ -69,6 +74,7 @@ __all__ = [
     "BearingElement",
     "BearingEquilibriumResult",
     "CampbellResult",
+    "CentrifugalBearing",
     "ConvergenceError",
     "CriticalSpeedMapResult",
     "CriticalSpeeds",

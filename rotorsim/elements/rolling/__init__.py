@@ -1,6 +1,7 @@
 """Nonlinear rolling-element bearings (rigid rings: seed 000; flexible rings: seed 001)."""
 
 from rotorsim.elements.rolling.ball import BallBearing
+from rotorsim.elements.rolling.centrifugal import CentrifugalBearing
 from rotorsim.elements.rolling.ehl import Lubricant, LubricatedContacts
 from rotorsim.elements.rolling.reversed import ReversedBearing
 from rotorsim.elements.rolling.roller import RollerBearing
@@ -14,6 +15,7 @@ from rotorsim.elements.rolling.state import BearingState
 __all__ = [
     "BallBearing",
     "BearingState",
+    "CentrifugalBearing",
     "CircularCrown",
     "LogarithmicProfile",
     "Lubricant",

@@ -23,6 +23,12 @@ the turning of ``g_p``). The shaft speed ``W`` sets the entrainment speed and mu
 zero. The EHL-softened stiffness (Hertz and film in series, eq 3.1) is not the Jacobian of
 any force: it is offered for linear analyses only (``linearize`` with
 ``ehl_stiffness=True``); ``force().K`` is always the exact Jacobian.
+
+Centrifugal force of the rolling elements: wrap the model in a
+:class:`~rotorsim.elements.rolling.centrifugal.CentrifugalBearing`; ``force`` then passes
+the spin speed of every sample and returns the converged positions of the elements in
+``ElementForce.internal`` (S, N, 2), which the next call accepts back as a warm start
+(DESIGN section 4). Not combined with ``"ehl"`` damping.
 """
 
 from __future__ import annotations
@@ -36,7 +42,9 @@ from numpy.typing import ArrayLike, NDArray
 
 from rotorsim.elements.base import ElementForce
 from rotorsim.elements.linear_bearing import BearingElement
+from rotorsim.elements.rolling.centrifugal import CentrifugalBearing
 from rotorsim.elements.rolling.ehl import Lubricant, LubricatedContacts
+from rotorsim.elements.rolling.reversed import ReversedBearing
 from rotorsim.errors import ModelError
 
 FloatArray = NDArray[np.float64]
@@ -107,6 +115,11 @@ class RollingBearing:
                 raise ModelError(f"bearing must be a rolling-bearing model with `{attr}` "
                                  f"(BallBearing, RollerBearing), got "
                                  f"{type(self.bearing).__name__}", where)
+        if isinstance(self.bearing, ReversedBearing) and isinstance(self.bearing.bearing,
+                                                                    CentrifugalBearing):
+            raise ModelError("a ReversedBearing of a CentrifugalBearing would lose the speed: "
+                             "wrap the other way round, CentrifugalBearing(ReversedBearing("
+                             "...), ...)", where)
         if self.contact_damping not in CONTACT_DAMPING:
             raise TypeError(f"{where}: unknown contact_damping {self.contact_damping!r}; "
                             f"valid: {CONTACT_DAMPING}")
@@ -129,6 +142,10 @@ class RollingBearing:
                              f"{self.contact_damping!r} (use 'ehl')", where)
         if self.ehl_stiffness and not ehl:
             raise ModelError("ehl_stiffness=True needs contact_damping='ehl'", where)
+        if ehl and self.centrifugal:
+            raise ModelError("contact_damping='ehl' is not implemented with the centrifugal "
+                             "force of the rolling elements (the EHL films need the inner "
+                             "and outer contact loads); use 'proportional' or 'none'", where)
         if ehl:
             assert self.lubricant is not None
             object.__setattr__(self, "_ehl", LubricatedContacts(self.bearing, self.lubricant))
@@ -136,6 +153,11 @@ class RollingBearing:
     @property
     def label(self) -> str:
         return f"RollingBearing '{self.tag}'" if self.tag else f"RollingBearing(n={self.n})"
+
+    @property
+    def centrifugal(self) -> bool:
+        """Whether the rolling elements carry their centrifugal force (speed-dependent)."""
+        return isinstance(self.bearing, CentrifugalBearing)
 
     @property
     def nodes(self) -> tuple[int, ...]:
@@ -173,15 +195,17 @@ class RollingBearing:
         phi : array (S,) or float
             Shaft angle [rad]: places the rolling elements (cage kinematics).
         speed : array (S,) or float
-            Spin speed [rad/s]: the entrainment speed of ``"ehl"`` damping (non-zero);
-            unused otherwise.
-        internal : None
-            No internal DOFs.
+            Spin speed [rad/s]: the entrainment speed of ``"ehl"`` damping (non-zero) and
+            the centrifugal force of a :class:`CentrifugalBearing`; unused otherwise.
+        internal : array (S, N, 2), optional
+            ``internal`` of a previous call with the same samples (centrifugal model: the
+            element positions), the start of the element equilibrium; ``None`` starts cold.
 
         Returns
         -------
         ElementForce
-            ``f`` (S, n), ``K = df/du`` and ``C = df/dv`` (S, n, n).
+            ``f`` (S, n), ``K = df/du`` and ``C = df/dv`` (S, n, n); ``internal`` the
+            converged element positions (centrifugal model) or ``None``.
         """
         delta, rate = self.relative(u), self.relative(v)
         n_samples = delta.shape[0]
@@ -196,31 +220,43 @@ class RollingBearing:
             ehl = self._ehl.matrices(delta, psi, speeds, rate=rate, state=st)
             f5, k5, c5 = (st.force + ehl.damping_force, st.stiffness + ehl.damping_tangent,
                           ehl.damping)
+            solved = None
         else:
-            f5, k5, c5 = self._tangents(delta, rate, psi)
+            f5, k5, c5, solved = self._tangents(delta, rate, psi, speeds, internal)
         return ElementForce(self._expand_vector(f5), self._expand_matrix(k5),
-                            self._expand_matrix(c5))
+                            self._expand_matrix(c5), solved)
 
-    def _tangents(self, delta: FloatArray, rate: FloatArray,
-                  psi: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray]:
-        """Force (S, 5), ``dF/d delta`` and ``dF/d delta'`` (S, 5, 5)."""
+    def _state(self, delta: FloatArray, psi: FloatArray, speeds: FloatArray,
+               internal: Any) -> Any:
+        """The model's state; with the speed and warm start of a centrifugal model."""
+        if self.centrifugal:
+            return self.bearing.state(delta, psi, speed=speeds, internal=internal)
+        return self.bearing.state(delta, psi)
+
+    def _tangents(self, delta: FloatArray, rate: FloatArray, psi: FloatArray,
+                  speeds: FloatArray, internal: Any
+                  ) -> tuple[FloatArray, FloatArray, FloatArray, Any]:
+        """Force (S, 5), ``dF/d delta``, ``dF/d delta'`` (S, 5, 5) and internal DOFs."""
         beta = self.beta
         if beta == 0.0 or not np.any(rate):
-            st = self.bearing.state(delta, psi)
+            st = self._state(delta, psi, speeds, internal)
             return st.force + beta * np.einsum("sij,sj->si", st.stiffness, rate), \
-                st.stiffness.copy(), beta * st.stiffness
+                st.stiffness.copy(), beta * st.stiffness, getattr(st, "internal", None)
         arm = self._arm()
         scale = np.array([1.0, 1.0, 1.0, arm, arm])  # scaled rate: rotations x arm [m]
         size = np.linalg.norm(rate * scale, axis=1)
         unit = rate / np.where(size > 0, size, 1.0)[:, None]
         h = _FD_STEP
         n_samples = delta.shape[0]
-        st = self.bearing.state(np.vstack([delta, delta + h * unit, delta - h * unit]),
-                                np.vstack([psi, psi, psi]))
+        warm = None if internal is None else np.concatenate([internal] * 3)
+        st = self._state(np.vstack([delta, delta + h * unit, delta - h * unit]),
+                         np.vstack([psi, psi, psi]), np.concatenate([speeds] * 3), warm)
         k0 = st.stiffness[:n_samples]
         dk = (st.stiffness[n_samples:2 * n_samples] - st.stiffness[2 * n_samples:]) / (2 * h)
         force = st.force[:n_samples] + beta * np.einsum("sij,sj->si", k0, rate)
-        return force, k0 + beta * dk * size[:, None, None], beta * k0
+        solved = getattr(st, "internal", None)
+        return force, k0 + beta * dk * size[:, None, None], beta * k0, \
+            None if solved is None else solved[:n_samples]
 
     def _arm(self) -> float:
         return float(getattr(self.bearing, "moment_arm", 0.5 * self.bearing.pitch_diameter))
@@ -259,7 +295,8 @@ class RollingBearing:
         phi : float
             Shaft angle [rad] (element positions).
         speed : float, optional
-            Shaft speed [rad/s]; required by ``"ehl"`` damping (entrainment speed).
+            Shaft speed [rad/s]; required by ``"ehl"`` damping (entrainment speed); the
+            centrifugal force of a :class:`CentrifugalBearing` (default 0).
         frequency : float
             ``"ehl"``: vibration frequency ``w`` [rad/s] at which the inner and outer
             contacts are combined (seed 002 eq 3.5); 0 = quasi-static.
@@ -278,15 +315,17 @@ class RollingBearing:
                                       or speed == 0.0):
             raise ModelError(f"EHL damping needs the shaft speed: linearize(..., speed=...) "
                              f"with a finite non-zero speed [rad/s], got {speed!r}", self.label)
+        model = self.bearing.at_speed(float(speed or 0.0)) if self.centrifugal \
+            else self.bearing
         if load is not None:
             # analyses sit downstream of elements: imported here, at call time
             from rotorsim.analyses.bearing_statics import bearing_equilibrium
 
-            eq = bearing_equilibrium(self.bearing, load, phi=phi, **options)
+            eq = bearing_equilibrium(model, load, phi=phi, **options)
             k5, d = eq.stiffness, np.asarray(eq.displacement, dtype=float).reshape(1, 5)
         else:
             d = np.asarray(displacement, dtype=float).reshape(1, 5)
-            k5 = self.bearing.state(d, self.bearing.element_angles(float(phi))).stiffness[0]
+            k5 = model.state(d, self.bearing.element_angles(float(phi))).stiffness[0]
         c5 = self.beta * k5 if self.beta > 0 else None
         if self._ehl is not None:
             ehl = self._ehl.matrices(d, self.bearing.element_angles(float(phi)),

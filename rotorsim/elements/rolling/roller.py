@@ -35,7 +35,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 from functools import cached_property
-from typing import NamedTuple
+from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -46,6 +46,13 @@ from rotorsim.elements.rolling.hertz_line import (
     iso_roller_constant,
     line_moments,
     tilted_line_integrals,
+)
+from rotorsim.elements.rolling.roller_integrals import (
+    LineIntegrals,
+    RollerLoads,
+    assemble_tangent,
+    tilt_limits,
+    unit_load_directions,
 )
 from rotorsim.elements.rolling.roller_profile import (
     CircularCrown,
@@ -59,47 +66,12 @@ from rotorsim.errors import ModelError
 
 FloatArray = NDArray[np.float64]
 
+_assemble_tangent = assemble_tangent  # the name rotorsim.elements.rolling.ehl imports
+
 ROLLER_MODELS = ("tilt_integral", "slices")
 """Names of the roller contact models."""
 CAGE_LAWS = ("rotating", "fixed")
 """Cage laws: ``"rotating"`` (inner ring turns, outer fixed) or ``"fixed"`` rollers."""
-
-
-class LineIntegrals(NamedTuple):
-    """Integrals along each roller, arrays ``(S, N)``; ``delta^+`` the positive deflection.
-
-    ``energy = int delta^(n+1)/(n+1)``, ``load = int delta^n``, ``load_moment =
-    int xi delta^n``, ``tangent0..2 = int xi^p delta^(n-1)`` (all over ``dxi``), ``peak``
-    the largest deflection along the roller.
-    """
-
-    energy: FloatArray
-    load: FloatArray
-    load_moment: FloatArray
-    tangent0: FloatArray
-    tangent1: FloatArray
-    tangent2: FloatArray
-    peak: FloatArray
-
-
-@dataclass(frozen=True, eq=False)
-class RollerLoads:
-    """Per-roller load distribution, arrays ``(S, N)`` (``slice_load``: ``(S, N, K)``).
-
-    Attributes
-    ----------
-    load : Contact load ``Q_j`` [N] (seed 000 eq 7b).
-    eccentricity : Load eccentricity ``e_j`` [m] from the roller centre along ``t_j``
-        (seed 000 eq 9); 0 for unloaded rollers.
-    contact_limits : ``(S, N, 2)`` dimensionless ends ``xi_1, xi_2`` of the loaded zone
-        (seed 000 eq 8; for slices the outer edges of the loaded slices); NaN if unloaded.
-    slice_load : Load of each slice [N] (``model="slices"``), else ``None``.
-    """
-
-    load: FloatArray
-    eccentricity: FloatArray
-    contact_limits: FloatArray
-    slice_load: FloatArray | None = None
 
 
 @dataclass(frozen=True, eq=False)
@@ -348,7 +320,9 @@ class RollerBearing:
             return parts[0]
         names = ("force", "stiffness", "energy", "element_load", "contact_angle", "deflection",
                  "contact_direction", "element_stiffness")
-        return BearingState(**{k: np.concatenate([getattr(x, k) for x in parts]) for k in names})
+        merged: dict[str, Any] = {k: np.concatenate([getattr(x, k) for x in parts])
+                                  for k in names}
+        return BearingState(**merged)
 
     def _state_block(self, d: FloatArray, p: FloatArray) -> BearingState:
         c, s, v, lw = self._kinematics(d, p)
@@ -363,15 +337,10 @@ class RollerBearing:
         w0 = ints.tangent0
         w1 = r_sa * w0 - length * ints.tangent1
         w2 = r_sa**2 * w0 - 2.0 * r_sa * length * ints.tangent1 + length**2 * ints.tangent2
-        stiffness = n * kn * _assemble_tangent(c, s, w0, w1, w2, ca, sa)
+        stiffness = n * kn * assemble_tangent(c, s, w0, w1, w2, ca, sa)
         # unit-load direction g_j = dF/dQ_j: the moment arm r_p sin a0 - e_j of eq 10
         unit_arm = np.where(q > 0.0, arm / np.where(q > 0.0, q, 1.0), r_sa)
-        direction = np.empty((*q.shape, 5))
-        np.multiply(c, ca, out=direction[..., 0])
-        np.multiply(s, ca, out=direction[..., 1])
-        direction[..., 2] = sa
-        np.multiply(unit_arm, s, out=direction[..., 3])
-        np.multiply(unit_arm, -c, out=direction[..., 4])
+        direction = unit_load_directions(c, s, unit_arm, ca, sa)
         return BearingState(
             force=force, stiffness=stiffness, energy=kn * ints.energy.sum(axis=1),
             element_load=q, contact_angle=np.full(q.shape, self.contact_angle),
@@ -402,7 +371,7 @@ class RollerBearing:
         ecc = np.where(loaded, self.effective_length * ints.load_moment
                        / np.where(loaded, ints.load, 1.0), 0.0)
         if self.model == "tilt_integral":
-            return RollerLoads(q, ecc, _tilt_limits(v, lw))
+            return RollerLoads(q, ecc, tilt_limits(v, lw))
         xi = self._slice_xi
         dk = v[..., None] + lw[..., None] * xi - self._slice_drop
         pos = np.maximum(dk, 0.0)
@@ -412,42 +381,3 @@ class RollerBearing:
         hi = np.where(dk > 0.0, xi + half, -np.inf).max(axis=-1)
         limits = np.where(loaded[..., None], np.stack([lo, hi], axis=-1), np.nan)
         return RollerLoads(q, ecc, limits, slice_load)
-
-
-def _tilt_limits(v: FloatArray, lw: FloatArray) -> FloatArray:
-    """Loaded zone ``(xi_1, xi_2)`` of straight rollers (seed 000 eq 8), NaN if unloaded."""
-    with np.errstate(divide="ignore", invalid="ignore"):
-        xi0 = np.where(lw != 0.0, -v / np.where(lw != 0.0, lw, 1.0), np.nan)
-    lo = np.where(lw > 0.0, np.maximum(xi0, -0.5), -0.5)
-    hi = np.where(lw < 0.0, np.minimum(xi0, 0.5), 0.5)
-    loaded = (v + 0.5 * np.abs(lw)) > 0.0
-    return np.where(loaded[..., None], np.stack([lo, hi], axis=-1), np.nan)
-
-
-def _assemble_tangent(c: FloatArray, s: FloatArray, w0: FloatArray, w1: FloatArray,
-                      w2: FloatArray, ca: float, sa: float) -> FloatArray:
-    """``sum_j int delta^(n-1) g g^T`` from the weights of ``1, arm, arm^2`` (S, N).
-
-    ``g = (ca u, sa, arm J u)`` with ``u = (cos psi, sin psi)``, ``J u = (sin, -cos)`` and
-    ``arm = r_p sin a0 - xi L``; ``w0, w1, w2`` are the integrals of
-    ``delta^(n-1) arm^p``.
-    """
-    cc, cs, ss = c * c, c * s, s * s
-    m0 = [(w * cc).sum(1) for w in (w0, w1, w2)]  # sum w cos^2
-    m1 = [(w * cs).sum(1) for w in (w0, w1, w2)]  # sum w cos sin
-    m2 = [(w * ss).sum(1) for w in (w0, w1, w2)]  # sum w sin^2
-    v0 = [(w * c).sum(1) for w in (w0, w1)]
-    v1 = [(w * s).sum(1) for w in (w0, w1)]
-    k = np.empty((c.shape[0], 5, 5))
-    k[:, 0, 0], k[:, 0, 1], k[:, 1, 1] = ca * ca * m0[0], ca * ca * m1[0], ca * ca * m2[0]
-    k[:, 0, 2], k[:, 1, 2], k[:, 2, 2] = ca * sa * v0[0], ca * sa * v1[0], sa * sa * w0.sum(1)
-    # translation-rotation block: ca * M2(w1) J^T, J^T = [[0, -1], [1, 0]]
-    k[:, 0, 3], k[:, 0, 4] = ca * m1[1], -ca * m0[1]
-    k[:, 1, 3], k[:, 1, 4] = ca * m2[1], -ca * m1[1]
-    # axial-rotation block: sa * (J m1(w1))^T = sa * (sum w1 sin, -sum w1 cos)
-    k[:, 2, 3], k[:, 2, 4] = sa * v1[1], -sa * v0[1]
-    # rotation block: J M2(w2) J^T
-    k[:, 3, 3], k[:, 3, 4], k[:, 4, 4] = m2[2], -m1[2], m0[2]
-    lower = np.tril_indices(5, -1)
-    k[:, lower[0], lower[1]] = k[:, lower[1], lower[0]]
-    return k

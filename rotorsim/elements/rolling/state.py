@@ -47,6 +47,20 @@ class BearingState:
         n Kn delta_j^(n-1)``; rollers ``dQ_j/dV_j = n Kn int delta^(n-1) dxi``, the
         derivative of the roller load with respect to a uniform approach ``V_j``. 0 when
         unloaded; ``None`` when not provided.
+    outer_load : array (S, N), optional
+        Load of the outer-ring contact [N] when it differs from the inner one (rolling
+        elements with their centrifugal force,
+        :class:`~rotorsim.elements.rolling.centrifugal.CentrifugalBearing`); ``None`` when
+        both contacts carry ``element_load``.
+    outer_contact_angle : array (S, N), optional
+        Contact angle of the outer-ring contact [rad] (balls with centrifugal force);
+        ``None`` when equal to ``contact_angle``.
+    internal : array (S, N, 2), optional
+        Converged internal DOFs of the rolling elements (centrifugal models: the position
+        of each element between the rings), to warm-start the next evaluation; ``None``
+        for models without internal DOFs.
+    iterations : int, optional
+        Newton iterations spent on the internal DOFs (the most any element needed).
     """
 
     force: FloatArray
@@ -57,6 +71,10 @@ class BearingState:
     deflection: FloatArray
     contact_direction: FloatArray | None = None
     element_stiffness: FloatArray | None = None
+    outer_load: FloatArray | None = None
+    outer_contact_angle: FloatArray | None = None
+    internal: FloatArray | None = None
+    iterations: int | None = None
 
     @property
     def loaded(self) -> NDArray[np.bool_]:
