@@ -27,6 +27,16 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from rotorsim.elements.rolling.ehl_contact import (  # re-exported
+    LINE_FILM_EXPONENT,
+    POINT_FILM_EXPONENT,
+    STEEL_REDUCED_MODULUS,
+    Lubricant,
+    central_film_line,
+    central_film_point,
+    combine_races,
+    entrainment_speed,
+    series_stiffness,
+)
 from rotorsim.elements.rolling.hertz_point import (
     contact_constant,
     point_contact,
@@ -39,22 +49,12 @@ from rotorsim.errors import ModelError
 
 FloatArray = NDArray[np.float64]
 
-    LINE_FILM_EXPONENT,
-    POINT_FILM_EXPONENT,
-    STEEL_REDUCED_MODULUS,
-    Lubricant,
-    central_film_line,
-    central_film_point,
-    combine_races,
-    entrainment_speed,
-    series_stiffness,
-)
-
 __all__ = [
     "LINE_FILM_EXPONENT", "POINT_FILM_EXPONENT", "STEEL_REDUCED_MODULUS", "ContactCoefficients",
     "EHLMatrices", "Lubricant", "LubricatedContacts", "central_film_line", "central_film_point",
     "combine_races", "entrainment_speed", "series_stiffness",
 ]
+
 
 class ContactCoefficients(NamedTuple):
     """Per-contact EHL quantities, arrays shaped like the loads (unloaded: 0).
