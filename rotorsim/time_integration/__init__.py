@@ -1,11 +1,13 @@
 """Rotor-agnostic implicit time integration (DESIGN sections 1 and 6).
 
 Build a :class:`SecondOrderProblem` (``M a + (C + s(t) G) v + K q + r(q, v, t) = f(t)``),
-pick a stepper (:class:`Newmark` family, optionally wrapped in :class:`Adaptive`) and call
+pick a stepper (:class:`Newmark` family, optionally wrapped in :class:`Adaptive`, or the
+fourth-order :class:`Adams`) and call
 :func:`integrate` with an :class:`OutputSpec`; long runs write checkpoints and resume from
 them.
 """
 
+from rotorsim.time_integration.adams import Adams
 from rotorsim.time_integration.adaptive import Adaptive
 from rotorsim.time_integration.base import Counters, State, TimeStepper, cubic_hermite
 from rotorsim.time_integration.checkpoint import (
@@ -19,6 +21,7 @@ from rotorsim.time_integration.output import OutputSpec, Reducer
 from rotorsim.time_integration.problem import SecondOrderProblem
 
 __all__ = [
+    "Adams",
     "Adaptive",
     "CheckpointError",
     "Counters",

@@ -15,6 +15,7 @@ import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
 
+from rotorsim.time_integration.adams import Adams
 from rotorsim.time_integration.integrate import integrate
 from rotorsim.time_integration.newmark import Newmark
 from rotorsim.time_integration.problem import SecondOrderProblem
@@ -28,6 +29,8 @@ METHODS = {
     "generalized_alpha_0": Newmark.generalized_alpha(rho_inf=0.0),
 }
 DECLARED = {name: 2 for name in METHODS}  # issue 6: Newmark 2, HHT 2, generalised-alpha 2
+METHODS["adams4"] = Adams()  # seed 002 Appendix F with RK4 start-up (issue 6: Adams 4)
+DECLARED["adams4"] = 4
 
 W, ZETA, OMEGA, FORCE = 1.3, 0.05, 2.0, 1.0
 T_END = 4.0
