@@ -33,10 +33,9 @@ accelerations equal ``a_0``), which is inconsistent unless ``a`` is constant nea
 and lowers the global order to 2.
 
 Storage of the history in :class:`~.base.State` (numbers and arrays only, so checkpoints
-resume bit for bit): ``a`` holds ``a_n``, ``force`` holds ``a_{n-1}`` and ``peak`` holds
-``a_{n-2}`` (not the net force and the amplitudes of the Newmark states), and
-``factor_dt`` holds the history spacing: ``+h`` when the last two steps (or the constant
-start) have size ``h``, ``-h`` when only the last one has, NaN before the first step.
+resume bit for bit): ``a`` holds ``a_n``, ``history`` holds ``[a_{n-1}, a_{n-2}]``, and
+``history_dt`` the history spacing: ``+h`` when the last two steps (or the constant start)
+have size ``h``, ``-h`` when only the last one has, NaN before the first step.
 
 References
 ----------
@@ -144,8 +143,8 @@ class Adams:
         else:
             a = _vector(a0, n, "a0")
         spacing = float(dt) if self.startup == "constant" else math.nan
-        return State(float(t0), q, v, a, a.copy(), peak=a.copy(), dt=float(dt),
-                     counters=counters, factor_dt=spacing, cache=cache)
+        return State(float(t0), q, v, a, net, dt=float(dt), counters=counters,
+                     history=np.stack([a, a]), history_dt=spacing, cache=cache)
 
     def step(self, problem: SecondOrderProblem, state: State) -> State:
         """One step of size ``state.dt`` (Adams if the history has that spacing, else RK4).
@@ -160,7 +159,7 @@ class Adams:
         if not (math.isfinite(h) and h > 0):
             raise ModelError(f"step size must be positive and finite, got {h!r}", self.name)
         cache = state.cache if isinstance(state.cache, _Cache) else _Cache()
-        if state.factor_dt == h:
+        if state.history_dt == h:
             return _AdamsStep(self, problem, state, cache).solve()
         return _rk4_step(self, problem, state, cache)
 
@@ -185,13 +184,17 @@ class _Cache:
 
 
 def _shifted(state: State, t1: float, q: FloatArray, v: FloatArray, a: FloatArray,
-             spacing: float, tally: Counters, iterations: int, cache: _Cache) -> State:
-    """Accepted state at ``t1`` with the acceleration history shifted by one."""
+             spacing: float, tally: Counters, iterations: int, cache: _Cache,
+             mass: Any) -> State:
+    """Accepted state at ``t1`` with the acceleration history shifted by one; the net
+    force is ``g = -M a`` (the equation of motion at the new point)."""
     counters = state.counters.plus(dataclasses.replace(tally, max_iterations=iterations))
     key = cache.key or (math.nan, math.nan, -1)
-    return dataclasses.replace(state, t=t1, q=q, v=v, a=a, force=state.a, peak=state.force,
-                               step=state.step + 1, counters=counters, factor_dt=spacing,
-                               factor_spin=key[1], factor_tangent=key[2], cache=cache)
+    return dataclasses.replace(state, t=t1, q=q, v=v, a=a, force=-(mass @ a),
+                               history=np.stack([state.a, state.history[0]]),
+                               history_dt=spacing, step=state.step + 1, counters=counters,
+                               factor_dt=key[0], factor_spin=key[1], factor_tangent=key[2],
+                               cache=cache)
 
 
 def _rk4_step(method: Adams, problem: SecondOrderProblem, state: State,
@@ -219,10 +222,10 @@ def _rk4_step(method: Adams, problem: SecondOrderProblem, state: State,
     q = state.q + (h / 6.0) * (k1q + 2.0 * k2q + 2.0 * k3q + k4q)
     v = state.v + (h / 6.0) * (k1v + 2.0 * k2v + 2.0 * k3v + k4v)
     a = acc(q, v, t0 + h)
-    spacing = h if abs(state.factor_dt) == h else -h
+    spacing = h if abs(state.history_dt) == h else -h
     tally = Counters(factorizations=int(fresh), solves=evaluations,
                      residual_evaluations=evaluations * int(not problem.is_linear))
-    return _shifted(state, t0 + h, q, v, a, spacing, tally, 0, cache)
+    return _shifted(state, t0 + h, q, v, a, spacing, tally, 0, cache, problem.mass)
 
 
 class _AdamsStep:
@@ -233,7 +236,7 @@ class _AdamsStep:
         self.m, self.p, self.s, self.cache = method, problem, state, cache
         h = state.dt
         self.h, self.t1 = h, state.t + h
-        past = (state.a, state.force, state.peak)
+        past = (state.a, state.history[0], state.history[1])
         self.q_base = state.q + h * state.v + (h * h) * sum(
             (c * x for c, x in zip(Q_HISTORY, past, strict=True)), np.zeros(problem.n))
         self.v_base = state.v + h * sum(
@@ -265,7 +268,7 @@ class _AdamsStep:
             if self.p.is_linear or float(np.max(dq)) <= tol:
                 q, v = self.q_base + self.qc * a, self.v_base + self.vc * a
                 return _shifted(s, self.t1, q, v, a, self.h, Counters(**self.tally), k + 1,
-                                self.cache)
+                                self.cache, self.p.mass)
         worst = int(np.argmax(dq))
         raise ConvergenceError(
             f"Adams iterations did not converge at t = {self.t1:.9g} s (h = {self.h:.3g} s): "

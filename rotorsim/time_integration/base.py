@@ -99,6 +99,11 @@ class State:
         Step size and schedule value of the cached factorisation (NaN when none).
     factor_tangent : int
         Digest of the tangents in the cached factorisation (-1 when none).
+    history : array (k, n)
+        Past accelerations of multistep methods, newest first (``(0, n)`` for one-step
+        methods): the Adams stepper keeps ``a_{n-1}, a_{n-2}`` here.
+    history_dt : float
+        Uniform step of ``history`` (NaN when it is not uniform or empty).
     cache : object
         Runtime-only LU factors matching the three ``factor_*`` keys; never written to a
         checkpoint.
@@ -118,6 +123,8 @@ class State:
     factor_dt: float = float("nan")
     factor_spin: float = float("nan")
     factor_tangent: int = -1
+    history: FloatArray = field(default_factory=lambda: np.zeros((0, 0)))
+    history_dt: float = float("nan")
     cache: Any = field(default=None, compare=False, repr=False)
 
     RUNTIME_FIELDS: ClassVar[tuple[str, ...]] = ("cache",)

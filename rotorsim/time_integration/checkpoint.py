@@ -1,12 +1,12 @@
 """Checkpoints: a stepper :class:`~.base.State` and the output so far, in HDF5.
 
-Layout (``format_version`` 1)::
+Layout (``format_version`` 2; version 2 added the multistep ``history``)::
 
-    /                 attrs: format = "rotorsim-checkpoint", format_version = 1, created
+    /                 attrs: format = "rotorsim-checkpoint", format_version = 2, created
                              (ISO 8601, UTC), config (JSON: stepper options, time span, dt,
                              output spec, problem fingerprint)
     /state            attrs: the scalar State fields (t, step, dt, error, status, factor_*)
-                      datasets: q, v, a, force (n,), peak (n,) or (0,)
+                      datasets: q, v, a, force (n,), peak (n,) or (0,), history (k, n)
     /state/counters   attrs: the Counters fields
     /output           datasets: t, q, v, next_time, reduced/<name> (the OutputRecorder)
 
@@ -32,8 +32,8 @@ from rotorsim.errors import RotorsimError
 from rotorsim.time_integration.base import Counters, FloatArray, State
 
 FORMAT = "rotorsim-checkpoint"
-FORMAT_VERSION = 1
-_ARRAYS = ("q", "v", "a", "force", "peak")
+FORMAT_VERSION = 2
+_ARRAYS = ("q", "v", "a", "force", "peak", "history")
 
 
 class CheckpointError(RotorsimError, ValueError):
@@ -169,7 +169,14 @@ def _read_state(group: Any, n: int) -> State:
     for f in dataclasses.fields(State):
         if f.name in State.RUNTIME_FIELDS:
             continue
-        if f.name in _ARRAYS:
+        if f.name == "history":
+            arr = np.asarray(group[f.name][()], dtype=float)
+            if arr.ndim != 2 or (arr.size and arr.shape[1] != n) \
+                    or not np.all(np.isfinite(arr)):
+                raise CheckpointError(f"state/history has shape {arr.shape} or non-finite "
+                                      f"values; expected (k, {n})")
+            values[f.name] = arr
+        elif f.name in _ARRAYS:
             arr = np.asarray(group[f.name][()], dtype=float)
             shapes = [(n,), (0,)] if f.name == "peak" else [(n,)]
             if arr.shape not in shapes or not np.all(np.isfinite(arr)):
