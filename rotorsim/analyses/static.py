@@ -274,16 +274,23 @@ def _check_equilibrium(rigid: RigidMotions, f: FloatArray, tol: float = 1e-9) ->
     raise ModelError("; ".join(parts) + "; add bearings", "static")
 
 
-def _solve_restrained(K: sp.spmatrix, f: FloatArray, rigid: RigidMotions, stats: Stats
-                      ) -> tuple[FloatArray, list[int]]:
-    """Solve ``K q = f`` holding one free DOF per free rigid motion at zero."""
+def held_dofs(rigid: RigidMotions) -> list[int]:
+    """One free DOF per free rigid motion whose value fixes that motion (the first largest
+    entry of each field after eliminating the previous ones)."""
     fields = rigid.fields.copy()
     held: list[int] = []
     for j in range(fields.shape[1]):
         col = np.abs(fields[:, j])
-        i = int(np.flatnonzero(col >= (1.0 - 1e-9) * col.max())[0])  # first largest entry
+        i = int(np.flatnonzero(col >= (1.0 - 1e-9) * col.max())[0])
         held.append(i)
         fields[:, j + 1:] -= np.outer(fields[:, j] / fields[i, j], fields[i, j + 1:])
+    return held
+
+
+def _solve_restrained(K: sp.spmatrix, f: FloatArray, rigid: RigidMotions, stats: Stats
+                      ) -> tuple[FloatArray, list[int]]:
+    """Solve ``K q = f`` holding one free DOF per free rigid motion at zero."""
+    held = held_dofs(rigid)
     keep = np.setdiff1d(np.arange(K.shape[0]), held)
     Kc = sp.csr_matrix(K)[keep][:, keep]
     q = np.zeros(K.shape[0])

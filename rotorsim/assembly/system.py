@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import dataclasses
+from collections.abc import Sequence
 from dataclasses import dataclass
 
 import numpy as np
@@ -9,8 +11,15 @@ import scipy.sparse as sp
 from numpy.typing import NDArray
 
 from rotorsim.assembly.dof_map import DofMap
+from rotorsim.assembly.nonlinear import NonlinearAssembly
 from rotorsim.assembly.sparse import SparsityPattern
-from rotorsim.elements.base import DOF_NAMES, DOFS_PER_NODE, ElementMatrices, FloatArray
+from rotorsim.elements.base import (
+    DOF_NAMES,
+    DOFS_PER_NODE,
+    ElementMatrices,
+    FloatArray,
+    NonlinearElement,
+)
 from rotorsim.elements.linear_bearing import BearingElement
 from rotorsim.elements.shaft import shaft_matrices
 from rotorsim.model.rotor import Rotor
@@ -34,7 +43,9 @@ class RotorSystem:
     """Assembled rotor: DOF map, shared sparsity pattern and matrix data.
 
     Speed-independent contributions are summed once; bearings whose coefficients depend on
-    speed are scattered into the same pattern by :meth:`matrices`.
+    speed are scattered into the same pattern by :meth:`matrices`. ``nonlinear`` holds the
+    nonlinear elements (rolling bearings) with their DOF indices, when given to
+    :func:`assemble`.
     """
 
     dof_map: DofMap
@@ -44,6 +55,7 @@ class RotorSystem:
     variable_bearings: tuple[tuple[int, BearingElement], ...]
     structural_mass: FloatArray
     summary: dict[str, object]
+    nonlinear: NonlinearAssembly | None = None
 
     @property
     def n_free(self) -> int:
@@ -76,13 +88,17 @@ def _stack(mats: list[ElementMatrices]) -> ElementMatrices:
     return ElementMatrices(*(np.stack([getattr(m, k) for m in mats]) for k in "MCGK"))
 
 
-def assemble(rotor: Rotor) -> RotorSystem:
+def assemble(rotor: Rotor, nonlinear: Sequence[NonlinearElement] = ()) -> RotorSystem:
     """Assemble the global sparse matrices of ``rotor``.
 
     Parameters
     ----------
     rotor : Rotor
         The model.
+    nonlinear : sequence of NonlinearElement, optional
+        Nonlinear elements (e.g. :class:`~rotorsim.elements.rolling.element.RollingBearing`)
+        on nodes of ``rotor``, indexed in ``RotorSystem.nonlinear``; their DOFs that are
+        fixed or unconnected stay at zero.
 
     Returns
     -------
@@ -101,13 +117,16 @@ def assemble(rotor: Rotor) -> RotorSystem:
     fixed = [DOFS_PER_NODE * n + DOF_NAMES.index(d) for n, d in rotor.fixed]
     system = _assemble(rotor, fixed)
     inactive = _unconnected_dofs(system)
-    if inactive.size == 0:
+    if inactive.size:
+        system = _assemble(rotor, [*fixed, *inactive.tolist()])
+        system.summary["inactive_dofs"] = [
+            f"{i // DOFS_PER_NODE}:{DOF_NAMES[i % DOFS_PER_NODE]}" for i in inactive
+        ]
+    if not nonlinear:
         return system
-    system = _assemble(rotor, [*fixed, *inactive.tolist()])
-    system.summary["inactive_dofs"] = [
-        f"{i // DOFS_PER_NODE}:{DOF_NAMES[i % DOFS_PER_NODE]}" for i in inactive
-    ]
-    return system
+    gathered = NonlinearAssembly.build(nonlinear, system.dof_map.full_to_free, rotor.n_nodes)
+    summary = {**system.summary, "nonlinear_elements": len(gathered.elements)}
+    return dataclasses.replace(system, nonlinear=gathered, summary=summary)
 
 
 def _unconnected_dofs(system: RotorSystem) -> NDArray[np.int64]:

@@ -91,8 +91,8 @@ def integrate(problem: SecondOrderProblem, stepper: TimeStepper, t_span: Sequenc
     a0 : array-like (n,), optional
         Initial acceleration (default: solved from the equation of motion).
     checkpoint : path, optional
-        HDF5 file rewritten atomically every ``checkpoint_every`` accepted steps and at the
-        end.
+        HDF5 file written at the start and rewritten atomically every
+        ``checkpoint_every`` accepted steps and at the end.
     resume : path, optional
         Continue from this checkpoint (same problem, stepper, span, dt, output and initial
         state, else :class:`~.checkpoint.CheckpointError`); the samples, reductions and
@@ -145,6 +145,8 @@ def integrate(problem: SecondOrderProblem, stepper: TimeStepper, t_span: Sequenc
                              a0=None if a0 is None else np.asarray(a0, dtype=float))
         recorder = OutputRecorder(spec, problem.n)
         recorder.start(state)
+        if checkpoint is not None:
+            save_checkpoint(checkpoint, state, config=config, output=recorder.snapshot())
     bar = _progress_bar(progress, stepper.name, t0, t_end, state.t)
     try:
         while state.t < t_end:

@@ -15,7 +15,10 @@ exact iteration matrix
     S = (1 - alpha_m) M + (1 - alpha_f) (gamma h (C + s G + dr/dv) + beta h^2 (K + dr/dq)),
 
 whose LU factors are cached and reused while ``h``, ``s`` and the tangents are unchanged
-(bitwise, by digest): a linear problem with a constant schedule is factorised once.
+(bitwise, by digest): a linear problem with a constant schedule is factorised once. When
+the tangents are :class:`~.local_tangent.LocalMatrix` (a rotor's bearings), only the
+constant part of ``S`` is factorised, once per ``h`` and ``s``, and each Newton iteration
+updates it by a low-rank (Woodbury) solve on the nonlinear DOFs.
 
 References
 ----------
@@ -44,6 +47,12 @@ from rotorsim.time_integration.base import (
     IntArray,
     State,
     cubic_hermite,
+)
+from rotorsim.time_integration.local_tangent import (
+    BaseFactors,
+    LocalMatrix,
+    LowRankSolve,
+    embed,
 )
 from rotorsim.time_integration.problem import (
     ForceEvaluation,
@@ -234,10 +243,18 @@ class Newmark:
 
 @dataclass(frozen=True, eq=False)
 class _FactorCache:
+    """The iteration matrix's factors, and for local tangents those of its constant part."""
+
     dt: float
     spin: float
     tangent: int
-    lu: Factorization
+    lu: Factorization | LowRankSolve
+    base: BaseFactors | None = None
+
+    def base_matches(self, dt: float, spin: float, dofs: IntArray) -> bool:
+        """True when the cached constant part was built for ``dt``, ``spin`` and ``dofs``."""
+        return (self.base is not None and (self.dt, self.spin) == (dt, spin)
+                and np.array_equal(self.base.dofs, dofs))
 
 
 class _StepSolver:
@@ -301,7 +318,7 @@ class _StepSolver:
             self.tally["residual_evaluations"] += 1
         return self.p.forces(q, v, self.t1, spin=self.spin, external=self.f1)
 
-    def _lu(self, ev: ForceEvaluation) -> Factorization:
+    def _lu(self, ev: ForceEvaluation) -> Factorization | LowRankSolve:
         kt, ct = ev.stiffness_tangent, ev.damping_tangent
         tangent = (matrix_digest(kt) * 1_000_003 + matrix_digest(ct)) % (2 ** 63)
         c = self.cache
@@ -315,12 +332,24 @@ class _StepSolver:
                                        f"(DOF {row})", m.name, step=self.s.step + 1,
                                        iteration=self.tally["iterations"], residual=math.nan)
         w = 1.0 - m.alpha_f
-        S = combine([(1.0 - m.alpha_m, p.mass), (w * self.gdt, p.damping),
-                     (w * self.gdt * self.spin, p.gyroscopic), (w * self.gdt, ct),
-                     (w * self.bdt2, p.stiffness), (w * self.bdt2, kt)], p.n)
-        lu = factorize(S, where=f"{m.name}: iteration matrix at t = {self.t1:.9g} s")
-        self.tally["factorizations"] += 1
-        self.cache = _FactorCache(self.dt, self.spin, tangent, lu)
+        constant = [(1.0 - m.alpha_m, p.mass), (w * self.gdt, p.damping),
+                    (w * self.gdt * self.spin, p.gyroscopic), (w * self.bdt2, p.stiffness)]
+        local = [(w * self.gdt, ct), (w * self.bdt2, kt)]
+        where = f"{m.name}: iteration matrix at t = {self.t1:.9g} s"
+        base = None
+        if any(T is not None for _, T in local) and all(
+                T is None or isinstance(T, LocalMatrix) for _, T in local):
+            dofs, block = embed(local)
+            base = c.base if c is not None and c.base_matches(self.dt, self.spin, dofs) \
+                else None
+            if base is None:
+                base = BaseFactors.build(factorize(combine(constant, p.n), where=where), dofs)
+                self.tally["factorizations"] += 1
+            lu: Factorization | LowRankSolve = LowRankSolve.build(base, block, where)
+        else:
+            lu = factorize(combine(constant + local, p.n), where=where)
+            self.tally["factorizations"] += 1
+        self.cache = _FactorCache(self.dt, self.spin, tangent, lu, base)
         return lu
 
     def _accepted(self, q: FloatArray, v: FloatArray, a: FloatArray, ev: ForceEvaluation,
@@ -350,6 +379,9 @@ def _first_nonfinite_row(T: object) -> int:
     """Row of the first NaN/Inf entry of a dense or sparse matrix (-1 if none or None)."""
     if T is None:
         return -1
+    if isinstance(T, LocalMatrix):
+        bad_rows = ~np.isfinite(T.block).all(axis=-1)
+        return int(T.dofs[np.argmax(bad_rows)]) if bad_rows.any() else -1
     if sp.issparse(T):
         coo = sp.coo_matrix(T)
         bad = ~np.isfinite(coo.data)

@@ -30,6 +30,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from rotorsim.errors import ModelError
 from rotorsim.solvers.linear import DENSE_THRESHOLD
+from rotorsim.time_integration.local_tangent import LocalMatrix
 
 FloatArray = NDArray[np.float64]
 Matrix = Any
@@ -40,7 +41,9 @@ RestoringForce = Callable[
     "tuple[ArrayLike, Matrix | None, Matrix | None] | None",
 ]
 """``restoring(q, v, t) -> (r, dr/dq, dr/dv)`` for one sample: ``r`` (n,) [N], tangents
-(n, n) dense or sparse, ``None`` for a zero tangent; returning ``None`` means ``r = 0``."""
+(n, n) dense, sparse or :class:`~.local_tangent.LocalMatrix` (nonzero on a few unknowns
+only: the implicit steppers then factorise the constant part once and update it by a
+low-rank solve), ``None`` for a zero tangent; returning ``None`` means ``r = 0``."""
 
 LoadFunction = Callable[[float], ArrayLike]
 """``load(t) -> f`` (n,) [N]."""
@@ -192,7 +195,8 @@ class SecondOrderProblem:
 def combine(terms: list[tuple[float, Matrix | None]], n: int) -> Matrix:
     """``sum(c * A)`` over the terms with a matrix: dense for small ``n`` or all-dense
     input, CSR otherwise."""
-    present = [(c, A) for c, A in terms if A is not None]
+    present = [(c, A.tocsr() if isinstance(A, LocalMatrix) else A) for c, A in terms
+               if A is not None]
     if n > DENSE_THRESHOLD and any(sp.issparse(A) for _, A in present):
         out = sp.csr_matrix((n, n))
         for c, A in present:
@@ -213,7 +217,11 @@ def matrix_digest(A: Matrix | None) -> int:
     if A is None:
         return 0
     h = hashlib.blake2b(digest_size=8)
-    if sp.issparse(A):
+    if isinstance(A, LocalMatrix):
+        h.update(b"local")
+        h.update(A.dofs.tobytes())
+        h.update(np.ascontiguousarray(A.block).tobytes())
+    elif sp.issparse(A):
         csr = sp.csr_matrix(A)
         for part in (csr.indptr, csr.indices, csr.data):
             h.update(np.ascontiguousarray(part).tobytes())

@@ -1,0 +1,363 @@
+"""Transient response of a rotor on linear and nonlinear bearings (time integration).
+
+``transient`` builds ``M q'' + (C + W(t) G) q' + K q + r(q, q', phi(t), W(t)) = f(t)`` from
+the assembled rotor (DESIGN section 3), integrates it with a stepper of
+:mod:`rotorsim.time_integration` (Newmark family by default, the enhanced Adams method, or
+either under adaptive step control) and returns a :class:`TransientResult` with the kept
+DOFs, the speed and angle histories and the load of every nonlinear bearing. The bearing
+tangents are local to the bearing DOFs, so the implicit steppers factorise the linear part
+once per step size and speed and update it by a low-rank solve in each Newton iteration.
+
+The initial state is, by default, the static equilibrium under the constant loads (gravity
+and point loads) at the starting speed and angle, at rest: a balanced rotor then stays at
+rest up to the varying compliance of its bearings.
+"""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Callable, Sequence
+from typing import Any
+
+import numpy as np
+import scipy.sparse as sp
+from numpy.typing import ArrayLike
+
+from rotorsim.analyses.nonlinear_static import nonlinear_equilibrium
+from rotorsim.analyses.speed_profile import BoundSpeed, SpeedProfile, as_speed_profile
+from rotorsim.analyses.static import free_rigid_motions, held_dofs
+from rotorsim.analyses.transient_loads import (
+    BaseExcitation,
+    RestoringForce,
+    TransientLoads,
+)
+from rotorsim.assembly.loads import (
+    STANDARD_GRAVITY,
+    gravity_load,
+    nodal_load,
+    rigid_translation,
+    unbalance_amplitudes,
+)
+from rotorsim.assembly.system import RotorSystem, assemble
+from rotorsim.elements.base import DOFS_PER_NODE, FloatArray, NonlinearElement
+from rotorsim.errors import ModelError
+from rotorsim.model.rotor import Rotor
+from rotorsim.results.transient import TransientResult
+from rotorsim.solvers.linear import factorize
+from rotorsim.solvers.stats import Stats
+from rotorsim.time_integration.adams import Adams
+from rotorsim.time_integration.adaptive import Adaptive
+from rotorsim.time_integration.base import TimeStepper
+from rotorsim.time_integration.integrate import IntegrationResult, integrate
+from rotorsim.time_integration.newmark import Newmark
+from rotorsim.time_integration.output import OutputSpec
+from rotorsim.time_integration.problem import SecondOrderProblem
+
+WHERE = "transient"
+DENSE_STEPPING = 400
+"""Up to this many free DOFs the matrices are dense: a step's few matrix-vector products
+then cost less than scipy.sparse's call overhead."""
+
+
+def transient(
+    model: Rotor | RotorSystem,
+    nonlinear: Sequence[NonlinearElement] = (),
+    *,
+    t_span: float | Sequence[float],
+    dt: float,
+    speed: float | SpeedProfile | Callable[[float], float] = 0.0,
+    unbalance: Sequence[tuple[int, float, float]] = (),
+    gravity: float | None = STANDARD_GRAVITY,
+    direction: ArrayLike = (0.0, -1.0, 0.0),
+    loads: Sequence[tuple[int, str, float]] = (),
+    forces: Callable[[float], ArrayLike] | None = None,
+    base: BaseExcitation | None = None,
+    method: str | TimeStepper = "average_acceleration",
+    initial: str | tuple[ArrayLike, ArrayLike] = "static",
+    nodes: Sequence[int] | None = None,
+    every: int = 1,
+    times: ArrayLike | None = None,
+    checkpoint: str | os.PathLike[str] | None = None,
+    checkpoint_every: int = 1000,
+    resume: str | os.PathLike[str] | None = None,
+    progress: bool = False,
+) -> TransientResult:
+    """Integrate the rotor's equation of motion over ``t_span``.
+
+    Parameters
+    ----------
+    model : Rotor or RotorSystem
+        The rotor (linear bearings included); a RotorSystem assembled with its nonlinear
+        elements may be passed instead of ``model`` + ``nonlinear``.
+    nonlinear : sequence of NonlinearElement
+        Nonlinear elements, e.g. :class:`~rotorsim.elements.rolling.element.RollingBearing`.
+    t_span : float or (t0, t_end)
+        Time span [s] (a number means ``(0, t_end)``).
+    dt : float
+        Time step [s] (first trial step when adaptive).
+    speed : float, callable or speed profile
+        Spin speed [rad/s]: a constant, :class:`~.speed_profile.LinearSpeed` (run-up or
+        coast-down), :class:`~.speed_profile.SpeedFunction` or any ``W(t)``.
+    unbalance : list of (node, me, angle)
+        Unbalances [kg m, rad] rotating with the shaft angle ``phi(t)``, with the
+        angular-acceleration term (module :mod:`~.transient_loads`).
+    gravity, direction
+        Gravity [m/s^2] (None for none) and its direction.
+    loads : list of (node, dof, value)
+        Constant point forces and moments [N, N m].
+    forces : callable, optional
+        ``forces(t)`` -> array (n_free,) of extra loads on the free DOFs [N, N m]
+        (``system.dofs_of(node, dofs)`` gives indices).
+    base : BaseExcitation, optional
+        Acceleration of the base (seed 002 eq 3.43); coordinates are then relative to it.
+    method : str or TimeStepper
+        ``"average_acceleration"`` (default), ``"linear_acceleration"``, ``"hht"``,
+        ``"generalized_alpha"``, ``"adams"`` (enhanced 4th-order Adams, seed 002 App. F),
+        ``"adaptive"`` (error-controlled average acceleration) or a stepper object.
+    initial : {"static", "zero"} or (q0, v0)
+        Static equilibrium at rest (default), zero, or given displacements and velocities
+        on ALL DOFs (``6 * n_nodes``).
+    nodes : sequence of int, optional
+        Nodes whose DOFs are kept (default all); the nonlinear elements' DOFs are always
+        kept to compute the bearing loads.
+    every : int
+        Keep every ``every``-th step (ignored with ``times``).
+    times : array-like, optional
+        Sample times [s] (dense output by the stepper's interpolant).
+    checkpoint, checkpoint_every, resume, progress
+        As in :func:`~rotorsim.time_integration.integrate.integrate`: an HDF5 checkpoint
+        every ``checkpoint_every`` steps, resume from one (same result as an uninterrupted
+        run), progress bar.
+
+    Returns
+    -------
+    TransientResult
+
+    Raises
+    ------
+    ModelError
+        For bad input (checked before the first step): ``dt <= 0``, an empty span, a speed
+        function returning NaN, unknown nodes or method, speed-dependent linear bearings
+        with a varying speed.
+    ConvergenceError
+        When a step diverges (time, step, iteration and worst DOF in the message); the last
+        checkpoint is kept.
+
+    Examples
+    --------
+    >>> import rotorsim as rs
+    >>> steel = rs.Material(name="steel", E=211e9, G_s=81.2e9, rho=7810)
+    >>> shaft = [rs.ShaftElement(L=0.25, idl=0.0, odl=0.05, material=steel)] * 4
+    >>> rotor = rs.Rotor(shaft, bearing_elements=[rs.BearingElement(n=0, kxx=1e7, cxx=1e3),
+    ...                                           rs.BearingElement(n=4, kxx=1e7, cxx=1e3)])
+    >>> res = transient(rotor, t_span=0.05, dt=1e-4, speed=300.0, unbalance=[(2, 1e-4, 0.0)],
+    ...                 gravity=None, initial="zero", nodes=[2])
+    >>> res.q.shape, res.dof_labels[:2]
+    ((501, 6), ['2:ux', '2:uy'])
+    """
+    if not (isinstance(dt, int | float) and np.isfinite(dt) and dt > 0):
+        raise ModelError(f"dt must be a positive number [s], got {dt!r}", f"{WHERE}.dt")
+    system = _system(model, nonlinear)
+    t0, t_end = _span(t_span)
+    profile = as_speed_profile(speed).bind(t0, t_end, max(4096, int((t_end - t0) / dt)))
+    problem, loads_fn = _problem(system, profile, t0, unbalance, gravity, direction, loads,
+                                 forces, base)
+    stepper = _stepper(method)
+    q0, v0 = _initial(system, initial, loads_fn.constant, profile, t0)
+    kept = _kept_dofs(system, nodes)
+    sample_times = None if times is None else np.asarray(times, dtype=float)
+    output = OutputSpec(times=sample_times, every=None if times is not None else every,
+                        dofs=kept)
+    run = integrate(problem, stepper, (t0, t_end), q0, v0, dt=dt, output=output,
+                    checkpoint=checkpoint, checkpoint_every=checkpoint_every, resume=resume,
+                    progress=progress)
+    options = {"t_span": [t0, t_end], "dt": dt, "method": stepper.name,
+               "speed": profile.describe(), "gravity": gravity,
+               "unbalance": [list(map(float, u)) for u in unbalance],
+               "base": None if base is None else list(base.direction),
+               "initial": initial if isinstance(initial, str) else "given", "every": every}
+    return _result(system, run, profile, kept, options)
+
+
+def _system(model: Rotor | RotorSystem, nonlinear: Sequence[NonlinearElement]) -> RotorSystem:
+    if isinstance(model, RotorSystem):
+        if nonlinear:
+            raise ModelError("give the nonlinear elements to assemble(), or a Rotor here",
+                             WHERE)
+        return model
+    if not isinstance(model, Rotor):
+        raise ModelError(f"expected a Rotor or RotorSystem, got {type(model).__name__}",
+                         WHERE)
+    return assemble(model, nonlinear=tuple(nonlinear))
+
+
+def _span(t_span: float | Sequence[float]) -> tuple[float, float]:
+    values: list[Any] = [0.0, t_span] if np.ndim(t_span) == 0 else list(t_span)  # type: ignore[arg-type]
+    try:
+        t0, t_end = (float(x) for x in values)
+    except (TypeError, ValueError):
+        raise ModelError(f"t_span must be t_end or (t0, t_end), got {t_span!r}",
+                         WHERE) from None
+    if not (np.isfinite(t0) and np.isfinite(t_end) and t_end > t0):
+        raise ModelError(f"t_span must be finite with t_end > t0, got {t_span!r}", WHERE)
+    return t0, t_end
+
+
+def _problem(system: RotorSystem, profile: BoundSpeed, t0: float, unbalance: Sequence[Any],
+             gravity: float | None, direction: ArrayLike, loads: Sequence[Any],
+             forces: Callable[[float], ArrayLike] | None, base: BaseExcitation | None
+             ) -> tuple[SecondOrderProblem, TransientLoads]:
+    description = profile.describe()
+    constant_speed = description["kind"] == "constant"
+    if system.variable_bearings and not constant_speed:
+        tags = [b.label for _, b in system.variable_bearings]
+        raise ModelError(f"speed-dependent linear bearings {tags} need a constant speed "
+                         "(their matrices are evaluated once)", WHERE)
+    mats = system.matrices(profile.speed(t0) if constant_speed else 0.0)
+    constant = np.zeros(system.n_free)
+    if gravity is not None:
+        constant += gravity_load(system, gravity, direction)
+    for i, (node, dof, value) in enumerate(loads):
+        constant += nodal_load(system, int(node), str(dof), float(value),
+                               where=f"loads[{i}]")
+    if forces is not None and not callable(forces):
+        raise ModelError("forces must be a callable f(t) -> array (n_free,)", WHERE)
+    base_load = None
+    if base is not None:
+        e = rigid_translation(system.dof_map.n_nodes, base.direction)[system.dof_map.free]
+        base_load = -(mats.M @ e)
+    loads_fn = TransientLoads(
+        n=system.n_free, speed=profile, constant=constant,
+        unbalance=unbalance_amplitudes(system, unbalance) if unbalance else None,
+        base=base_load, base_acceleration=None if base is None else base.acceleration,
+        forces=forces)
+    loads_fn(t0)  # fail early on bad callbacks
+    restoring = None if system.nonlinear is None else RestoringForce(system.nonlinear, profile)
+    has_gyro = mats.G.nnz > 0
+    M, K, C, G = (m.toarray() if system.n_free <= DENSE_STEPPING else m
+                  for m in (mats.M, mats.K, mats.C, mats.G))
+    problem = SecondOrderProblem(
+        mass=M, stiffness=K, damping=C, restoring=restoring, load=loads_fn,
+        gyroscopic=G if has_gyro else None, speed=profile.speed if has_gyro else None)
+    return problem, loads_fn
+
+
+def _stepper(method: str | TimeStepper) -> TimeStepper:
+    if not isinstance(method, str):
+        if not isinstance(method, TimeStepper):
+            raise ModelError(f"not a time stepper: {method!r}", f"{WHERE}.method")
+        return method
+    if method == "adams":
+        return Adams()
+    if method == "adaptive":
+        return Adaptive(Newmark.average_acceleration())
+    try:
+        return Newmark.from_name(method)
+    except TypeError as exc:
+        raise ModelError(f"{exc}, 'adams' or 'adaptive'", f"{WHERE}.method") from None
+
+
+def _initial(system: RotorSystem, initial: str | tuple[ArrayLike, ArrayLike],
+             f: FloatArray, profile: BoundSpeed, t0: float) -> tuple[FloatArray, FloatArray]:
+    n = system.n_free
+    if isinstance(initial, str):
+        if initial == "zero":
+            return np.zeros(n), np.zeros(n)
+        if initial != "static":
+            raise ModelError(f"initial must be 'static', 'zero' or (q0, v0), got {initial!r}",
+                             f"{WHERE}.initial")
+        return _static_start(system, f, profile, t0), np.zeros(n)
+    try:
+        q_all, v_all = (np.asarray(x, dtype=float).reshape(-1) for x in initial)
+    except (TypeError, ValueError):
+        raise ModelError("give initial = (q0, v0) on all DOFs", f"{WHERE}.initial") from None
+    ndof = system.dof_map.ndof
+    if q_all.shape != (ndof,) or v_all.shape != (ndof,):
+        raise ModelError(f"q0 and v0 must have {ndof} entries (all DOFs)", f"{WHERE}.initial")
+    free = system.dof_map.free
+    return q_all[free], v_all[free]
+
+
+def _static_start(system: RotorSystem, f: FloatArray, profile: BoundSpeed,
+                  t0: float) -> FloatArray:
+    """Static equilibrium under the constant loads (linear solve without nonlinear
+    elements, Newton with them)."""
+    W, phi = profile.speed(t0), profile.angle(t0)
+    K = system.matrices(W).K
+    if system.nonlinear is None:
+        if not np.any(f):
+            return np.zeros(system.n_free)
+        rigid = free_rigid_motions(system, K)
+        if rigid.fields.shape[1]:
+            raise ModelError(f"the rotor has free rigid motions ({', '.join(rigid.labels)}):"
+                             " use initial='zero'", f"{WHERE}.initial")
+        return np.asarray(factorize(K, where="transient: static start").solve(f))
+    nominal = _nominal_tangent(system)
+    held = held_dofs(free_rigid_motions(system, sp.csr_matrix(K + nominal)))
+    return nonlinear_equilibrium(system, f, speed=W, phi=phi, held=held, nominal=nominal,
+                                 stats=Stats()).q
+
+
+def _nominal_tangent(system: RotorSystem) -> sp.csr_matrix:
+    """Mean symmetric tangent of the nonlinear elements over probe displacements of 1, 10
+    and 100 um (or urad) along each of their DOFs, on the free DOFs: it reveals the rigid
+    motions no element restrains (torsion; axial motion on cylindrical rollers) and starts
+    the static Newton iteration."""
+    nl = system.nonlinear
+    assert nl is not None
+    probes = np.vstack([s * np.eye(nl.k) * sign for s in (1e-6, 1e-5, 1e-4)
+                        for sign in (1.0, -1.0)])
+    kt = nl.evaluate(probes, np.zeros_like(probes), 0.0, 0.0).K.mean(axis=0)
+    rows, cols = np.repeat(nl.dofs, nl.k), np.tile(nl.dofs, nl.k)
+    n = system.n_free
+    return sp.csr_matrix((0.5 * (kt + kt.T).ravel(), (rows, cols)), shape=(n, n))
+
+
+def _kept_dofs(system: RotorSystem, nodes: Sequence[int] | None) -> np.ndarray:
+    dm = system.dof_map
+    if nodes is None:
+        kept = np.arange(system.n_free)
+    else:
+        full: list[int] = []
+        for node in nodes:
+            if not 0 <= int(node) < dm.n_nodes:
+                raise ModelError(f"node {node} outside 0..{dm.n_nodes - 1}", f"{WHERE}.nodes")
+            full.extend(DOFS_PER_NODE * int(node) + k for k in range(DOFS_PER_NODE))
+        free = dm.full_to_free[np.asarray(full, dtype=np.int64)]
+        kept = free[free >= 0]
+    if system.nonlinear is not None:
+        kept = np.union1d(kept, system.nonlinear.dofs)
+    return np.asarray(kept, dtype=np.int64)
+
+
+def _result(system: RotorSystem, run: IntegrationResult, profile: BoundSpeed,
+            kept: np.ndarray, options: dict[str, Any]) -> TransientResult:
+    t = run.t
+    speed = np.array([profile.speed(float(x)) for x in t])
+    angle = np.array([profile.angle(float(x)) for x in t])
+    accel = np.array([profile.acceleration(float(x)) for x in t])
+    loads, tags, counts, kappa = _bearing_histories(system, run, kept, angle, speed)
+    return TransientResult(
+        t=t, q=run.q, v=run.v, dofs=system.dof_map.free[kept], speed=speed, angle=angle,
+        acceleration=accel, bearing_loads=loads, bearing_tags=tags,
+        bearing_elements=counts, bearing_kappa=kappa, reduced=dict(run.reduced),
+        dof_map=system.dof_map, nodes_pos=np.asarray(system.nodes_pos, dtype=float),
+        method=run.method, options=options, stats=dict(run.stats), status=run.status,
+        summary=dict(system.summary))
+
+
+def _bearing_histories(system: RotorSystem, run: IntegrationResult, kept: np.ndarray,
+                       angle: FloatArray, speed: FloatArray
+                       ) -> tuple[FloatArray, tuple[str, ...], np.ndarray, FloatArray]:
+    nl = system.nonlinear
+    if nl is None:
+        return (np.zeros((run.t.size, 0, 5)), (), np.zeros(0, dtype=np.int64), np.zeros(0))
+    cols = np.searchsorted(kept, nl.dofs)
+    v = run.v if run.v is not None else np.zeros_like(run.q)
+    out = nl.evaluate(run.q[:, cols], v[:, cols], angle, speed)
+    loads = np.stack([f[:, :5] for f in out.element_forces], axis=1)
+    tags = tuple(str(getattr(el, "tag", None) or i) for i, el in enumerate(nl.elements))
+    models = [getattr(el, "bearing", None) for el in nl.elements]
+    counts = np.array([int(getattr(b, "n_elements", 0) or 0) for b in models], dtype=np.int64)
+    kappa = np.array([float(getattr(b, "kappa", 0.0) or 0.0) for b in models])
+    return loads, tags, counts, kappa

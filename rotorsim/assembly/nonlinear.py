@@ -1,0 +1,254 @@
+"""Gather the restoring forces and tangents of a rotor's nonlinear elements (DESIGN section 4).
+
+A :class:`NonlinearAssembly` knows, for each nonlinear element (rolling bearings), where
+its DOFs sit among the free DOFs of a :class:`~rotorsim.assembly.system.RotorSystem`. It
+works on the *nonlinear DOFs* only: the sorted union ``dofs`` of the free DOFs the elements
+touch (``k`` of them). One call evaluates every element for ``S`` samples at once (a time
+step passes ``S = 1``, harmonic balance all samples of a period):
+
+    f (S, k), df/dq (S, k, k), df/dv (S, k, k) = assembly.evaluate(q_nl, v_nl, phi, speed)
+
+Elements with identical parameters (the usual pair of equal bearings) share one batched
+call, stacked over elements and samples. An element DOF that is fixed, or was removed as
+unconnected by :func:`~rotorsim.assembly.system.assemble`, has zero displacement and its
+force is dropped (it goes to ground).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from collections.abc import Sequence
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from rotorsim.elements.base import DOFS_PER_NODE, FloatArray, NonlinearElement
+from rotorsim.errors import ModelError
+
+IntArray = NDArray[np.int64]
+
+
+@dataclass(frozen=True, eq=False)
+class _Group:
+    """Elements evaluated by one batched call of ``element``."""
+
+    element: NonlinearElement
+    members: IntArray  # indices into NonlinearAssembly.elements (G,)
+    positions: IntArray  # (G, nd) position of each element DOF in `dofs`, -1 if removed
+    force_index: IntArray  # target position in (k,) of each kept entry of (G*nd,)
+    force_kept: IntArray  # kept entries of the flattened (G*nd,) element forces
+    tangent_index: IntArray  # target position in (k*k,) of each kept tangent entry
+    tangent_kept: IntArray  # kept entries of the flattened (G*nd*nd,) element tangents
+    distinct: bool  # no two element DOFs share a nonlinear DOF (plain assignment)
+
+    def scatter_forces(self, fe: FloatArray, k: int) -> FloatArray:
+        """Sum of element forces (S, G*nd) on the nonlinear DOFs (S, k)."""
+        return _scatter(fe[:, self.force_kept], self.force_index, k, self.distinct)
+
+    def scatter_tangents(self, ke: FloatArray, k: int) -> FloatArray:
+        """Sum of element tangents (S, G*nd*nd) on the nonlinear DOFs (S, k*k)."""
+        return _scatter(ke[:, self.tangent_kept], self.tangent_index, k * k, self.distinct)
+
+    @property
+    def size(self) -> int:
+        return int(self.members.size)
+
+    @property
+    def nd(self) -> int:
+        return int(self.positions.shape[1])
+
+
+@dataclass(frozen=True, eq=False)
+class NonlinearForces:
+    """Restoring force and tangents on the nonlinear DOFs for ``S`` samples.
+
+    Attributes
+    ----------
+    f : array (S, k)
+        Restoring force ``r`` on the nonlinear DOFs [N, N m].
+    K, C : arrays (S, k, k)
+        ``dr/dq`` and ``dr/dv``.
+    element_forces : tuple of arrays (S, nd)
+        Each element's force on its own DOFs (``[:, :5]`` is the load its inner ring
+        carries, ``[Fx, Fy, Fz, Mx, My]``).
+    internal : tuple
+        Each group's converged internal state (warm start of the next call).
+    """
+
+    f: FloatArray
+    K: FloatArray
+    C: FloatArray
+    element_forces: tuple[FloatArray, ...]
+    internal: tuple[Any, ...]
+
+
+@dataclass(frozen=True, eq=False)
+class NonlinearAssembly:
+    """The nonlinear elements of a system with their DOF indices (module docstring).
+
+    Use :meth:`build`.
+    """
+
+    n_free: int
+    elements: tuple[NonlinearElement, ...]
+    dofs: IntArray
+    groups: tuple[_Group, ...]
+
+    @classmethod
+    def build(cls, elements: Sequence[NonlinearElement], full_to_free: IntArray,
+              n_nodes: int) -> NonlinearAssembly:
+        """Index the ``elements`` on a system with the given DOF map.
+
+        Parameters
+        ----------
+        elements : sequence of NonlinearElement
+        full_to_free : int array (6 n_nodes,)
+            Free index of each DOF, -1 when fixed or removed.
+        n_nodes : int
+            Number of nodes of the system.
+
+        Raises
+        ------
+        ModelError
+            For an object that is not a nonlinear element, a node outside the system, or an
+            element with all its DOFs fixed.
+        """
+        elements = tuple(elements)
+        full_dofs = [_element_dofs(el, i, n_nodes) for i, el in enumerate(elements)]
+        free = [np.asarray(full_to_free)[d] for d in full_dofs]
+        for i, f in enumerate(free):
+            if not np.any(f >= 0):
+                raise ModelError("all its DOFs are fixed: it can exert no force",
+                                 _label(elements[i], i))
+        dofs = np.unique(np.concatenate([f[f >= 0] for f in free])) if free \
+            else np.zeros(0, dtype=np.int64)
+        keys: dict[tuple[Any, ...], list[int]] = {}
+        for i, el in enumerate(elements):
+            keys.setdefault(_batch_key(el, free[i].size), []).append(i)
+        groups = tuple(_group(elements, members, free, dofs) for members in keys.values())
+        return cls(_n_free(full_to_free), elements, dofs, groups)
+
+    @property
+    def k(self) -> int:
+        """Number of nonlinear DOFs."""
+        return int(self.dofs.size)
+
+    def gather(self, x: ArrayLike) -> FloatArray:
+        """Values on the nonlinear DOFs, ``x[..., dofs]``."""
+        return np.asarray(x, dtype=float)[..., self.dofs]
+
+    def evaluate(self, q: ArrayLike, v: ArrayLike, phi: ArrayLike, speed: ArrayLike,
+                 internal: Sequence[Any] | None = None) -> NonlinearForces:
+        """Forces and tangents of all elements for ``S`` samples.
+
+        Parameters
+        ----------
+        q, v : array-like (S, k) or (k,)
+            Displacements and velocities of the nonlinear DOFs [m, rad, m/s, rad/s].
+        phi, speed : array-like (S,) or scalar
+            Shaft angle [rad] and spin speed [rad/s] of each sample.
+        internal : sequence, optional
+            The ``internal`` of a previous call (warm start).
+
+        Returns
+        -------
+        NonlinearForces
+        """
+        q2, v2 = (np.atleast_2d(np.asarray(x, dtype=float)) for x in (q, v))
+        S, k = q2.shape
+        if k != self.k or v2.shape != (S, k):
+            raise ModelError(f"expected (S, {self.k}) displacements and velocities, got "
+                             f"{q2.shape} and {v2.shape}", "NonlinearAssembly.evaluate")
+        phi_s = np.broadcast_to(np.asarray(phi, dtype=float), (S,))
+        speed_s = np.broadcast_to(np.asarray(speed, dtype=float), (S,))
+        f = np.zeros((S, k))
+        K = np.zeros((S, k * k))
+        C = np.zeros((S, k * k))
+        per_element: list[FloatArray] = [np.zeros(0)] * len(self.elements)
+        states = []
+        for gi, g in enumerate(self.groups):
+            G, nd = g.size, g.nd
+            u = _take(q2, g.positions)  # (S, G, nd)
+            w = _take(v2, g.positions)
+            warm = None if internal is None else internal[gi]
+            out = g.element.force(u.reshape(S * G, nd), w.reshape(S * G, nd),
+                                  np.repeat(phi_s, G), np.repeat(speed_s, G), warm)
+            fe = np.asarray(out.f).reshape(S, G * nd)
+            f += g.scatter_forces(fe, k)
+            K += g.scatter_tangents(np.asarray(out.K).reshape(S, G * nd * nd), k)
+            C += g.scatter_tangents(np.asarray(out.C).reshape(S, G * nd * nd), k)
+            for j, m in enumerate(g.members):
+                per_element[m] = fe.reshape(S, G, nd)[:, j]
+            states.append(out.internal)
+        return NonlinearForces(f, K.reshape(S, k, k), C.reshape(S, k, k),
+                               tuple(per_element), tuple(states))
+
+
+def _n_free(full_to_free: IntArray) -> int:
+    return int(np.count_nonzero(np.asarray(full_to_free) >= 0))
+
+
+def _label(el: Any, i: int) -> str:
+    return str(getattr(el, "label", None) or getattr(el, "tag", None) or f"nonlinear[{i}]")
+
+
+def _element_dofs(el: Any, i: int, n_nodes: int) -> IntArray:
+    if not isinstance(el, NonlinearElement):
+        raise ModelError(f"not a nonlinear element (needs nodes and force): {el!r}",
+                         f"nonlinear[{i}]")
+    nodes = np.asarray(el.nodes, dtype=np.int64)
+    if nodes.size == 0 or nodes.min() < 0 or nodes.max() >= n_nodes:
+        raise ModelError(f"nodes {tuple(nodes.tolist())} outside the system's 0..{n_nodes - 1}"
+                         " (a housing node needs a point mass or a linear bearing in the "
+                         "rotor)", _label(el, i))
+    return (DOFS_PER_NODE * nodes[:, None] + np.arange(DOFS_PER_NODE)).reshape(-1)
+
+
+def _batch_key(el: Any, nd: int) -> tuple[Any, ...]:
+    """Elements with equal keys give equal forces for equal DOF values: everything but
+    their node numbers and names (also of nested parameter objects) is equal."""
+    return (nd, _parameters(el))
+
+
+def _parameters(obj: Any) -> Any:
+    if dataclasses.is_dataclass(obj) and not isinstance(obj, type):
+        skip = {"n", "n_link", "tag", "nodes", "label"}
+        return (type(obj), tuple((f.name, _parameters(getattr(obj, f.name)))
+                                 for f in dataclasses.fields(obj)
+                                 if f.name not in skip and f.init))
+    return repr(obj)
+
+
+def _take(x: FloatArray, positions: IntArray) -> FloatArray:
+    """``x[:, positions]`` with zeros where ``positions < 0``: (S, G, nd)."""
+    out = x[:, np.where(positions >= 0, positions, 0)]
+    out[:, positions < 0] = 0.0
+    return out
+
+
+def _group(elements: tuple[Any, ...], members: list[int], free: list[IntArray],
+           dofs: IntArray) -> _Group:
+    positions = np.stack([np.where(free[m] >= 0, np.searchsorted(dofs, free[m]), -1)
+                          for m in members])
+    k = dofs.size
+    flat = positions.reshape(-1)
+    ok = np.flatnonzero(flat >= 0)
+    rows = (positions[:, :, None] * k + positions[:, None, :]).reshape(-1)
+    ok2 = np.flatnonzero(((positions[:, :, None] >= 0)
+                          & (positions[:, None, :] >= 0)).reshape(-1))
+    return _Group(elements[members[0]], np.asarray(members, dtype=np.int64), positions,
+                  flat[ok], ok, rows[ok2], ok2, bool(np.unique(flat[ok]).size == ok.size))
+
+
+def _scatter(values: FloatArray, index: IntArray, size: int, distinct: bool) -> FloatArray:
+    """``out[s, index[j]] += values[s, j]`` (repeated indices add, by one bincount)."""
+    S = values.shape[0]
+    if distinct:
+        out = np.zeros((S, size))
+        out[:, index] = values
+        return out
+    flat = (np.arange(S)[:, None] * size + index[None, :]).ravel()
+    summed = np.bincount(flat, weights=values.ravel(), minlength=S * size)
+    return np.asarray(summed, dtype=float).reshape(S, size)
