@@ -14,7 +14,10 @@ from rotorsim.results.critical_speeds import (
 from rotorsim.results.frequency_response import DeflectedShape, FrequencyResponseResult
 from rotorsim.results.modal import ModalResult
 from rotorsim.results.orbits import Ellipse
+from rotorsim.results.order_tracking import OrderTrack, Waterfall
+from rotorsim.results.spectra import HarmonicFit, Spectrum
 from rotorsim.results.static import StaticResult
+from rotorsim.results.transient import TransientResult
 
 _ANGULAR = "rad/s"
 register_result_type(ModalResult, {
@@ -54,3 +57,19 @@ register_result_type(StiffnessVariation, {
     "position": "1", "cage_angle": "rad", "shaft_angle": "rad", "displacement": "m, rad",
     "force": "N, N m", "stiffness": "N/m, N, N m/rad", "max_element_load": "N",
     "load": "N, N m"})
+register_result_type(TransientResult, {
+    "t": "s", "q": "m, rad", "v": "m/s, rad/s", "dofs": "1", "speed": _ANGULAR,
+    "angle": "rad", "acceleration": "rad/s^2", "bearing_loads": "N, N m",
+    "bearing_elements": "1", "bearing_kappa": "1", "nodes_pos": "m"})
+_SIGNAL = "signal units"  # spectra of any signal: m, rad, N... as the input
+register_result_type(Spectrum, {
+    "frequency": _ANGULAR, "amplitude": _SIGNAL, "phase": "rad", "dt": "s", "t_start": "s"})
+register_result_type(HarmonicFit, {
+    "frequency": _ANGULAR, "amplitude": _SIGNAL, "phase": "rad", "mean": _SIGNAL,
+    "residual_rms": _SIGNAL, "t_start": "s", "t_end": "s"})
+register_result_type(Waterfall, {
+    "times": "s", "speeds": _ANGULAR, "frequency": _ANGULAR, "amplitude": _SIGNAL,
+    "overlap": "1"})
+register_result_type(OrderTrack, {
+    "orders": "1", "speed": _ANGULAR, "times": "s", "amplitude": _SIGNAL, "phase": "rad",
+    "order_axis": "1", "order_spectrum": _SIGNAL})

@@ -22,6 +22,12 @@ Point data of a step (3-vectors are x, y, z components):
 ``radius``                  outer shaft radius at the node [m] (with ``rotor=``)
 =========================== ==================================================
 
+A transient (:class:`~rotorsim.results.transient.TransientResult`) gives one step per kept
+time sample (every ``every``-th), the ``*.pvd`` time step being the time [s]: point data
+``displacement`` and ``rotation`` hold the kept DOFs and zero at DOFs that were not kept,
+and ``kept`` (per node: 1 if any of its DOFs was kept) tells the two apart; field data hold
+``time`` [s], ``speed`` [rad/s] and ``angle`` [rad].
+
 In the single-file form ``displacement`` becomes ``mode_<k>``, ``displacement_imag``
 ``mode_<k>_imag`` and any other array ``X`` becomes ``mode_<k>_X``. A static result has
 ``displacement``, ``rotation``, ``load_force`` [N], ``load_moment`` [N m] and, when section
@@ -51,6 +57,7 @@ from rotorsim.results.frequency_response import FrequencyResponseResult
 from rotorsim.results.modal import ModalResult
 from rotorsim.results.orbits import ellipse
 from rotorsim.results.static import StaticResult
+from rotorsim.results.transient import TransientResult
 
 __all__ = ["export_vtk"]
 
@@ -73,25 +80,31 @@ class _Step:
 
 
 def export_vtk(
-    result: ModalResult | CriticalSpeeds | FrequencyResponseResult | StaticResult,
+    result: ModalResult | CriticalSpeeds | FrequencyResponseResult | StaticResult |
+    TransientResult,
     path: str | os.PathLike[str],
     *,
     rotor: Rotor | None = None,
     input: int = 0,
+    every: int = 1,
 ) -> list[Path]:
     """Write the shaft line with mode shapes or deflections as VTK point data.
 
     Parameters
     ----------
-    result : ModalResult, CriticalSpeeds, FrequencyResponseResult or StaticResult
+    result : ModalResult, CriticalSpeeds, FrequencyResponseResult, StaticResult or
+        TransientResult
         ``CriticalSpeeds`` needs mode shapes (exact analysis) and ``rotor``.
     path : path-like
-        ``*.pvd`` for a time series (one VTU per mode/frequency), ``*.vtu`` for one file.
+        ``*.pvd`` for a time series (one VTU per mode/frequency/time sample), ``*.vtu`` for
+        one file.
     rotor : Rotor, optional
         The analysed model: adds the ``radius`` point data and supplies node positions
         and the number of shaft nodes (else taken from ``result.summary``).
     input : int
         Input column of a :class:`FrequencyResponseResult`.
+    every : int
+        Time-sample stride of a :class:`TransientResult` (one VTU per ``every`` samples).
 
     Returns
     -------
@@ -120,24 +133,29 @@ def export_vtk(
     if not target.parent.is_dir():
         raise FileNotFoundError(f"folder of {target} does not exist")
     geometry = _geometry(result, rotor)
-    steps, prefix = _steps(result, input, geometry)
+    times = None
+    if isinstance(result, TransientResult):
+        steps, prefix, times = _transient_steps(result, geometry, every)
+    else:
+        steps, prefix = _steps(result, input, geometry)
     if suffix == ".vtu":
         _write_vtu(target, geometry, _merge(steps, prefix))
         return [target]
     files = [target.with_name(f"{target.stem}_{k:04d}.vtu") for k in range(len(steps))]
     for file, step in zip(files, steps, strict=True):
         _write_vtu(file, geometry, step)
-    _write_pvd(target, files)
+    _write_pvd(target, files, times)
     return [target, *files]
 
 
 # ---------------------------------------------------------------------------- geometry
 def _geometry(result: object, rotor: Rotor | None) -> _Geometry:
     if not isinstance(result, ModalResult | CriticalSpeeds | FrequencyResponseResult |
-                      StaticResult):
+                      StaticResult | TransientResult):
         raise ModelError(
             f"cannot export a {type(result).__name__}; supported: ModalResult, CriticalSpeeds "
-            "(with mode shapes), FrequencyResponseResult, StaticResult", _WHERE)
+            "(with mode shapes), FrequencyResponseResult, StaticResult, TransientResult",
+            _WHERE)
     dof_map = result.dof_map
     if dof_map is None:
         raise ModelError("the result has no mode shapes (use the exact critical_speeds)",
@@ -220,6 +238,26 @@ def _harmonic_steps(shapes: NDArray[np.complex128], scalars: dict[str, FloatArra
     return [_Step({k: np.ascontiguousarray(v[s]) for k, v in arrays.items()},
                   {k: np.atleast_1d(np.float64(v[s])) for k, v in scalars.items()})
             for s in range(shapes.shape[0])]
+
+
+def _transient_steps(result: TransientResult, geometry: _Geometry, every: int
+                     ) -> tuple[list[_Step], str, FloatArray]:
+    """One step per ``every``-th sample: kept DOFs in place, zeros elsewhere."""
+    if not (isinstance(every, int) and every >= 1):
+        raise ModelError(f"every must be a positive int, got {every!r}", _WHERE)
+    n_nodes = geometry.points.shape[0]
+    rows = np.arange(0, result.t.size, every)
+    full = np.zeros((rows.size, 6 * n_nodes))
+    full[:, result.dofs] = result.q[rows]
+    nodes = full.reshape(rows.size, n_nodes, 6)
+    kept = np.zeros(n_nodes, dtype=np.int64)
+    kept[result.dofs // 6] = 1
+    steps = [_Step({"displacement": np.ascontiguousarray(nodes[s, :, :3]),
+                    "rotation": np.ascontiguousarray(nodes[s, :, 3:]), "kept": kept},
+                   {"time": np.atleast_1d(result.t[r]), "speed": np.atleast_1d(result.speed[r]),
+                    "angle": np.atleast_1d(result.angle[r])})
+             for s, r in enumerate(rows)]
+    return steps, "step", result.t[rows]
 
 
 def _static_step(result: StaticResult, geometry: _Geometry) -> _Step:
@@ -306,11 +344,13 @@ def _add_field_data(path: Path, field_data: dict[str, NDArray[Any]]) -> None:
     tree.write(path, encoding="utf-8", xml_declaration=True)
 
 
-def _write_pvd(path: Path, files: list[Path]) -> None:
+def _write_pvd(path: Path, files: list[Path], times: FloatArray | None = None) -> None:
+    """Collection of ``files``; time step = index, or ``times`` [s] (exact repr)."""
     root = ET.Element("VTKFile", type="Collection", version="0.1", byte_order="LittleEndian")
     collection = ET.SubElement(root, "Collection")
     for k, file in enumerate(files):
-        ET.SubElement(collection, "DataSet", timestep=str(k), group="", part="0",
+        step = str(k) if times is None else repr(float(times[k]))
+        ET.SubElement(collection, "DataSet", timestep=step, group="", part="0",
                       file=file.name)
     ET.indent(root)
     ET.ElementTree(root).write(path, encoding="utf-8", xml_declaration=True)

@@ -15,8 +15,10 @@ def plot(result: Any, ax: Any = None, **options: Any) -> Any:
     Parameters
     ----------
     result : ModalResult, CampbellResult, CriticalSpeedMapResult, FrequencyResponseResult,
-        StaticResult or Rotor
-        The result to draw (a Rotor gives its layout drawing).
+        StaticResult, TransientResult, Spectrum, Waterfall, OrderTrack or Rotor
+        The result to draw (a Rotor gives its layout drawing; a TransientResult its time
+        history, orbit, spectrum and bearing loads, see
+        :mod:`rotorsim.plotting.transient_figures`).
     ax : matplotlib Axes, optional
         Axes to draw into (single-panel figures only); a new figure otherwise.
     **options

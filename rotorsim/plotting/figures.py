@@ -13,6 +13,12 @@ from rotorsim.plotting.bearing_figures import (
     stiffness_variation_figure,
 )
 from rotorsim.plotting.layout import rotor_layout_figure
+from rotorsim.plotting.transient_figures import (
+    order_track_figure,
+    spectrum_figure,
+    transient_figure,
+    waterfall_figure,
+)
 from rotorsim.plotting.units import speed_factor
 
 WHIRL_STYLE = {
@@ -215,4 +221,8 @@ DRAWERS: dict[str, Callable[..., Any]] = {
     "ModalResult": mode_shape_figure,
     "BearingEquilibriumResult": load_distribution_figure,
     "StiffnessVariation": stiffness_variation_figure,
+    "TransientResult": transient_figure,
+    "Spectrum": spectrum_figure,
+    "Waterfall": waterfall_figure,
+    "OrderTrack": order_track_figure,
 }

@@ -6,7 +6,7 @@ from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
-from numpy.typing import NDArray
+from numpy.typing import ArrayLike, NDArray
 
 from rotorsim.assembly.dof_map import DofMap
 from rotorsim.errors import ModelError, Status
@@ -152,7 +152,7 @@ class TransientResult:
         return waterfall(self.t, self.displacement(node, dof), self.speed, segment=segment,
                          overlap=overlap, window=window)
 
-    def order_track(self, node: int, dof: str = "uy", orders: Any = (1.0,), *,
+    def order_track(self, node: int, dof: str = "uy", orders: ArrayLike = (1.0,), *,
                     revolutions_per_block: int = 8, t_min: float | None = None,
                     window: str = "hann") -> OrderTrack:
         """Amplitude and phase of shaft ``orders`` of one DOF against speed, resampled at

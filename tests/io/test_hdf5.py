@@ -118,6 +118,7 @@ def results() -> dict[str, Any]:
         "ellipse": ellipse(np.array([1.0, 2.0j, np.nan]), np.array([-1j, 0.5, 1.0])),
         "intersections": MapIntersections.empty(),
         **_bearing_results(),
+        **_transient_results(),
     }
 
 
@@ -133,10 +134,31 @@ def _bearing_results() -> dict[str, Any]:
             "stiffness_over_pass": stiffness_over_pass(bearing, load, 6)}
 
 
+def _transient_results() -> dict[str, Any]:
+    from rotorsim.results.order_tracking import order_track, waterfall
+    from rotorsim.results.spectra import amplitude_spectrum, harmonic_fit
+    from rotorsim.results.transient import TransientResult
+
+    t = np.arange(400) * 1e-3
+    angle = 100.0 * t + 25.0 * t**2
+    x = 1e-5 * np.cos(angle)
+    run = TransientResult(
+        t=t, q=x[:, None], v=None, dofs=np.array([7]), speed=100.0 + 50.0 * t, angle=angle,
+        acceleration=np.full(t.size, 50.0), bearing_loads=np.zeros((t.size, 0, 5)),
+        bearing_tags=(), bearing_elements=np.zeros(0, dtype=np.int64),
+        bearing_kappa=np.zeros(0), reduced={}, dof_map=DofMap(2),
+        nodes_pos=np.array([0.0, 1.0]))
+    return {"transient": run, "spectrum": amplitude_spectrum(t, x),
+            "harmonic_fit": harmonic_fit(t, x, 100.0),
+            "waterfall": waterfall(t, x, run.speed, segment=0.05),
+            "order_track": order_track(t, x, angle, [1.0], revolutions_per_block=2)}
+
+
 RESULT_NAMES = ["modal", "campbell", "critical_exact", "critical_campbell", "map",
                 "unbalance", "receptance", "static", "static_system", "deflected_shape",
                 "ellipse", "intersections", "bearing_equilibrium", "energy_minimum",
-                "stiffness_over_pass"]
+                "stiffness_over_pass", "transient", "spectrum", "harmonic_fit", "waterfall",
+                "order_track"]
 
 
 @pytest.mark.parametrize("name", RESULT_NAMES)
