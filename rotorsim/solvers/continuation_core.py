@@ -1,0 +1,343 @@
+"""Scaled residual, bordered linear algebra and the Newton corrector of continuation.
+
+Rotor-agnostic (DESIGN section 1). A continuation problem is a callback
+
+    residual(x, lam) -> (R, dR/dx, dR/dlam)
+
+with ``R`` (m,), ``dR/dx`` (m, m) dense or scipy sparse and ``dR/dlam`` (m,). Everything
+here works on the *scaled* unknowns ``y = (x / x_scale, lam / lam_scale)`` (m + 1,) and the
+scaled residual ``R / r_scale``, so that metres, radians and newtons can be mixed: the
+arclength, tangents and tolerances are all measured in scaled units.
+
+The corrector solves the square bordered system of seed 002 eq 3.42,
+
+    R(y) = 0,    b . y = target,
+
+by Newton with an Armijo backtracking line search on ``||(R, b . y - target)||``; the
+pseudo-arclength constraint of eq 3.41 is the case ``b`` = predictor direction and
+``target = b . y_pred``; ``b = e_lam`` fixes the parameter. The tangent of eq 3.39 solves
+``[[dR/dy], [b^T]] z = e_{m+1}`` and is ``z / |z|``; the sign of the determinant of that
+bordered matrix is the branch-point test function.
+
+References
+----------
+Seed 002 (bearing-rotor thesis) section 3.5.2.2, eqs 3.39-3.42. E. L. Allgower, K. Georg,
+Introduction to Numerical Continuation Methods, SIAM 2003, chapters 2-3.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+import scipy.sparse as sp
+from numpy.typing import ArrayLike, NDArray
+
+from rotorsim.errors import ConvergenceError, RotorsimError
+from rotorsim.solvers.linear import Factorization, factorize
+from rotorsim.solvers.stats import Stats
+
+FloatArray = NDArray[np.float64]
+Matrix = Any
+"""A NumPy array or a scipy sparse matrix."""
+
+ResidualCallback = Callable[[FloatArray, float], "tuple[ArrayLike, Matrix, ArrayLike]"]
+"""``residual(x, lam) -> (R (m,), dR/dx (m, m) dense or sparse, dR/dlam (m,))``."""
+
+EVALUATION_ERRORS: tuple[type[BaseException], ...] = (
+    RotorsimError, ArithmeticError, ValueError, np.linalg.LinAlgError)
+"""Exceptions of the residual callback that count as a failed evaluation (the step is cut)
+rather than a programming error (anything else propagates)."""
+
+
+@dataclass(frozen=True, eq=False)
+class Evaluation:
+    """Scaled residual ``rh`` (m,), Jacobians ``jh`` (m, m) and ``jlh`` (m,) at ``y``."""
+
+    y: FloatArray
+    rh: FloatArray
+    jh: Matrix
+    jlh: FloatArray
+
+    @property
+    def residual(self) -> float:
+        """``max |R / r_scale|``."""
+        return float(np.max(np.abs(self.rh))) if self.rh.size else 0.0
+
+
+@dataclass(frozen=True, eq=False)
+class ScaledSystem:
+    """The residual callback seen in scaled unknowns.
+
+    Parameters
+    ----------
+    residual : callable
+        See :data:`ResidualCallback`.
+    x_scale, r_scale : arrays (m,)
+        Positive scales of the unknowns and of the residual components.
+    lam_scale : float
+        Positive scale of the parameter.
+    """
+
+    residual: ResidualCallback
+    x_scale: FloatArray
+    r_scale: FloatArray
+    lam_scale: float
+
+    @property
+    def m(self) -> int:
+        """Number of unknowns ``x``."""
+        return int(self.x_scale.size)
+
+    def to_y(self, x: FloatArray, lam: float) -> FloatArray:
+        """Scaled point ``(x / x_scale, lam / lam_scale)`` (m + 1,)."""
+        return np.concatenate([x / self.x_scale, [lam / self.lam_scale]])
+
+    def from_y(self, y: FloatArray) -> tuple[FloatArray, float]:
+        """Physical ``(x, lam)`` of a scaled point."""
+        return y[:-1] * self.x_scale, float(y[-1] * self.lam_scale)
+
+    def evaluate(self, y: FloatArray, stats: Stats) -> Evaluation:
+        """Scaled residual and Jacobians at ``y``.
+
+        Raises
+        ------
+        ConvergenceError
+            If the callback raises one of :data:`EVALUATION_ERRORS` or returns non-finite
+            or wrongly shaped values.
+        """
+        stats.residual_evaluations += 1
+        x, lam = self.from_y(y)
+        try:
+            r, jac, jlam = self.residual(x, lam)
+        except EVALUATION_ERRORS as exc:
+            raise ConvergenceError(f"residual evaluation failed at lam = {lam:.6g} "
+                                   f"({type(exc).__name__}: {exc})", "continuation") from exc
+        m = self.m
+        rh = np.asarray(r, dtype=float).reshape(-1) / self.r_scale
+        jlh = np.asarray(jlam, dtype=float).reshape(-1) * (self.lam_scale / self.r_scale)
+        if rh.shape != (m,) or jlh.shape != (m,) or tuple(jac.shape) != (m, m):
+            raise ConvergenceError(f"residual callback returned shapes {np.shape(r)}, "
+                                   f"{jac.shape}, {np.shape(jlam)}; expected ({m},), "
+                                   f"({m}, {m}), ({m},)", "continuation")
+        if sp.issparse(jac):
+            jh = sp.coo_matrix(jac, dtype=float)
+            jh.data = jh.data * (self.x_scale[jh.col] / self.r_scale[jh.row])
+            values = jh.data
+        else:
+            jh = np.asarray(jac, dtype=float) * (self.x_scale[None, :] / self.r_scale[:, None])
+            values = jh
+        if not (np.all(np.isfinite(rh)) and np.all(np.isfinite(jlh))
+                and np.all(np.isfinite(values))):
+            raise ConvergenceError(f"residual or Jacobian not finite at lam = {lam:.6g}",
+                                   "continuation")
+        return Evaluation(y, rh, jh, jlh)
+
+
+BORDER_WEIGHT = 1e-8
+"""Sparse bordered matrices carry the border row times ``w = BORDER_WEIGHT max|jh| /
+max|border|``. Row scaling leaves the solution unchanged, but keeps SuperLU's partial
+pivoting from choosing the dense border row as pivot (which fills the factors) unless the
+Jacobian part is nearly singular there; the constraint is then resolved to about
+``eps / BORDER_WEIGHT`` relative accuracy."""
+
+
+def bordered(jh: Matrix, jlh: FloatArray, border: FloatArray) -> tuple[Matrix, float]:
+    """``[[jh, jlh], [w border^T]]`` (m + 1, m + 1) and the row weight ``w``.
+
+    Dense for a dense ``jh`` (``w = 1``), else sparse CSC (duplicate entries of a COO
+    ``jh`` are summed) with ``w`` from :data:`BORDER_WEIGHT`. Multiply the last
+    right-hand side entry by ``w``.
+    """
+    if not sp.issparse(jh):
+        return np.block([[jh, jlh[:, None]], [border[None, :]]]), 1.0
+    size = max(float(np.max(np.abs(jh.data), initial=0.0)), float(np.max(np.abs(jlh))))
+    w = BORDER_WEIGHT * size / float(np.max(np.abs(border))) if size > 0.0 else 1.0
+    coo = jh.tocoo()
+    m = jlh.size
+    index = np.arange(m + 1)
+    rows = np.concatenate([coo.row, index[:-1], np.full(m + 1, m)])
+    cols = np.concatenate([coo.col, np.full(m, m), index])
+    data = np.concatenate([coo.data, jlh, w * border])
+    return sp.csc_matrix((data, (rows, cols)), shape=(m + 1, m + 1)), w
+
+
+def signed_log_det(fact: Factorization) -> tuple[int, float]:
+    """``(sign, log |det|)`` of a factorised matrix, without overflow.
+
+    Reads the LU factors kept by :class:`~rotorsim.solvers.linear.Factorization` (dense
+    LAPACK ``getrf`` or SuperLU): ``det = sign(P_r) sign(P_c) prod(diag U)``.
+    """
+    if fact._dense is not None:
+        lu, piv = fact._dense
+        diag = np.diag(lu)
+        swaps = int(np.count_nonzero(piv != np.arange(piv.size)))
+        perm_sign = -1 if swaps % 2 else 1
+    else:
+        diag = fact._sparse.U.diagonal()
+        perm_sign = _permutation_sign(fact._sparse.perm_r) \
+            * _permutation_sign(fact._sparse.perm_c)
+    if np.any(diag == 0.0):
+        return 0, -math.inf
+    negatives = int(np.count_nonzero(diag < 0.0))
+    sign = perm_sign * (-1 if negatives % 2 else 1)
+    return sign, float(np.sum(np.log(np.abs(diag))))
+
+
+def _permutation_sign(perm: NDArray[np.int_]) -> int:
+    """Sign of a permutation: ``(-1)^(n - cycles)``, cycles found by pointer doubling."""
+    n = perm.size
+    label = np.arange(n)
+    jump = np.asarray(perm)
+    for _ in range(max(1, int(n).bit_length())):
+        label = np.minimum(label, label[jump])
+        jump = jump[jump]
+    cycles = int(np.count_nonzero(label == np.arange(n)))
+    return -1 if (n - cycles) % 2 else 1
+
+
+@dataclass(frozen=True, eq=False)
+class Tangent:
+    """Unit tangent ``t`` (m + 1,) with ``border . t > 0`` and the determinant sign and
+    ``log |det|`` of the bordered matrix (sign is that of the matrix bordered by ``t``)."""
+
+    t: FloatArray
+    det_sign: int
+    log_det: float
+
+
+def tangent(ev: Evaluation, border: FloatArray, stats: Stats) -> Tangent | None:
+    """Tangent of the branch at ``ev.y`` from ``[[jh, jlh], [border^T]] z = e_{m+1}``.
+
+    Returns None when the bordered matrix is singular (a branch point, a non-smooth point
+    or a ``border`` orthogonal to the branch). Since ``border . z = 1`` the tangent keeps
+    the orientation of ``border``, and the determinant with ``border`` in the last row
+    has the sign of the determinant with ``t`` there (both are ``c . border`` and
+    ``c . t`` for the same cofactor vector ``c`` parallel to ``t``).
+    """
+    matrix, weight = bordered(ev.jh, ev.jlh, border)
+    try:
+        fact = factorize(matrix, stats=stats, where="tangent")
+    except ConvergenceError:
+        return None
+    rhs = np.zeros(ev.y.size)
+    rhs[-1] = weight
+    z = fact.solve(rhs)
+    size = float(np.linalg.norm(z))
+    if not (math.isfinite(size) and size > 0.0):
+        return None
+    sign, log_det = signed_log_det(fact)
+    return Tangent(z / size, sign, log_det - math.log(weight))
+
+
+@dataclass(frozen=True, eq=False)
+class Correction:
+    """Outcome of :func:`correct`: last iterate, its evaluation (None if the first
+    evaluation failed), iterations, whether it converged, and why not."""
+
+    y: FloatArray
+    evaluation: Evaluation | None
+    iterations: int
+    converged: bool
+    message: str = ""
+    evaluation_failed: bool = False
+
+
+@dataclass(frozen=True)
+class CorrectorOptions:
+    """Newton options of :func:`correct`: scaled residual tolerance, iterations, line
+    search, optionally a tolerance on the last scaled Newton correction (needed where
+    the residual is flat, e.g. quadratic near a branch point), and the longest scaled
+    Newton step (longer ones are shortened along their direction)."""
+
+    tol: float = 1e-10
+    max_iter: int = 10
+    max_backtracks: int = 10
+    armijo: float = 1e-4
+    step_tol: float | None = None
+    max_correction: float = math.inf
+
+
+def correct(system: ScaledSystem, y_start: FloatArray, border: FloatArray, target: float,
+            options: CorrectorOptions, stats: Stats) -> Correction:
+    """Newton with backtracking on ``R(y) = 0, border . y = target`` (seed 002 eq 3.42).
+
+    Converged when ``max |R / r_scale| <= tol`` and ``|border . y - target| <= tol`` (and,
+    with ``options.step_tol``, when the last Newton correction is below it too). Each
+    iteration factorises the bordered Jacobian once; the trial points of the line search
+    satisfy the Armijo condition ``m(a) <= (1 - 2 c a) m(0)`` on the merit
+    ``m = |F|^2 / 2`` (the Newton direction has slope ``-2 m(0)``). Once the residual is
+    below ``tol`` the full Newton step is taken (the merit is at round-off level).
+    """
+    y = np.array(y_start, dtype=float)
+    try:
+        ev = system.evaluate(y, stats)
+    except ConvergenceError as exc:
+        return Correction(y, None, 0, False, str(exc), evaluation_failed=True)
+    last_step = math.inf
+    for iteration in range(options.max_iter + 1):
+        g = float(border @ y) - target
+        small = max(ev.residual, abs(g)) <= options.tol
+        if small and (options.step_tol is None or last_step <= options.step_tol):
+            return Correction(y, ev, iteration, True)
+        if iteration == options.max_iter:
+            break
+        stats.iterations += 1
+        matrix, weight = bordered(ev.jh, ev.jlh, border)
+        try:
+            fact = factorize(matrix, stats=stats, where="corrector")
+        except ConvergenceError as exc:
+            return Correction(y, ev, iteration, False, str(exc))
+        step = -fact.solve(np.concatenate([ev.rh, [weight * g]]))
+        length = float(np.linalg.norm(step))
+        if length > options.max_correction:  # a trust region: shorten, keep the direction
+            step *= options.max_correction / length
+        last_step = float(np.max(np.abs(step)))
+        if small:
+            trial, accepted, message = y + step, None, ""
+            try:
+                accepted = system.evaluate(trial, stats)
+            except ConvergenceError as exc:
+                message = str(exc)
+        else:
+            merit = 0.5 * (float(ev.rh @ ev.rh) + g * g)
+            trial, accepted, message = _line_search(system, y, step, merit, border, target,
+                                                    options, stats)
+        if accepted is None:
+            return Correction(y, ev, iteration + 1, False,
+                              message or "line search failed to reduce the residual",
+                              evaluation_failed=bool(message))
+        y, ev = trial, accepted
+    return Correction(y, ev, options.max_iter, False,
+                      f"corrector did not converge in {options.max_iter} iterations "
+                      f"(residual {ev.residual:.3e})")
+
+
+def _line_search(system: ScaledSystem, y: FloatArray, step: FloatArray, merit0: float,
+                 border: FloatArray, target: float, options: CorrectorOptions,
+                 stats: Stats) -> tuple[FloatArray, Evaluation | None, str]:
+    """Backtrack along ``step`` until Armijo holds: ``(point, evaluation, "")``, or
+    ``(y, None, message)`` where the message is the last evaluation failure ("" when the
+    residual was finite but never decreased enough)."""
+    alpha = 1.0
+    failure = ""
+    for _ in range(options.max_backtracks):
+        trial = y + alpha * step
+        try:
+            ev = system.evaluate(trial, stats)
+        except ConvergenceError as exc:
+            merit, failure = math.inf, str(exc)
+        else:
+            g = float(border @ trial) - target
+            merit = 0.5 * (float(ev.rh @ ev.rh) + g * g)
+            if merit <= (1.0 - 2.0 * options.armijo * alpha) * merit0:
+                return trial, ev, ""
+            failure = ""
+        curvature = merit - merit0 + 2.0 * merit0 * alpha
+        quadratic = merit0 * alpha * alpha / curvature if math.isfinite(merit) \
+            and curvature > 0 else 0.25 * alpha
+        alpha = min(max(quadratic, 0.1 * alpha), 0.5 * alpha)
+    return y, None, failure

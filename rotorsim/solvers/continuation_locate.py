@@ -1,0 +1,143 @@
+"""Locate a sign change of a test function between two points of a continued branch.
+
+Between branch points ``y_0`` and ``y_1`` (scaled unknowns) a point at abscissa ``s`` along
+the chord ``u = (y_1 - y_0) / |y_1 - y_0|`` is found by re-correcting the cubic Hermite
+interpolant of the two points and their tangents on the hyperplane orthogonal to the chord
+of the *current* bracket. The Illinois (modified regula falsi) iteration shrinks the bracket
+around the sign change. Two safeguards keep the probes on the traced branch near a branch
+point, where a second branch crosses the hyperplane: the Hermite start is O(h^4) close to
+the branch, and a probe whose tangent leaves the cone of the bracket's end tangents (plus
+``CONE_SLACK``) is refused and replaced by bisection.
+
+References
+----------
+M. Dowell, P. Jarratt, BIT 11 (1971) 168-174 (the Illinois method). E. L. Allgower,
+K. Georg, Introduction to Numerical Continuation Methods, SIAM 2003, section 8.1.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from rotorsim.solvers.continuation_core import (
+    CorrectorOptions,
+    Evaluation,
+    FloatArray,
+    ScaledSystem,
+    Tangent,
+    correct,
+    tangent,
+)
+from rotorsim.solvers.stats import Stats
+
+TestFunction = Callable[[FloatArray, Evaluation, Tangent, FloatArray], "tuple[float, Any]"]
+"""``test(y, evaluation, tangent, border) -> (value, data)`` at a corrected point."""
+
+CONE_SLACK = 0.05
+"""Extra angle [rad] allowed between a probe's tangent and the bracket chord beyond twice
+the end tangents' own angles to it."""
+
+
+@dataclass(frozen=True, eq=False)
+class SegmentPoint:
+    """A corrected point: abscissa ``s`` on the segment chord, scaled ``y``, unit tangent
+    ``t`` oriented along the segment, test ``value`` and the test's extra ``data``."""
+
+    s: float
+    y: FloatArray
+    t: FloatArray
+    value: float
+    data: Any = None
+
+
+@dataclass(frozen=True, eq=False)
+class Segment:
+    """The branch between two of its points, with a test function to evaluate on it."""
+
+    system: ScaledSystem
+    corrector: CorrectorOptions
+    origin: FloatArray
+    direction: FloatArray
+    test: TestFunction
+
+    @classmethod
+    def between(cls, system: ScaledSystem, corrector: CorrectorOptions, y0: FloatArray,
+                y1: FloatArray, test: TestFunction) -> Segment:
+        """Segment from ``y0`` to ``y1`` (scaled)."""
+        chord = y1 - y0
+        return cls(system, corrector, y0, chord / np.linalg.norm(chord), test)
+
+    def endpoint(self, y: FloatArray) -> SegmentPoint | None:
+        """Re-correct a branch point (its chord hyperplane) and evaluate the test there."""
+        return self._corrected(y, self.direction, None)
+
+    def probe(self, lo: SegmentPoint, hi: SegmentPoint, s: float) -> SegmentPoint | None:
+        """Point near abscissa ``s`` in ``(lo.s, hi.s)``; None if it cannot be corrected
+        or leaves the bracket or its tangent cone."""
+        chord = hi.y - lo.y
+        length = float(np.linalg.norm(chord))
+        v = chord / length
+        sigma = (s - lo.s) / (hi.s - lo.s)
+        s2, s3 = sigma * sigma, sigma * sigma * sigma
+        start = ((2 * s3 - 3 * s2 + 1) * lo.y + (s3 - 2 * s2 + sigma) * length * lo.t
+                 + (3 * s2 - 2 * s3) * hi.y + (s3 - s2) * length * hi.t)
+        cone = 2.0 * max(_angle(lo.t, v), _angle(hi.t, v)) + CONE_SLACK
+        point = self._corrected(start, v, cone)
+        if point is None or not lo.s < point.s < hi.s:
+            return None
+        return point
+
+    def _corrected(self, start: FloatArray, border: FloatArray,
+                   cone: float | None) -> SegmentPoint | None:
+        stats = Stats()
+        corr = correct(self.system, start, border, float(border @ start), self.corrector,
+                       stats)
+        if not corr.converged or corr.evaluation is None:
+            return None
+        tan = tangent(corr.evaluation, border, stats)
+        if tan is None or (cone is not None and _angle(tan.t, border) > cone):
+            return None
+        value, data = self.test(corr.y, corr.evaluation, tan, border)
+        s = float(self.direction @ (corr.y - self.origin))
+        return SegmentPoint(s, corr.y, tan.t, value, data)
+
+
+def illinois(segment: Segment, lo: SegmentPoint, hi: SegmentPoint, tol: float,
+             max_iter: int) -> tuple[SegmentPoint, SegmentPoint]:
+    """Shrink the bracket ``[lo, hi]`` (opposite test signs) to width ``tol`` in ``s``.
+
+    Returns the final bracket (equal points if the test vanished exactly). A refused probe
+    is replaced by the bisection point; if that fails too the iteration stops early.
+    """
+    f_lo, f_hi = lo.value, hi.value
+    side = 0
+    for _ in range(max_iter):
+        if hi.s - lo.s <= tol:
+            break
+        s = hi.s - f_hi * (hi.s - lo.s) / (f_hi - f_lo)
+        mid = 0.5 * (lo.s + hi.s)
+        new = segment.probe(lo, hi, s if lo.s < s < hi.s else mid)
+        new = new if new is not None else segment.probe(lo, hi, mid)
+        if new is None:
+            break
+        if new.value == 0.0:
+            return new, new
+        if (new.value > 0.0) == (hi.value > 0.0):
+            hi, f_hi = new, new.value
+            f_lo = 0.5 * f_lo if side == -1 else f_lo
+            side = -1
+        else:
+            lo, f_lo = new, new.value
+            f_hi = 0.5 * f_hi if side == 1 else f_hi
+            side = 1
+    return lo, hi
+
+
+def _angle(a: FloatArray, b: FloatArray) -> float:
+    """Angle between unit vectors [rad]."""
+    return 2.0 * math.asin(min(1.0, 0.5 * float(np.linalg.norm(a - b))))

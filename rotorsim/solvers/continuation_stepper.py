@@ -1,0 +1,330 @@
+"""Pseudo-arclength continuation stepper: options, state, ``init`` and ``step``.
+
+The stepper follows the contract of DESIGN section 6: :class:`Continuation` is a frozen
+options record, ``init(residual, x0, lam0)`` corrects the starting point at fixed ``lam``
+and returns a :class:`ContinuationState`, and ``step(residual, state)`` returns the state
+at the next accepted point of the branch ``R(x, lam) = 0``. A state holds only numbers and
+arrays, so :mod:`rotorsim.solvers.continuation_checkpoint` stores it and a run resumes bit
+for bit.
+
+One step (seed 002 eqs 3.40-3.42):
+
+1. predictor ``y_p = y + ds b`` along the direction ``b`` kept in the state: the unit
+   tangent of the bordered system (eq 3.39), or the secant through the last two points
+   after a non-smooth point;
+2. corrector: damped Newton on ``R(y) = 0, b . (y - y_p) = 0`` (eqs 3.41-3.42);
+3. the new tangent ``t`` solves ``[[dR/dy], [b^T]] t = e`` at the new point. The step is
+   rejected and retried with ``ds / 2`` when the corrector fails, moves farther than
+   ``ds``, or the tangent turns by more than ``max_angle``. A turn that does not shrink
+   when the step is halved marks a corner (contact onset, clearance): the point is
+   accepted and the next predictor is the secant, as it is when the tangent solve fails;
+4. the next ``ds`` grows (at most x2) when the corrector needed fewer than
+   ``target_iterations`` iterations and the tangent turned little, and shrinks otherwise.
+
+A point beyond ``lam_min``/``lam_max`` is replaced by the point on the bound and ends the
+branch (status OK), as does a branch that closes on its starting point. When the step
+falls below ``min_step`` the branch stops with a failure status and keeps its points.
+
+References
+----------
+Seed 002 section 3.5.2.2, eqs 3.39-3.42. E. L. Allgower, K. Georg, Introduction to
+Numerical Continuation Methods, SIAM 2003, sections 2.2 and 6.1 (step-size control).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from dataclasses import dataclass
+from typing import Literal
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from rotorsim.errors import ConvergenceError, ModelError, Status
+from rotorsim.solvers.continuation_core import (
+    CorrectorOptions,
+    FloatArray,
+    ResidualCallback,
+    ScaledSystem,
+    Tangent,
+    correct,
+    tangent,
+)
+from rotorsim.solvers.continuation_state import (
+    ContinuationCounters,
+    ContinuationState,
+    Scale,
+    checked_scale,
+    resolve_scales,
+)
+from rotorsim.solvers.stats import Stats
+
+__all__ = ["Continuation", "ContinuationCounters", "ContinuationState"]
+
+CORNER_RATIO = 0.8
+"""A turn that keeps more than this fraction when the step is halved is a corner (a smooth
+curve halves it, a ``max(x, 0)**1.5`` contact law keeps 0.71 of it, a corner keeps all)."""
+
+
+@dataclass(frozen=True, eq=False)
+class _Accepted:
+    y: FloatArray
+    tangent: Tangent | None
+    iterations: int
+    residual: float
+    ds: float
+    turn: float
+    corner: bool
+
+
+@dataclass(frozen=True)
+class Continuation:
+    """Options of pseudo-arclength continuation of ``R(x, lam) = 0``.
+
+    Parameters
+    ----------
+    initial_step, min_step, max_step : float
+        Scaled arclength steps ``ds`` (see ``x_scale``): first trial (default
+        ``min(0.1, max_step)``), smallest before the branch stops with a failure, largest.
+    direction : {1, -1}
+        Initial direction of travel in ``lam``.
+    lam_min, lam_max : float
+        Parameter bounds; the branch ends on the bound it reaches.
+    max_points : int
+        Points of the branch, the starting point included (used by ``continue_branch``).
+    tol : float
+        Corrector tolerance on ``max |R / r_scale|``.
+    max_iter : int
+        Corrector iterations per trial step.
+    target_iterations : int
+        Corrector iterations aimed at by the step-size control.
+    max_angle : float
+        Largest turn of the tangent over one step [rad] before the step is halved.
+    x_scale, r_scale : float, sequence of m floats, or "auto"
+        Scales of the unknowns and of the residual. "auto": ``max |x0|`` (1 if zero) for
+        ``x``; for ``R`` the row norms ``max_j |dR_i/dx_j| x_scale_j`` at the start.
+    lam_scale : float or "auto"
+        Scale of the parameter ("auto": ``|lam0|``, 1 if zero). The arclength is
+        ``ds^2 = |dx / x_scale|^2 + (dlam / lam_scale)^2``.
+    max_backtracks : int
+        Line-search trials per corrector iteration.
+    detect_loops : bool
+        End the branch when it returns to its starting point (isolas, closed curves).
+
+    Examples
+    --------
+    >>> def circle(x, lam):
+    ...     return np.array([x[0]**2 + lam**2 - 1.0]), np.array([[2 * x[0]]]), np.array([2 * lam])
+    >>> cont = Continuation(initial_step=0.2, max_step=0.2)
+    >>> state = cont.init(circle, [0.9], 0.0)
+    >>> round(float(state.x[0]), 12), state.tangent.round(6).tolist()
+    (1.0, [0.0, 1.0])
+    >>> state = cont.step(circle, state)
+    >>> state.point, round(float(state.x[0] ** 2 + state.lam ** 2), 12)
+    (1, 1.0)
+    """
+
+    initial_step: float | None = None
+    min_step: float = 1e-6
+    max_step: float = 1.0
+    direction: int = 1
+    lam_min: float = -math.inf
+    lam_max: float = math.inf
+    max_points: int = 500
+    tol: float = 1e-10
+    max_iter: int = 10
+    target_iterations: int = 4
+    max_angle: float = 0.5
+    x_scale: Scale = 1.0
+    r_scale: Scale = 1.0
+    lam_scale: float | Literal["auto"] = 1.0
+    max_backtracks: int = 10
+    detect_loops: bool = True
+
+    def __post_init__(self) -> None:
+        where = "Continuation"
+        if self.initial_step is None:
+            object.__setattr__(self, "initial_step", max(min(0.1, self.max_step),
+                                                         self.min_step))
+        assert self.initial_step is not None
+        if not 0 < self.min_step <= self.initial_step <= self.max_step < math.inf:
+            raise ModelError("need 0 < min_step <= initial_step <= max_step < inf, got "
+                             f"{self.min_step}, {self.initial_step}, {self.max_step}", where)
+        if self.direction not in (1, -1):
+            raise ModelError(f"direction must be 1 or -1, got {self.direction!r}", where)
+        if not self.lam_min < self.lam_max:
+            raise ModelError(f"need lam_min < lam_max, got {self.lam_min}, {self.lam_max}",
+                             where)
+        if self.max_points < 2 or self.max_iter < 1 or self.target_iterations < 1 \
+                or self.max_backtracks < 1:
+            raise ModelError("need max_points >= 2, max_iter >= 1, target_iterations >= 1 "
+                             "and max_backtracks >= 1", where)
+        if not (self.tol > 0 and 0 < self.max_angle < math.pi):
+            raise ModelError("need tol > 0 and 0 < max_angle < pi", where)
+        for name in ("x_scale", "r_scale", "lam_scale"):
+            object.__setattr__(self, name, checked_scale(name, getattr(self, name)))
+
+    @property
+    def corrector(self) -> CorrectorOptions:
+        """Newton options of the corrector."""
+        return CorrectorOptions(self.tol, self.max_iter, self.max_backtracks)
+
+    def init(self, residual: ResidualCallback, x0: ArrayLike, lam0: float) -> ContinuationState:
+        """Correct ``x0`` at fixed ``lam0`` and compute the first tangent.
+
+        Raises
+        ------
+        ModelError
+            For a badly shaped or non-finite start or ``lam0`` outside the bounds.
+        ConvergenceError
+            If the starting point does not converge or has no tangent.
+        """
+        x = np.array(x0, dtype=float).reshape(-1)
+        if not (x.size and np.all(np.isfinite(x)) and math.isfinite(lam0)):
+            raise ModelError(f"x0 and lam0 must be finite, got {x0!r}, {lam0!r}", "continuation")
+        if not self.lam_min <= lam0 <= self.lam_max:
+            raise ModelError(f"lam0 = {lam0} is outside [{self.lam_min}, {self.lam_max}]",
+                             "continuation")
+        stats = Stats()
+        system = ScaledSystem(residual, *resolve_scales(
+            residual, x, float(lam0), self.x_scale, self.r_scale, self.lam_scale, stats))
+        y_start = system.to_y(x, float(lam0))
+        e_lam = np.zeros(x.size + 1)
+        e_lam[-1] = 1.0
+        corr = correct(system, y_start, e_lam, float(y_start[-1]), self.corrector, stats)
+        if not corr.converged or corr.evaluation is None:
+            raise ConvergenceError(f"starting point not converged at fixed lam = {lam0}: "
+                                   f"{corr.message}", "continuation", step=0,
+                                   iteration=corr.iterations)
+        tan = tangent(corr.evaluation, e_lam, stats) or tangent(
+            corr.evaluation, np.full(x.size + 1, (x.size + 1) ** -0.5), stats)
+        if tan is None:
+            raise ConvergenceError("no tangent at the starting point: the bordered "
+                                   "Jacobian is singular", "continuation", step=0)
+        flip = self.direction if abs(tan.t[-1]) < 1e-12 else \
+            self.direction * (1 if tan.t[-1] > 0 else -1)
+        t = flip * tan.t
+        xc, lam = system.from_y(corr.y)
+        return ContinuationState(
+            xc, lam, t, t, float(self.initial_step or 0.0), 0, corr.iterations, 0.0, True,
+            flip * tan.det_sign, tan.log_det, corr.evaluation.residual, system.x_scale,
+            system.r_scale, system.lam_scale, corr.y, t,
+            ContinuationCounters().plus(stats, point_iterations=corr.iterations))
+
+    def step(self, residual: ResidualCallback, state: ContinuationState) -> ContinuationState:
+        """Next point of the branch (or ``state`` marked finished with a reason)."""
+        if state.finished:
+            return state
+        system = state.system(residual)
+        stats = Stats()
+        y0 = system.to_y(state.x, state.lam)
+        accepted, rejected, failure = self._advance(system, state, y0, stats)
+        if accepted is None:
+            status = Status.FAILED if failure[1] else Status.NOT_CONVERGED
+            return dataclasses.replace(
+                state, counters=state.counters.plus(stats, rejected=rejected),
+                status=int(status), finished=True,
+                reason=f"step size below min_step = {self.min_step:g} ({failure[0]})")
+        lam_new = float(accepted.y[-1] * system.lam_scale)
+        if not self.lam_min <= lam_new <= self.lam_max:
+            return self._land_on_bound(system, state, y0, accepted, stats, rejected)
+        return self._accept(system, state, y0, accepted, stats, rejected)
+
+    def _advance(self, system: ScaledSystem, state: ContinuationState, y0: FloatArray,
+                 stats: Stats) -> tuple[_Accepted | None, int, tuple[str, bool]]:
+        """Predict and correct, halving ``ds`` on failure: ``(accepted, rejections,
+        (last failure, evaluation failed))``."""
+        b, ds = state.predictor, state.step_size
+        rejected, previous_turn = 0, math.inf
+        while True:
+            y_pred = y0 + ds * b
+            corr = correct(system, y_pred, b, float(b @ y_pred),
+                           dataclasses.replace(self.corrector, max_correction=ds), stats)
+            failure = (corr.message, corr.evaluation_failed)
+            if corr.converged and np.linalg.norm(corr.y - y_pred) > ds:
+                failure = ("the corrector moved farther than the step", False)
+            elif corr.converged and corr.evaluation is not None:
+                tan = tangent(corr.evaluation, b, stats)
+                turn = 0.0 if tan is None else _angle(b, tan.t)
+                smooth_turn = tan is not None and turn <= self.max_angle
+                corner = ds <= self.min_step or turn > CORNER_RATIO * previous_turn
+                if smooth_turn or corner or tan is None:
+                    return (_Accepted(corr.y, tan, corr.iterations, corr.evaluation.residual,
+                                      ds, turn, not smooth_turn), rejected, failure)
+                previous_turn = turn
+                failure = (f"the tangent turned by {turn:.3g} rad > max_angle", False)
+            rejected += 1
+            if ds <= self.min_step:
+                return None, rejected, failure
+            ds = max(0.5 * ds, self.min_step)
+
+    def _accept(self, system: ScaledSystem, state: ContinuationState, y0: FloatArray,
+                acc: _Accepted, stats: Stats, rejected: int) -> ContinuationState:
+        """State at an accepted point, with the next predictor and step size."""
+        chord = acc.y - y0
+        secant = chord / np.linalg.norm(chord)
+        use_secant = acc.corner
+        factor = min(2.0, max(0.5, self.target_iterations / max(acc.iterations, 1)))
+        if acc.turn > 0.0:
+            factor = min(factor, max(0.5, 0.5 * self.max_angle / acc.turn))
+        if rejected or use_secant:
+            factor = min(factor, 1.0)
+        t = secant if acc.tangent is None else acc.tangent.t
+        x, lam = system.from_y(acc.y)
+        new = dataclasses.replace(
+            state, x=x, lam=lam, tangent=t, predictor=secant if use_secant else t,
+            step_size=min(self.max_step, max(self.min_step, acc.ds * factor)),
+            point=state.point + 1, iterations=acc.iterations, last_step=acc.ds,
+            smooth=not use_secant, det_sign=0 if acc.tangent is None else acc.tangent.det_sign,
+            log_det=math.nan if acc.tangent is None else acc.tangent.log_det,
+            residual=acc.residual,
+            counters=state.counters.plus(stats, rejected=rejected, secant=int(use_secant),
+                                         point_iterations=acc.iterations))
+        if self.detect_loops and state.point >= 1 and _closes(state, y0, acc.y):
+            return dataclasses.replace(new, finished=True, reason="closed loop")
+        return new
+
+    def _land_on_bound(self, system: ScaledSystem, state: ContinuationState, y0: FloatArray,
+                       acc: _Accepted, stats: Stats, rejected: int) -> ContinuationState:
+        """Replace a point beyond a bound by the point on it and end the branch."""
+        lam_new = float(acc.y[-1] * system.lam_scale)
+        name, bound = ("lam_max", self.lam_max) if lam_new > self.lam_max \
+            else ("lam_min", self.lam_min)
+        reason = f"{name} = {bound:g} reached"
+        done = dataclasses.replace(state, finished=True, reason=reason,
+                                   counters=state.counters.plus(stats, rejected=rejected))
+        if state.lam == bound:
+            return done
+        frac = (bound - state.lam) / (lam_new - state.lam)
+        e_lam = np.zeros(y0.size)
+        e_lam[-1] = 1.0
+        corr = correct(system, y0 + frac * (acc.y - y0), e_lam, bound / system.lam_scale,
+                       self.corrector, stats)
+        ev = corr.evaluation if corr.converged else None
+        tan = None if ev is None else tangent(ev, state.predictor, stats)
+        if ev is None or tan is None:
+            return dataclasses.replace(
+                done, counters=state.counters.plus(stats, rejected=rejected),
+                reason=f"{reason} (the point on the bound did not converge: "
+                       f"{corr.message or 'singular'})")
+        landed = _Accepted(corr.y, tan, acc.iterations + corr.iterations, ev.residual,
+                           float(np.linalg.norm(corr.y - y0)), _angle(state.predictor, tan.t),
+                           False)
+        new = self._accept(system, state, y0, landed, stats, rejected)
+        return dataclasses.replace(new, finished=True, reason=reason)
+
+
+def _angle(a: FloatArray, b: FloatArray) -> float:
+    """Angle between two unit vectors [rad], accurate for small angles."""
+    return 2.0 * math.asin(min(1.0, 0.5 * float(np.linalg.norm(a - b))))
+
+
+def _closes(state: ContinuationState, y0: FloatArray, y1: FloatArray) -> bool:
+    """Does the chord ``y0 -> y1`` pass by the branch's first point, in its direction?"""
+    u = y1 - y0
+    length2 = float(u @ u)
+    s = float((state.origin - y0) @ u) / length2
+    if not 0.0 < s <= 1.0 or float(state.origin_tangent @ u) <= 0.0:
+        return False
+    return float(np.linalg.norm(y0 + s * u - state.origin)) <= 0.1 * math.sqrt(length2)
