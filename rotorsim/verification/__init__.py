@@ -1,0 +1,11 @@
+"""Verification models: slow, detailed counterparts of the fast elements.
+
+Nothing is imported here, so ``import rotorsim.verification`` stays light; import the
+modules themselves (they need scikit-fem, and meshio to write files):
+
+* :mod:`rotorsim.verification.ring_fe` -- 2D plane-stress finite-element model of a radial
+  cylindrical roller bearing with flexible rings (seed 001 section 3, the counterpart of its
+  NX Nastran verification): :func:`~rotorsim.verification.ring_fe.ring_fe_roller_loads`,
+  :class:`~rotorsim.verification.ring_fe.RingFEResult`,
+  :func:`~rotorsim.verification.ring_fe.export_vtu`.
+"""
