@@ -60,7 +60,7 @@ def model() -> tuple[rs.Rotor, list[RollingBearing]]:
 
 def rotorsim_run(t_end: float, dt: float, nodes: list[int] | None = None):
     rotor, bearings = model()
-    return transient(rotor, bearings, t_span=t_end, dt=dt, speed=SPEED, unbalance=UNBALANCE,
+    return transient(rotor, t_end, dt, nonlinear=bearings, speed=SPEED, unbalance=UNBALANCE,
                      nodes=[10] if nodes is None else nodes, times=[t_end])
 
 
@@ -141,7 +141,7 @@ def memory(n_steps: int) -> dict[str, float]:
     out = {}
     for k in (n_steps, 10 * n_steps):
         tracemalloc.start()
-        transient(rotor, t_span=k * 1e-5, dt=1e-5, speed=SPEED, unbalance=UNBALANCE,
+        transient(rotor, k * 1e-5, 1e-5, speed=SPEED, unbalance=UNBALANCE,
                   nodes=[10], every=10, gravity=None, initial="zero")
         out[f"{k} steps peak MB"] = tracemalloc.get_traced_memory()[1] / 1e6
         tracemalloc.stop()

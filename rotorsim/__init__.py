@@ -12,6 +12,12 @@ The workflow is model -> assemble -> analyse -> save/plot::
 
     modes = rs.modal(rotor, speed=0.0, num_modes=8)       # ModalResult
     system = rs.assemble(rotor)                           # sparse M, C, G, K + DofMap
+    run = rs.transient(rotor, 0.5, 1e-4, speed=rs.LinearSpeed(0, 300, 0, 0.5),
+                       unbalance=[(2, 1e-4, 0.0)])        # TransientResult (run-up)
+
+Rolling bearings (``rs.RollingBearing``) go into the rotor beside the linear bearings; the
+transient and static analyses use them as they are, the linear analyses after
+``rs.linearize_rolling_bearings(rotor)`` at the static load.
 
 All quantities are SI (m, kg, s, N, rad, rad/s). Importing rotorsim pulls in numpy and
 scipy only; plotting imports matplotlib lazily.
@@ -28,6 +34,7 @@ from rotorsim.analyses.linearized_rotor import (
     linearize_rolling_bearings,
 )
 from rotorsim.analyses.modal import modal
+from rotorsim.analyses.speed_profile import ConstantSpeed, LinearSpeed, SpeedFunction
 from rotorsim.analyses.static import static
 from rotorsim.analyses.sweep import (
     Grid,
@@ -36,6 +43,8 @@ from rotorsim.analyses.sweep import (
     Uniform,
     sweep,
 )
+from rotorsim.analyses.transient import transient
+from rotorsim.analyses.transient_loads import BaseExcitation
 from rotorsim.assembly.dof_map import DofMap
 from rotorsim.assembly.system import RotorSystem, SystemMatrices, assemble
 from rotorsim.elements.base import DOF_NAMES, ElementMatrices
@@ -65,16 +74,24 @@ from rotorsim.results.modal import ModalResult
 from rotorsim.results.orbits import Ellipse, ellipse
 from rotorsim.results.static import StaticResult
 from rotorsim.results.sweep import SweepResult
+from rotorsim.results.transient import TransientResult
+from rotorsim.time_integration.adams import Adams
+from rotorsim.time_integration.adaptive import Adaptive
+from rotorsim.time_integration.newmark import Newmark
 
 __version__ = "0.1.0"
 
 __all__ = [
     "DOF_NAMES",
+    "Adams",
+    "Adaptive",
     "BallBearing",
+    "BaseExcitation",
     "BearingElement",
     "BearingEquilibriumResult",
     "CampbellResult",
     "CentrifugalBearing",
+    "ConstantSpeed",
     "ConvergenceError",
     "CriticalSpeedMapResult",
     "CriticalSpeeds",
@@ -84,12 +101,14 @@ __all__ = [
     "Ellipse",
     "FrequencyResponseResult",
     "Grid",
+    "LinearSpeed",
     "LinearizationPoint",
     "LinearizedRotor",
     "Material",
     "ModalResult",
     "Model",
     "ModelError",
+    "Newmark",
     "Normal",
     "PointMass",
     "ResultsFileError",
@@ -101,11 +120,13 @@ __all__ = [
     "RotorsimError",
     "Sample",
     "ShaftElement",
+    "SpeedFunction",
     "StaticResult",
     "Status",
     "StiffnessVariation",
     "SweepResult",
     "SystemMatrices",
+    "TransientResult",
     "Uniform",
     "assemble",
     "bearing_equilibrium",
@@ -128,5 +149,6 @@ __all__ = [
     "static",
     "stiffness_over_pass",
     "sweep",
+    "transient",
     "unbalance_response",
 ]

@@ -182,8 +182,9 @@ def _same_default(obj: Any, name: str, actual: Any, documented: str) -> bool:
     from rotorsim.elements.rolling import StraightProfile
     from rotorsim.io.analysis_spec import Loads
 
-    value = eval(documented, {"nan": math.nan, "Status": rs.Status, "Loads": Loads,
-                              "StraightProfile": StraightProfile})
+    value = eval(documented, {"nan": math.nan, "inf": math.inf, "Status": rs.Status,
+                              "Loads": Loads, "StraightProfile": StraightProfile,
+                              "Newmark": rs.Newmark})
     if repr(actual) == "<factory>":  # a dataclass field with default_factory
         [field] = [f for f in dataclasses.fields(obj) if f.name == name]
         actual = field.default_factory()  # type: ignore[operator]

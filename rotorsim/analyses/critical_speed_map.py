@@ -12,6 +12,7 @@ from scipy.interpolate import CubicSpline
 from scipy.optimize import brentq
 
 from rotorsim.analyses.critical_speeds import solve_critical_speeds
+from rotorsim.analyses.system_input import require_linear
 from rotorsim.assembly.system import assemble
 from rotorsim.elements.linear_bearing import BearingElement
 from rotorsim.errors import ConvergenceError, ModelError, Status
@@ -94,6 +95,7 @@ def critical_speed_map(
     if not isinstance(rotor, Rotor):
         raise ModelError(f"needs a Rotor (its bearings are replaced), got {type(rotor).__name__}",
                          where)
+    require_linear(rotor)
     if on_failure not in ("raise", "record"):
         raise ModelError(f"on_failure must be 'raise' or 'record', got {on_failure!r}", where)
     grid = _stiffness_grid(stiffness, num_points, stiffness_range)

@@ -121,7 +121,7 @@ class LinearizedRotor:
 
 def linearize_rolling_bearings(
     rotor: Rotor,
-    rolling_bearings: Sequence[Any],
+    rolling_bearings: Sequence[Any] | None = None,
     *,
     points: Sequence[LinearizationPoint] | None = None,
     gravity: float | None = STANDARD_GRAVITY,
@@ -137,9 +137,10 @@ def linearize_rolling_bearings(
     Parameters
     ----------
     rotor : Rotor
-        Shaft, disks, point masses and linear bearings (no rolling bearings).
-    rolling_bearings : sequence of RollingBearing
-        The rolling bearings, on nodes of ``rotor``.
+        Shaft, disks, point masses and linear bearings, and possibly its rolling bearings
+        (``nonlinear_elements``).
+    rolling_bearings : sequence of RollingBearing, optional
+        More rolling bearings, on nodes of ``rotor``, after the rotor's own.
     points : sequence of LinearizationPoint, optional
         One per bearing; default all ``"static"``.
     gravity, direction, loads, speed
@@ -178,7 +179,8 @@ def linearize_rolling_bearings(
     where = "linearize_rolling_bearings"
     if not isinstance(rotor, Rotor):
         raise ModelError(f"needs a Rotor, got {type(rotor).__name__}", where)
-    rolling = tuple(rolling_bearings)
+    rolling = (*rotor.nonlinear_elements, *(rolling_bearings or ()))
+    rotor = rotor.linear_part()
     at = tuple(points) if points is not None else tuple(LinearizationPoint() for _ in rolling)
     if len(at) != len(rolling) or not all(isinstance(p, LinearizationPoint) for p in at):
         raise ModelError(f"give one LinearizationPoint per rolling bearing ({len(rolling)})",

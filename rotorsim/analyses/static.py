@@ -10,6 +10,7 @@ A nonlinear static analysis replaces ``_solve_restrained`` by a Newton iteration
 
 from __future__ import annotations
 
+import dataclasses
 from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any
@@ -59,6 +60,13 @@ def static(
     the problem has no equilibrium and :class:`ModelError` says which direction is unsupported;
     otherwise the motion is removed by holding one DOF (e.g. ``uz`` of node 0) at zero.
 
+    With nonlinear elements (rolling bearings in ``rotor.nonlinear_elements``) the
+    equilibrium ``K q + r(q) = f`` is solved by Newton's method with a line search on the
+    total potential energy (:func:`rotorsim.analyses.linearized_rotor.linearize_rolling_bearings`,
+    relative residual 1e-10); the result then lists each rolling bearing's reaction on the
+    shaft beside the linear bearings, and ``linearize_rolling_bearings(rotor).equilibria``
+    gives the rolling-element loads.
+
     Parameters
     ----------
     rotor : Rotor or RotorSystem
@@ -107,6 +115,8 @@ def static(
         raise ModelError(f"speed must be finite, got {speed!r}", "static")
     if not np.isfinite(rigid_tol) or rigid_tol <= 0:
         raise ModelError(f"rigid_tol must be > 0, got {rigid_tol!r}", "static")
+    if isinstance(rotor, Rotor) and rotor.nonlinear_elements:
+        return _nonlinear_static(rotor, gravity, direction, loads, float(speed))
     system = as_system(rotor)
     model = rotor if isinstance(rotor, Rotor) else None
     g = 0.0 if gravity is None else float(gravity)
@@ -133,6 +143,17 @@ def static(
         stats=stats.finish(), summary=system.summary,
         **extra,
     )
+
+
+def _nonlinear_static(rotor: Rotor, gravity: float | None, direction: ArrayLike,
+                      loads: Sequence[tuple[int, str, float]], speed: float) -> StaticResult:
+    from rotorsim.analyses.linearized_rotor import linearize_rolling_bearings
+
+    lin = linearize_rolling_bearings(rotor, gravity=gravity, direction=direction, loads=loads,
+                                     speed=speed, tol=1e-10, max_iter=50)
+    return dataclasses.replace(lin.static, options={
+        **lin.static.options, "nonlinear_elements": len(rotor.nonlinear_elements),
+        "newton_iterations": lin.iterations, "newton_residual": lin.residual})
 
 
 _POST_KEYS = ("bearing_nodes", "bearing_forces", "bearing_moments", "constraint_reactions",

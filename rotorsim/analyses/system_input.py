@@ -8,9 +8,31 @@ from rotorsim.model.rotor import Rotor
 
 
 def as_system(model: Rotor | RotorSystem) -> RotorSystem:
-    """Assemble ``model`` if it is a :class:`Rotor`; pass a :class:`RotorSystem` through."""
+    """Assemble ``model`` if it is a :class:`Rotor`; pass a :class:`RotorSystem` through.
+
+    Linear analyses call it: a model with nonlinear elements is refused (they would be
+    silently left out), with the way to linearise them.
+    """
     if isinstance(model, RotorSystem):
-        return model
-    if isinstance(model, Rotor):
-        return assemble(model)
-    raise ModelError(f"expected a Rotor or RotorSystem, got {type(model).__name__}", "model")
+        system = model
+    elif isinstance(model, Rotor):
+        require_linear(model)
+        system = assemble(model)
+    else:
+        raise ModelError(f"expected a Rotor or RotorSystem, got {type(model).__name__}",
+                         "model")
+    if system.nonlinear is not None:
+        raise ModelError(NONLINEAR_HINT.format(len(system.nonlinear.elements)), "model")
+    return system
+
+
+NONLINEAR_HINT = ("the model has {} nonlinear elements (rolling bearings), which a linear "
+                  "analysis cannot use: linearise them at the static load with "
+                  "rs.linearize_rolling_bearings(rotor).rotor, or run rs.transient / "
+                  "rs.static")
+
+
+def require_linear(rotor: Rotor) -> None:
+    """Raise :class:`ModelError` when ``rotor`` has nonlinear elements."""
+    if rotor.nonlinear_elements:
+        raise ModelError(NONLINEAR_HINT.format(len(rotor.nonlinear_elements)), "model")

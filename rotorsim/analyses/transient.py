@@ -61,10 +61,10 @@ then cost less than scipy.sparse's call overhead."""
 
 def transient(
     model: Rotor | RotorSystem,
-    nonlinear: Sequence[NonlinearElement] = (),
-    *,
-    t_span: float | Sequence[float],
+    t_end: float | Sequence[float],
     dt: float,
+    *,
+    nonlinear: Sequence[NonlinearElement] = (),
     speed: float | SpeedProfile | Callable[[float], float] = 0.0,
     unbalance: Sequence[tuple[int, float, float]] = (),
     gravity: float | None = STANDARD_GRAVITY,
@@ -82,19 +82,20 @@ def transient(
     resume: str | os.PathLike[str] | None = None,
     progress: bool = False,
 ) -> TransientResult:
-    """Integrate the rotor's equation of motion over ``t_span``.
+    """Integrate the rotor's equation of motion from 0 (or ``t0``) to ``t_end``.
 
     Parameters
     ----------
     model : Rotor or RotorSystem
-        The rotor (linear bearings included); a RotorSystem assembled with its nonlinear
-        elements may be passed instead of ``model`` + ``nonlinear``.
-    nonlinear : sequence of NonlinearElement
-        Nonlinear elements, e.g. :class:`~rotorsim.elements.rolling.element.RollingBearing`.
-    t_span : float or (t0, t_end)
-        Time span [s] (a number means ``(0, t_end)``).
+        The rotor with its linear bearings and its nonlinear elements (rolling bearings),
+        or a RotorSystem assembled with them.
+    t_end : float or (t0, t_end)
+        End time [s] (from 0), or the time span.
     dt : float
         Time step [s] (first trial step when adaptive).
+    nonlinear : sequence of NonlinearElement
+        More nonlinear elements, e.g.
+        :class:`~rotorsim.elements.rolling.element.RollingBearing` (with a Rotor only).
     speed : float, callable or speed profile
         Spin speed [rad/s]: a constant, :class:`~.speed_profile.LinearSpeed` (run-up or
         coast-down), :class:`~.speed_profile.SpeedFunction` or any ``W(t)``.
@@ -111,7 +112,8 @@ def transient(
     base : BaseExcitation, optional
         Acceleration of the base (seed 002 eq 3.43); coordinates are then relative to it.
     method : str or TimeStepper
-        ``"average_acceleration"`` (default), ``"linear_acceleration"``, ``"hht"``,
+        ``"average_acceleration"`` (default, alias ``"newmark"``), ``"linear_acceleration"``,
+        ``"hht"``,
         ``"generalized_alpha"``, ``"adams"`` (enhanced 4th-order Adams, seed 002 App. F),
         ``"adaptive"`` (error-controlled average acceleration) or a stepper object.
     initial : {"static", "zero"} or (q0, v0)
@@ -150,7 +152,7 @@ def transient(
     >>> shaft = [rs.ShaftElement(L=0.25, idl=0.0, odl=0.05, material=steel)] * 4
     >>> rotor = rs.Rotor(shaft, bearing_elements=[rs.BearingElement(n=0, kxx=1e7, cxx=1e3),
     ...                                           rs.BearingElement(n=4, kxx=1e7, cxx=1e3)])
-    >>> res = transient(rotor, t_span=0.05, dt=1e-4, speed=300.0, unbalance=[(2, 1e-4, 0.0)],
+    >>> res = transient(rotor, 0.05, 1e-4, speed=300.0, unbalance=[(2, 1e-4, 0.0)],
     ...                 gravity=None, initial="zero", nodes=[2])
     >>> res.q.shape, res.dof_labels[:2]
     ((501, 6), ['2:ux', '2:uy'])
@@ -158,7 +160,7 @@ def transient(
     if not (isinstance(dt, int | float) and np.isfinite(dt) and dt > 0):
         raise ModelError(f"dt must be a positive number [s], got {dt!r}", f"{WHERE}.dt")
     system = _system(model, nonlinear)
-    t0, t_end = _span(t_span)
+    t0, t_end = _span(t_end)
     profile = as_speed_profile(speed).bind(t0, t_end, max(4096, int((t_end - t0) / dt)))
     problem, loads_fn = _problem(system, profile, t0, unbalance, gravity, direction, loads,
                                  forces, base)
@@ -196,10 +198,10 @@ def _span(t_span: float | Sequence[float]) -> tuple[float, float]:
     try:
         t0, t_end = (float(x) for x in values)
     except (TypeError, ValueError):
-        raise ModelError(f"t_span must be t_end or (t0, t_end), got {t_span!r}",
+        raise ModelError(f"t_end must be a time or (t0, t_end), got {t_span!r}",
                          WHERE) from None
     if not (np.isfinite(t0) and np.isfinite(t_end) and t_end > t0):
-        raise ModelError(f"t_span must be finite with t_end > t0, got {t_span!r}", WHERE)
+        raise ModelError(f"t_end must be finite and after t0, got {t_span!r}", f"{WHERE}.t_end")
     return t0, t_end
 
 
@@ -247,6 +249,8 @@ def _stepper(method: str | TimeStepper) -> TimeStepper:
         if not isinstance(method, TimeStepper):
             raise ModelError(f"not a time stepper: {method!r}", f"{WHERE}.method")
         return method
+    if method == "newmark":
+        return Newmark.average_acceleration()
     if method == "adams":
         return Adams()
     if method == "adaptive":

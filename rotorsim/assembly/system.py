@@ -97,8 +97,8 @@ def assemble(rotor: Rotor, nonlinear: Sequence[NonlinearElement] = ()) -> RotorS
         The model.
     nonlinear : sequence of NonlinearElement, optional
         Nonlinear elements (e.g. :class:`~rotorsim.elements.rolling.element.RollingBearing`)
-        on nodes of ``rotor``, indexed in ``RotorSystem.nonlinear``; their DOFs that are
-        fixed or unconnected stay at zero.
+        on nodes of ``rotor``, besides ``rotor.nonlinear_elements``; all are indexed in
+        ``RotorSystem.nonlinear``. Their DOFs that are fixed or unconnected stay at zero.
 
     Returns
     -------
@@ -122,9 +122,10 @@ def assemble(rotor: Rotor, nonlinear: Sequence[NonlinearElement] = ()) -> RotorS
         system.summary["inactive_dofs"] = [
             f"{i // DOFS_PER_NODE}:{DOF_NAMES[i % DOFS_PER_NODE]}" for i in inactive
         ]
-    if not nonlinear:
+    elements = (*rotor.nonlinear_elements, *nonlinear)
+    if not elements:
         return system
-    gathered = NonlinearAssembly.build(nonlinear, system.dof_map.full_to_free, rotor.n_nodes)
+    gathered = NonlinearAssembly.build(elements, system.dof_map.full_to_free, rotor.n_nodes)
     summary = {**system.summary, "nonlinear_elements": len(gathered.elements)}
     return dataclasses.replace(system, nonlinear=gathered, summary=summary)
 

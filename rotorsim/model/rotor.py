@@ -6,10 +6,11 @@ import dataclasses
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, field
 from functools import cached_property
+from typing import Any
 
 import numpy as np
 
-from rotorsim.elements.base import DOF_NAMES, FloatArray
+from rotorsim.elements.base import DOF_NAMES, FloatArray, NonlinearElement
 from rotorsim.elements.disk import DiskElement, PointMass
 from rotorsim.elements.linear_bearing import BearingElement
 from rotorsim.elements.shaft import ShaftElement
@@ -34,6 +35,11 @@ class Rotor:
         DOFs held at zero, ``dof`` one of ``ux, uy, uz, rx, ry, rz``.
     tag : str, optional
         Model name.
+    nonlinear_elements : sequence of NonlinearElement, optional
+        Nonlinear elements such as :class:`~rotorsim.elements.rolling.element.RollingBearing`
+        (a nonlinear element given among ``bearing_elements`` is moved here). Transient
+        and static analyses use them; linear analyses need them linearised first
+        (:func:`rotorsim.linearize_rolling_bearings`).
 
     Examples
     --------
@@ -51,6 +57,7 @@ class Rotor:
     point_mass_elements: Sequence[PointMass] = ()
     fixed: Sequence[tuple[int, str]] = ()
     tag: str = "rotor"
+    nonlinear_elements: Sequence[Any] = ()
     n_shaft_nodes: int = field(init=False)
     n_nodes: int = field(init=False)
 
@@ -70,6 +77,15 @@ class Rotor:
         object.__setattr__(self, "n_shaft_nodes", len(shaft) + 1)
         for name in ("disk_elements", "bearing_elements", "point_mass_elements"):
             object.__setattr__(self, name, tuple(getattr(self, name)))
+        moved = tuple(b for b in self.bearing_elements if _is_nonlinear(b))
+        object.__setattr__(self, "bearing_elements",
+                           tuple(b for b in self.bearing_elements if not _is_nonlinear(b)))
+        nonlinear = (*tuple(self.nonlinear_elements), *moved)
+        for i, el in enumerate(nonlinear):
+            if not _is_nonlinear(el):
+                raise ModelError(f"not a nonlinear element (needs nodes and force): {el!r}",
+                                 f"nonlinear_elements[{i}]")
+        object.__setattr__(self, "nonlinear_elements", nonlinear)
         object.__setattr__(self, "n_nodes", self._count_nodes())
         fixed = tuple((int(n), str(d)) for n, d in self.fixed)
         for node, dof in fixed:
@@ -88,15 +104,15 @@ class Rotor:
             if disk.n > last:
                 raise ModelError(f"node {disk.n} is not on the shaft (nodes 0..{last})",
                                  disk.label)
-        others: tuple[BearingElement | PointMass, ...] = (
-            *self.bearing_elements, *self.point_mass_elements)
+        others: tuple[Any, ...] = (
+            *self.bearing_elements, *self.point_mass_elements, *self.nonlinear_elements)
         for el in others:
             for node in el.nodes:
                 if node > last and node not in massive:
                     raise ModelError(
                         f"node {node} is not on the shaft (nodes 0..{last}); an off-shaft"
                         f" (housing) node needs a PointMass(n={node}, m=...)",
-                        el.label,
+                        str(getattr(el, "label", el)),
                     )
                 if node > last:
                     extra.add(node)
@@ -117,9 +133,10 @@ class Rotor:
         z[: self.n_shaft_nodes] = np.concatenate(
             [[0.0], np.cumsum([el.L for el in self.shaft_elements])]
         )
-        for b in self.bearing_elements:
-            if b.n_link is not None and b.n_link >= self.n_shaft_nodes and b.n < self.n_shaft_nodes:
-                z[b.n_link] = z[b.n]
+        for b in (*self.bearing_elements, *self.nonlinear_elements):
+            n, link = int(b.nodes[0]), (int(b.nodes[1]) if len(b.nodes) > 1 else None)
+            if link is not None and link >= self.n_shaft_nodes and n < self.n_shaft_nodes:
+                z[link] = z[n]
         return z
 
     @property
@@ -152,6 +169,14 @@ class Rotor:
         """Copy with the bearing elements replaced."""
         return dataclasses.replace(self, bearing_elements=tuple(bearings))
 
+    def with_nonlinear(self, elements: Sequence[Any]) -> Rotor:
+        """Copy with the nonlinear elements replaced."""
+        return dataclasses.replace(self, nonlinear_elements=tuple(elements))
+
+    def linear_part(self) -> Rotor:
+        """Copy without the nonlinear elements."""
+        return self.with_nonlinear(())
+
     def with_fixed(self, fixed: Iterable[tuple[int, str]]) -> Rotor:
         """Copy with more DOFs held at zero."""
         return dataclasses.replace(self, fixed=(*self.fixed, *fixed))
@@ -171,8 +196,14 @@ class Rotor:
             "shaft_elements": len(self.shaft_elements),
             "disks": len(self.disk_elements),
             "bearings": len(self.bearing_elements),
+            "nonlinear_elements": len(self.nonlinear_elements),
             "point_masses": len(self.point_mass_elements),
             "length_m": self.length,
             "mass_shaft_kg": self.m_shaft,
             "mass_disks_kg": self.m_disks,
         }
+
+
+def _is_nonlinear(element: Any) -> bool:
+    """True for an element with a nonlinear ``force`` (DESIGN section 4)."""
+    return isinstance(element, NonlinearElement) and not isinstance(element, BearingElement)

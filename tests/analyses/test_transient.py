@@ -37,7 +37,7 @@ def test_linear_steady_state_matches_unbalance_response():
     rotor, W, unb = _rotor(), 400.0, [(3, 2e-4, 0.7)]
     period = 2 * np.pi / W
     t_end = 60 * period
-    res = transient(rotor, t_span=t_end, dt=period / 200, speed=W, unbalance=unb,
+    res = transient(rotor, t_end, period / 200, speed=W, unbalance=unb,
                     gravity=None, initial="zero", nodes=[3],
                     times=np.linspace(t_end - 10 * period, t_end, 2001))
     ref = unbalance_response(rotor, [W], unb)
@@ -96,7 +96,7 @@ def test_base_excitation_of_a_rigidly_mounted_rotor_is_a_rigid_motion():
     """A rotor on stiff supports follows its base: relative motion ~ w^2/wn^2 of the base
     amplitude (single-DOF transmissibility, below resonance)."""
     rotor, amp, w = _rotor(c=0.0), 1e-4, 30.0
-    res = transient(rotor, t_span=0.5, dt=2e-4, base=BaseExcitation.harmonic(amp, w),
+    res = transient(rotor, 0.5, 2e-4, base=BaseExcitation.harmonic(amp, w),
                     gravity=None, initial="zero", nodes=[3])
     rel = np.max(np.abs(res.displacement(3, "uy")))
     wn = rs.modal(rotor, speed=0.0, num_modes=4).wn
@@ -106,8 +106,8 @@ def test_base_excitation_of_a_rigidly_mounted_rotor_is_a_rigid_motion():
 
 def test_local_tangents_give_the_dense_path_result():
     model = _rolling_model()
-    kw = dict(t_span=0.004, dt=2e-5, speed=300.0, nodes=[5], unbalance=[(5, 1e-5, 0.0)])
-    fast = transient(model.rotor, model.rolling_bearings, **kw)
+    kw = dict(speed=300.0, nodes=[5], unbalance=[(5, 1e-5, 0.0)])
+    fast = transient(model.rotor.with_nonlinear(model.rolling_bearings), 0.004, 2e-5, **kw)
     system = assemble(model.rotor, model.rolling_bearings)
     from rotorsim.analyses import transient_loads
 
@@ -119,7 +119,7 @@ def test_local_tangents_give_the_dense_path_result():
 
     transient_loads.RestoringForce.__call__ = dense
     try:
-        slow = transient(system, **kw)
+        slow = transient(system, 0.004, 2e-5, **kw)
     finally:
         transient_loads.RestoringForce.__call__ = original
     np.testing.assert_allclose(fast.q, slow.q, rtol=0, atol=1e-12 * np.abs(slow.q).max())
@@ -128,12 +128,17 @@ def test_local_tangents_give_the_dense_path_result():
 
 def test_balanced_rotor_on_ball_bearings_starts_in_equilibrium():
     model = _rolling_model()
-    res = transient(model.rotor, model.rolling_bearings, t_span=1e-3, dt=1e-5, speed=0.0,
+    res = transient(model.rotor, 1e-3, 1e-5, nonlinear=model.rolling_bearings, speed=0.0,
                     nodes=[5])
     weight = 9.80665 * model.rotor.m
     total = res.bearing_loads[0, :, :2].sum(axis=0)
     np.testing.assert_allclose(total, [0.0, -weight], atol=1e-8 * weight)
     assert np.ptp(res.displacement(5, "uy")) < 1e-12
+    # the static start (Newton on the whole system) equals rs.static's solution (Newton on
+    # the linearised bearings with an energy line search)
+    reference = rs.static(model.rotor.with_nonlinear(model.rolling_bearings)).displacement
+    np.testing.assert_allclose(res.q[0], reference[res.dofs], rtol=0,
+                               atol=1e-8 * np.abs(reference).max())
 
 
 @pytest.mark.validation
@@ -145,8 +150,8 @@ def test_varying_compliance_frequency_in_the_spectrum():
     rb = model.rolling_bearings[0]
     f_vc = rb.bearing.n_elements * rb.bearing.kappa * W
     period = 2 * np.pi / f_vc
-    res = transient(model.rotor, model.rolling_bearings, t_span=40 * period,
-                    dt=period / 64, speed=W, nodes=[5], every=1)
+    res = transient(model.rotor, 40 * period, period / 64, nonlinear=model.rolling_bearings,
+                    speed=W, nodes=[5], every=1)
     keep = res.t > 10 * period
     y = res.displacement(5, "uy")[keep]
     y = (y - y.mean()) * np.hanning(y.size)
@@ -162,9 +167,9 @@ def test_varying_compliance_frequency_in_the_spectrum():
 
 def test_resume_equals_uninterrupted(tmp_path, monkeypatch):
     model = _rolling_model()
-    kw = dict(t_span=0.003, dt=2e-5, speed=LinearSpeed(0.0, 500.0, 0.0, 0.003), nodes=[5],
-              unbalance=[(5, 1e-5, 0.0)])
-    full = transient(model.rotor, model.rolling_bearings, **kw)
+    rotor = model.rotor.with_nonlinear(model.rolling_bearings)
+    kw = dict(speed=LinearSpeed(0.0, 500.0, 0.0, 0.003), nodes=[5], unbalance=[(5, 1e-5, 0.0)])
+    full = transient(rotor, 0.003, 2e-5, **kw)
     path = tmp_path / "run.h5"
 
     class Stop(Exception):
@@ -183,10 +188,9 @@ def test_resume_equals_uninterrupted(tmp_path, monkeypatch):
 
     monkeypatch.setattr(module, "integrate", interrupted)
     with pytest.raises(Stop):
-        transient(model.rotor, model.rolling_bearings, checkpoint=path, checkpoint_every=25,
-                  **kw)
+        transient(rotor, 0.003, 2e-5, checkpoint=path, checkpoint_every=25, **kw)
     monkeypatch.setattr(module, "integrate", original)
-    resumed = transient(model.rotor, model.rolling_bearings, resume=path, **kw)
+    resumed = transient(rotor, 0.003, 2e-5, resume=path, **kw)
     np.testing.assert_array_equal(resumed.q, full.q)
     np.testing.assert_array_equal(resumed.bearing_loads, full.bearing_loads)
 
@@ -194,14 +198,14 @@ def test_resume_equals_uninterrupted(tmp_path, monkeypatch):
 @pytest.mark.parametrize("kwargs, match", [
     (dict(dt=0.0), "dt"),
     (dict(dt=-1e-4), "dt"),
-    (dict(t_span=0.0), "t_span"),
+    (dict(t_end=0.0), "t_end"),
     (dict(speed=lambda t: float("nan")), "SpeedFunction"),
     (dict(method="euler"), "method"),
     (dict(nodes=[99]), "node"),
     (dict(initial="hot"), "initial"),
 ])
 def test_bad_input_is_rejected_up_front(kwargs, match):
-    args = dict(t_span=0.01, dt=1e-4, gravity=None, initial="zero")
+    args = dict(t_end=0.01, dt=1e-4, gravity=None, initial="zero")
     args.update(kwargs)
     with pytest.raises(ModelError, match=match):
         transient(_rotor(), **args)
@@ -212,7 +216,19 @@ def test_diverging_run_reports_time_and_dof(tmp_path):
     stepper = Newmark.average_acceleration(max_iter=2, newton_rtol=1e-14)
     path = tmp_path / "ck.h5"
     with pytest.raises(ConvergenceError, match=r"t = .* DOF"):
-        transient(model.rotor, model.rolling_bearings, t_span=0.01, dt=5e-4, speed=3000.0,
+        transient(model.rotor, 0.01, 5e-4, nonlinear=model.rolling_bearings, speed=3000.0,
                   unbalance=[(5, 5e-3, 0.0)], method=stepper, checkpoint=path,
                   checkpoint_every=1)
     assert path.exists()
+
+
+def test_linear_analyses_refuse_a_rotor_with_rolling_bearings():
+    model = _rolling_model()
+    rotor = rs.Rotor(model.rotor.shaft_elements, model.rotor.disk_elements,
+                     [*model.rotor.bearing_elements, *model.rolling_bearings])
+    assert len(rotor.nonlinear_elements) == 2 and not rotor.bearing_elements
+    with pytest.raises(ModelError, match="linearize_rolling_bearings"):
+        rs.modal(rotor, speed=0.0, num_modes=4)
+    lin = rs.linearize_rolling_bearings(rotor)
+    assert len(lin.rotor.bearing_elements) == 2 and not lin.rotor.nonlinear_elements
+    assert rs.modal(lin.rotor, speed=0.0, num_modes=4).wn.size == 4
