@@ -57,6 +57,8 @@ from rotorsim.elements.rolling import (
     RollerBearing,
 )
 from rotorsim.elements.rolling.element import RollingBearing
+from rotorsim.elements.rolling.flexible_ring_element import FlexibleRingBearingElement
+from rotorsim.elements.rolling.flexible_rings import FlexibleRingRollerBearing
 from rotorsim.elements.shaft import ShaftElement, cowper_shear_coefficient
 from rotorsim.errors import ConvergenceError, ModelError, RotorsimError, Status
 from rotorsim.io.hdf5 import ResultsFileError, load, save
@@ -99,6 +101,8 @@ __all__ = [
     "DofMap",
     "ElementMatrices",
     "Ellipse",
+    "FlexibleRingBearingElement",
+    "FlexibleRingRollerBearing",
     "FrequencyResponseResult",
     "Grid",
     "LinearSpeed",
