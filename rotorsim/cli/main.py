@@ -25,6 +25,7 @@ _SUBCOMMAND_HELP = {
     "map": "undamped critical-speed map against support stiffness",
     "unbalance": "unbalance response",
     "static": "static deflection, bearing reactions and section forces",
+    "transient": "time integration on the nonlinear bearings (run-up, orbits, bearing loads)",
 }
 _BEARING_HELP = "load distribution and stiffness matrix of each rolling bearing"
 _SUBCOMMAND_TYPES = {
@@ -34,6 +35,7 @@ _SUBCOMMAND_TYPES = {
     "map": "critical_speed_map",
     "unbalance": "unbalance",
     "static": "static",
+    "transient": "transient",
 }
 
 
@@ -63,6 +65,11 @@ def build_parser() -> argparse.ArgumentParser:
         if kind in ("campbell", "unbalance"):
             p.add_argument("--speeds", nargs=3, metavar=("START", "STOP", "NUM"),
                            help='speed range, e.g. 0 "4500 rpm" 91 (numbers are rad/s)')
+        if kind == "transient":
+            p.add_argument("--t-end", help='duration, e.g. "0.5 s"')
+            p.add_argument("--dt", help='time step, e.g. "20 us"')
+            p.add_argument("--speed", help='spin speed (start of a ramp), e.g. "3000 rpm"')
+            p.add_argument("--speed-stop", help="end speed of a linear run-up/coast-down")
         if kind == "critical_speed_map":
             p.add_argument("--stiffness", nargs=3, metavar=("KMIN", "KMAX", "NUM"),
                            help='support stiffness range, e.g. "0.1 MN/m" "1 GN/m" 40')
@@ -208,6 +215,11 @@ def _adhoc_job(model: Any, args: argparse.Namespace) -> tuple[str, Any]:
         changes["num_modes"] = args.num_modes
     if getattr(args, "speed", None) is not None:
         changes["speed"] = to_si(args.speed, "speed", "--speed")
+    for option, key, kind_of in (("t_end", "t_end", "time"), ("dt", "dt", "time"),
+                                 ("speed_stop", "speed_stop", "speed")):
+        if getattr(args, option, None) is not None:
+            changes[key] = to_si(getattr(args, option), kind_of,
+                                 f"--{option.replace('_', '-')}")
     if getattr(args, "speeds", None) is not None:
         start, stop, num = args.speeds
         changes["speeds"] = Grid(to_si(start, "speed", "--speeds START"),
@@ -222,6 +234,11 @@ def _adhoc_job(model: Any, args: argparse.Namespace) -> tuple[str, Any]:
             from rotorsim.errors import ModelError
 
             raise ModelError("the model has no such analysis; give --speeds START STOP NUM",
+                             args.command)
+        if kind == "transient" and not {"t_end", "dt"} <= set(changes):
+            from rotorsim.errors import ModelError
+
+            raise ModelError("the model has no transient analysis; give --t-end and --dt",
                              args.command)
         spec = cls(**changes)
     else:
@@ -266,6 +283,10 @@ def _run_one(model: Any, name: str, spec: Any, args: argparse.Namespace) -> None
             figure_options["node"] = spec.nodes[0]
             summary_options["nodes"] = tuple(spec.nodes)
     print(summarize(result, **summary_options))
+    if spec.type == "transient":
+        units = "Hz"  # the figure's spectrum axis; the summary keeps the speed units
+        if spec.nodes:
+            figure_options["node"] = spec.nodes[0]
     files = write_outputs(result, args.out / model.name, name, units=units,
                           plots=not args.no_plots, figure_options=figure_options)
     print(f"[{elapsed:.2f} s] wrote " + ", ".join(str(f) for f in files))

@@ -204,6 +204,34 @@ def linearization_summary(linear: Any) -> str:
                                        "kzz [N/m]"))
 
 
+def transient_summary(result: Any, units: str = "rpm") -> str:
+    """Cost, speed range and the largest responses and bearing loads of a transient."""
+    f = _factor(units)
+    s = result.stats
+    head = (f"transient ({result.method}): {int(s.get('steps', 0))} steps to "
+            f"t = {result.t[-1]:.4g} s, speed {result.speed[0] * f:.1f} -> "
+            f"{result.speed[-1] * f:.1f} {units}, {s.get('iterations_per_step', 0):.2f} "
+            f"Newton iterations/step, {int(s.get('factorizations', 0))} factorisations, "
+            f"{s.get('wall_time', 0.0):.2f} s")
+    rows = []
+    nodes = sorted({int(i) // 6 for i in result.dofs})
+    for node in nodes:
+        x, y = result.displacement(node, "ux"), result.displacement(node, "uy")
+        rows.append((node, f"{x.mean() * 1e6:.3f}", f"{y.mean() * 1e6:.3f}",
+                     f"{np.ptp(x) * 1e6:.3f}", f"{np.ptp(y) * 1e6:.3f}"))
+    rows.sort(key=lambda r: -max(float(r[3]), float(r[4])))
+    lines = [head, table(rows[:6], ("node", "mean ux [um]", "mean uy [um]", "ux p-p [um]",
+                                     "uy p-p [um]"))]
+    if result.bearing_loads.shape[1]:
+        loads = result.bearing_loads
+        radial = np.hypot(loads[:, :, 0], loads[:, :, 1])
+        lines.append(table([(tag, f"{radial[:, b].min():.2f}", f"{radial[:, b].max():.2f}",
+                             f"{np.abs(loads[:, b, 2]).max():.2f}")
+                            for b, tag in enumerate(result.bearing_tags)],
+                           ("bearing", "min |Fr| [N]", "max |Fr| [N]", "max |Fz| [N]")))
+    return "\n".join(lines)
+
+
 SUMMARIES: dict[str, Callable[..., str]] = {
     "ModalResult": modal_summary,
     "CampbellResult": campbell_summary,
@@ -213,6 +241,7 @@ SUMMARIES: dict[str, Callable[..., str]] = {
     "CriticalSpeedMapResult": map_summary,
     "BearingEquilibriumResult": bearing_summary,
     "StiffnessVariation": stiffness_variation_summary,
+    "TransientResult": transient_summary,
 }
 
 

@@ -19,6 +19,7 @@ from rotorsim.io.schema_types import (
     Name,
     NodeIndex,
     PositiveRatio,
+    PositiveTime,
     Speed,
     SpeedGrid,
     StiffnessGrid,
@@ -112,6 +113,23 @@ class StaticTable(AnalysisTable):
     speed: Speed = 0.0
 
 
+class TransientTable(AnalysisTable):
+    """A run at constant speed (``speed``) or a linear run-up/coast-down from ``speed`` to
+    ``speed_stop`` over ``ramp_time`` (default the whole run)."""
+
+    type: Literal["transient"]
+    t_end: PositiveTime
+    dt: PositiveTime
+    speed: Speed = 0.0
+    speed_stop: Speed | None = None
+    ramp_time: PositiveTime | None = None
+    method: Literal["average_acceleration", "newmark", "linear_acceleration", "hht",
+                    "generalized_alpha", "adams", "adaptive"] = "average_acceleration"
+    every: Annotated[int, Field(ge=1)] = 1
+    initial: Literal["static", "zero"] = "static"
+    unbalance: Annotated[list[UnbalanceTable], Field(min_length=1)] | None = None
+
+
 TABLES: dict[str, type[AnalysisTable]] = {
     "modal": ModalTable,
     "campbell": CampbellTable,
@@ -120,6 +138,7 @@ TABLES: dict[str, type[AnalysisTable]] = {
     "unbalance": UnbalanceAnalysisTable,
     "frequency_response": FrequencyResponseTable,
     "static": StaticTable,
+    "transient": TransientTable,
 }
 """Analysis types of model files and their tables."""
 

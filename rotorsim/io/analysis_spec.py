@@ -223,10 +223,29 @@ class StaticSpec(AnalysisSpec):
     speed: float = 0.0
 
 
+@dataclass(frozen=True, kw_only=True)
+class TransientSpec(AnalysisSpec):
+    """Time integration: :func:`rotorsim.transient` over ``t_end`` [s] with step ``dt`` [s]
+    at constant ``speed`` [rad/s], or a linear ramp to ``speed_stop`` over ``ramp_time``
+    [s] (default ``t_end``); ``unbalance=None`` uses the model's ``[[loads.unbalance]]``;
+    rolling bearings act with their full nonlinear force."""
+
+    type: ClassVar[str] = "transient"
+    t_end: float
+    dt: float
+    speed: float = 0.0
+    speed_stop: float | None = None
+    ramp_time: float | None = None
+    method: str = "average_acceleration"
+    every: int = 1
+    initial: str = "static"
+    unbalance: Unbalance | None = None
+
+
 SPEC_TYPES: dict[str, type[AnalysisSpec]] = {
     cls.type: cls for cls in (ModalSpec, CampbellSpec, CriticalSpeedsSpec,
                               CriticalSpeedMapSpec, UnbalanceSpec, FrequencyResponseSpec,
-                              StaticSpec)
+                              StaticSpec, TransientSpec)
 }
 """Analysis ``type`` names of model files and their spec classes."""
 
@@ -242,7 +261,8 @@ def run_analysis(model: Model, name: str, *, fast: bool = False,
     name : str
         Key of the analysis in ``model.analyses``.
     fast : bool
-        Shrink every grid to at most :data:`FAST_POINTS` points (tests, smoke runs).
+        Shrink every grid to at most :data:`FAST_POINTS` points and a transient to a tenth
+        of its duration (tests, smoke runs).
     progress : bool
         Show progress bars on sweeps that support them.
 
@@ -250,7 +270,8 @@ def run_analysis(model: Model, name: str, *, fast: bool = False,
     -------
     result
         The analysis result (``ModalResult``, ``CampbellResult``, ``CriticalSpeeds``,
-        ``CriticalSpeedMapResult``, ``FrequencyResponseResult`` or ``StaticResult``).
+        ``CriticalSpeedMapResult``, ``FrequencyResponseResult``, ``StaticResult`` or
+        ``TransientResult``).
 
     Raises
     ------
@@ -263,13 +284,16 @@ def run_analysis(model: Model, name: str, *, fast: bool = False,
     linearised at their static loads, computed once per model and speed: the spec's
     ``speed`` for ``modal`` and ``static``, else 0); the result's ``options`` then hold
     ``rolling_bearings`` (tags, loads, iterations). A ``static`` analysis returns that
-    nonlinear static equilibrium.
+    nonlinear static equilibrium; a ``transient`` uses the full nonlinear bearings.
     """
     if name not in model.analyses:
         raise ModelError(f"no analysis {name!r}; the model has {sorted(model.analyses)}",
                          model.name)
     spec = model.analyses[name]
     runner = _RUNNERS[spec.type]
+    if spec.type == "transient":
+        return runner(model.rotor.with_nonlinear(model.rolling_bearings), model, spec, fast,
+                      progress)
     if not model.rolling_bearings:
         return runner(model.rotor, model, spec, fast, progress)
     linear = model.linearized(float(getattr(spec, "speed", None) or 0.0)
@@ -339,8 +363,25 @@ def _static(rotor: Rotor, model: Model, spec: Any, fast: bool, progress: bool) -
                   loads=list(loads.point_loads), speed=spec.speed)
 
 
+def _transient(rotor: Rotor, model: Model, spec: Any, fast: bool, progress: bool) -> Any:
+    from rotorsim.analyses.speed_profile import LinearSpeed
+    from rotorsim.analyses.transient import transient
+
+    t_end = spec.t_end / 10.0 if fast else spec.t_end
+    speed: Any = spec.speed
+    if spec.speed_stop is not None:
+        ramp = spec.t_end if spec.ramp_time is None else spec.ramp_time
+        speed = LinearSpeed(spec.speed, spec.speed_stop, 0.0, ramp)
+    unbalance = model.loads.unbalance if spec.unbalance is None else spec.unbalance
+    loads = model.loads
+    return transient(rotor, t_end, spec.dt, speed=speed, unbalance=list(unbalance),
+                     gravity=loads.gravity, direction=loads.gravity_direction,
+                     loads=list(loads.point_loads), method=spec.method, initial=spec.initial,
+                     nodes=spec.nodes, every=spec.every, progress=progress)
+
+
 _RUNNERS = {
     "modal": _modal, "campbell": _campbell, "critical_speeds": _critical_speeds,
     "critical_speed_map": _critical_speed_map, "unbalance": _unbalance,
-    "frequency_response": _frequency_response, "static": _static,
+    "frequency_response": _frequency_response, "static": _static, "transient": _transient,
 }

@@ -212,6 +212,7 @@ PositiveRatio = Annotated[float, PlainValidator(_quantity("dimensionless", "posi
 Force = Annotated[float, PlainValidator(_quantity("force"))]
 Rate = Annotated[float, PlainValidator(_quantity("rate", "nonnegative"))]
 Time = Annotated[float, PlainValidator(_quantity("time", "nonnegative"))]
+PositiveTime = Annotated[float, PlainValidator(_quantity("time", "positive"))]
 UnbalanceMagnitude = Annotated[float, PlainValidator(_quantity("unbalance", "nonnegative"))]
 Angle = Annotated[float, PlainValidator(_quantity("angle"))]
 Speed = Annotated[float, PlainValidator(_quantity("speed", "nonnegative"))]

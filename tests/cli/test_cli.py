@@ -95,3 +95,24 @@ def test_help_lists_subcommands():
                           text=True, check=True)
     for name in ("info", "run", "modal", "campbell", "map", "unbalance", "static"):
         assert name in proc.stdout
+
+
+def test_transient_subcommand_runs_a_run_up_on_rolling_bearings(tmp_path, capsys):
+    code = main(["transient", str(MODELS / "rolling_ball.toml"), "--t-end", "10 ms",
+                 "--dt", "50 us", "--speed", "0", "--speed-stop", "3000 rpm",
+                 "--out", str(tmp_path)])
+    assert code == 0
+    folder = tmp_path / "rolling_ball"
+    result = rs.load(folder / "transient.h5")
+    assert type(result).__name__ == "TransientResult"
+    assert result.speed[-1] == pytest.approx(100 * 3.141592653589793)
+    assert result.bearing_loads.shape == (201, 2, 5)
+    assert (folder / "transient.png").stat().st_size > 5000
+    out = capsys.readouterr().out
+    assert "200 steps" in out and "max |Fr| [N]" in out
+
+
+def test_transient_subcommand_needs_a_duration(tmp_path, capsys):
+    code = main(["transient", str(MODELS / "rolling_ball.toml"), "--out", str(tmp_path)])
+    assert code == EXIT_BAD_INPUT
+    assert "--t-end and --dt" in capsys.readouterr().err

@@ -19,6 +19,7 @@ from rotorsim.results.critical_speeds import CriticalSpeedMapResult, CriticalSpe
 from rotorsim.results.frequency_response import FrequencyResponseResult
 from rotorsim.results.modal import ModalResult
 from rotorsim.results.static import StaticResult
+from rotorsim.results.transient import TransientResult
 
 ROOT = Path(__file__).resolve().parents[2]
 MODELS = ROOT / "models"
@@ -32,6 +33,7 @@ RESULT_TYPES = {
     "modal": ModalResult, "campbell": CampbellResult, "critical_speeds": CriticalSpeeds,
     "critical_speed_map": CriticalSpeedMapResult, "unbalance": FrequencyResponseResult,
     "frequency_response": FrequencyResponseResult, "static": StaticResult,
+    "transient": TransientResult,
 }
 FILES = sorted(p.stem for p in MODELS.glob("*.toml"))
 CASES = [(f, a) for f in FILES for a in load_model(MODELS / f"{f}.toml").analyses]
