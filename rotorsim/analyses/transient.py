@@ -165,7 +165,11 @@ def transient(
     problem, loads_fn = _problem(system, profile, t0, unbalance, gravity, direction, loads,
                                  forces, base)
     stepper = _stepper(method)
-    q0, v0 = _initial(system, initial, loads_fn.constant, profile, t0)
+    start = None
+    if initial == "static" and isinstance(model, Rotor) and system.nonlinear is not None:
+        start = _rolling_start(model, nonlinear, system, gravity, direction, loads,
+                               profile.speed(t0), profile.angle(t0))
+    q0, v0 = _initial(system, initial, loads_fn.constant, profile, t0, start)
     kept = _kept_dofs(system, nodes)
     sample_times = None if times is None else np.asarray(times, dtype=float)
     output = OutputSpec(times=sample_times, every=None if times is not None else every,
@@ -262,7 +266,8 @@ def _stepper(method: str | TimeStepper) -> TimeStepper:
 
 
 def _initial(system: RotorSystem, initial: str | tuple[ArrayLike, ArrayLike],
-             f: FloatArray, profile: BoundSpeed, t0: float) -> tuple[FloatArray, FloatArray]:
+             f: FloatArray, profile: BoundSpeed, t0: float,
+             start: FloatArray | None = None) -> tuple[FloatArray, FloatArray]:
     n = system.n_free
     if isinstance(initial, str):
         if initial == "zero":
@@ -270,7 +275,7 @@ def _initial(system: RotorSystem, initial: str | tuple[ArrayLike, ArrayLike],
         if initial != "static":
             raise ModelError(f"initial must be 'static', 'zero' or (q0, v0), got {initial!r}",
                              f"{WHERE}.initial")
-        return _static_start(system, f, profile, t0), np.zeros(n)
+        return _static_start(system, f, profile, t0, start), np.zeros(n)
     try:
         q_all, v_all = (np.asarray(x, dtype=float).reshape(-1) for x in initial)
     except (TypeError, ValueError):
@@ -282,10 +287,33 @@ def _initial(system: RotorSystem, initial: str | tuple[ArrayLike, ArrayLike],
     return q_all[free], v_all[free]
 
 
+def _rolling_start(model: Rotor, nonlinear: Sequence[NonlinearElement], system: RotorSystem,
+                   gravity: float | None, direction: ArrayLike, loads: Sequence[Any],
+                   speed: float, phi: float) -> FloatArray | None:
+    """A start for the static Newton iteration from the robust rolling-bearing statics
+    (:func:`~rotorsim.analyses.linearized_rotor.linearize_rolling_bearings`: nominal
+    tangents, then each bearing at the equilibrium of its load, energy line search); None
+    when some element is not a RollingBearing or that solve fails."""
+    from rotorsim.analyses.linearized_rotor import linearize_rolling_bearings
+    from rotorsim.elements.rolling.element import RollingBearing
+    from rotorsim.errors import ConvergenceError
+
+    elements = (*model.nonlinear_elements, *nonlinear)
+    if not all(isinstance(el, RollingBearing) for el in elements):
+        return None
+    try:
+        lin = linearize_rolling_bearings(model.with_nonlinear(elements), gravity=gravity,
+                                         direction=direction, loads=loads, speed=speed,
+                                         phi=phi, tol=1e-8, max_iter=50)
+    except (ModelError, ConvergenceError):
+        return None
+    return np.asarray(lin.static.displacement)[system.dof_map.free]
+
+
 def _static_start(system: RotorSystem, f: FloatArray, profile: BoundSpeed,
-                  t0: float) -> FloatArray:
+                  t0: float, start: FloatArray | None = None) -> FloatArray:
     """Static equilibrium under the constant loads (linear solve without nonlinear
-    elements, Newton with them)."""
+    elements, Newton with them from ``start`` or the nominal-tangent solution)."""
     W, phi = profile.speed(t0), profile.angle(t0)
     K = system.matrices(W).K
     if system.nonlinear is None:
@@ -298,8 +326,8 @@ def _static_start(system: RotorSystem, f: FloatArray, profile: BoundSpeed,
         return np.asarray(factorize(K, where="transient: static start").solve(f))
     nominal = _nominal_tangent(system)
     held = held_dofs(free_rigid_motions(system, sp.csr_matrix(K + nominal)))
-    return nonlinear_equilibrium(system, f, speed=W, phi=phi, held=held, nominal=nominal,
-                                 stats=Stats()).q
+    return nonlinear_equilibrium(system, f, speed=W, phi=phi, q0=start, held=held,
+                                 nominal=nominal, stats=Stats()).q
 
 
 def _nominal_tangent(system: RotorSystem) -> sp.csr_matrix:

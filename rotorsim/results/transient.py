@@ -9,6 +9,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from rotorsim.assembly.dof_map import DofMap
+from rotorsim.elements.base import DOF_NAMES
 from rotorsim.errors import ModelError, Status
 
 if TYPE_CHECKING:
@@ -103,6 +104,22 @@ class TransientResult:
     def displacement(self, node: int, dof: str = "uy") -> FloatArray:
         """Time history of one DOF [m, rad]."""
         return self.q[:, self.column(node, dof)]
+
+    def node_displacement(self, node: int) -> FloatArray:
+        """All 6 DOFs ``ux, uy, uz, rx, ry, rz`` of ``node`` at every sample (k, 6) [m, rad];
+        fixed DOFs are zero.
+
+        Raises
+        ------
+        ModelError
+            When a free DOF of the node was not kept.
+        """
+        out = np.zeros((self.t.size, 6))
+        for j in range(6):
+            full = self.dof_map.index(node, j)
+            if self.dof_map.full_to_free[full] >= 0:
+                out[:, j] = self.q[:, self.column(node, DOF_NAMES[j])]
+        return out
 
     def velocity(self, node: int, dof: str = "uy") -> FloatArray:
         """Velocity history of one DOF (requires velocities to be kept)."""
