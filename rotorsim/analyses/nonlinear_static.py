@@ -177,3 +177,18 @@ class _Newton:
         raise ConvergenceError(f"line search failed: residual {norm:.3e} N does not "
                                "decrease along the Newton direction", "nonlinear static",
                                residual=norm)
+
+
+def nominal_tangent(system: RotorSystem) -> sp.csr_matrix:
+    """Mean symmetric tangent of the nonlinear elements over probe displacements of 1, 10
+    and 100 um (or urad) along each of their DOFs, on the free DOFs: it reveals the rigid
+    motions no element restrains (torsion; axial motion on cylindrical rollers) and starts
+    the static Newton iteration."""
+    nl = system.nonlinear
+    assert nl is not None
+    probes = np.vstack([s * np.eye(nl.k) * sign for s in (1e-6, 1e-5, 1e-4)
+                        for sign in (1.0, -1.0)])
+    kt = nl.evaluate(probes, np.zeros_like(probes), 0.0, 0.0).K.mean(axis=0)
+    rows, cols = np.repeat(nl.dofs, nl.k), np.tile(nl.dofs, nl.k)
+    n = system.n_free
+    return sp.csr_matrix((0.5 * (kt + kt.T).ravel(), (rows, cols)), shape=(n, n))

@@ -51,6 +51,7 @@ def static(
     loads: Sequence[tuple[int, str, float]] = (),
     speed: float = 0.0,
     rigid_tol: float = 1e-10,
+    method: str = "newton",
 ) -> StaticResult:
     """Linear static deflection, bearing reactions and shaft internal forces.
 
@@ -83,6 +84,11 @@ def static(
     rigid_tol : float
         A rigid motion ``r`` is free when ``||K r|| <= rigid_tol ||K||_F ||r||``; a support
         softer than about ``rigid_tol`` times the stiffest entry counts as absent.
+    method : {"newton", "energy"}
+        With nonlinear elements: Newton's method with an energy line search, or the
+        minimisation of the total potential energy of the rotor and its bearings
+        (:mod:`rotorsim.analyses.rotor_energy`, seed 000 for the whole rotor). Both give
+        the same equilibrium; ``options`` record the method (and the energy).
 
     Returns
     -------
@@ -115,7 +121,11 @@ def static(
         raise ModelError(f"speed must be finite, got {speed!r}", "static")
     if not np.isfinite(rigid_tol) or rigid_tol <= 0:
         raise ModelError(f"rigid_tol must be > 0, got {rigid_tol!r}", "static")
+    if method not in ("newton", "energy"):
+        raise ModelError(f"method must be 'newton' or 'energy', got {method!r}", "static")
     if isinstance(rotor, Rotor) and rotor.nonlinear_elements:
+        if method == "energy":
+            return _energy_static(rotor, gravity, direction, loads, float(speed))
         return _nonlinear_static(rotor, gravity, direction, loads, float(speed))
     system = as_system(rotor)
     model = rotor if isinstance(rotor, Rotor) else None
@@ -152,8 +162,37 @@ def _nonlinear_static(rotor: Rotor, gravity: float | None, direction: ArrayLike,
     lin = linearize_rolling_bearings(rotor, gravity=gravity, direction=direction, loads=loads,
                                      speed=speed, tol=1e-10, max_iter=50)
     return dataclasses.replace(lin.static, options={
-        **lin.static.options, "nonlinear_elements": len(rotor.nonlinear_elements),
+        **lin.static.options, "method": "newton",
+        "nonlinear_elements": len(rotor.nonlinear_elements),
         "newton_iterations": lin.iterations, "newton_residual": lin.residual})
+
+
+def _energy_static(rotor: Rotor, gravity: float | None, direction: ArrayLike,
+                   loads: Sequence[tuple[int, str, float]], speed: float) -> StaticResult:
+    """The minimum of the potential energy, polished by Newton's method and reported with
+    the bearings' tangents at that minimum (reactions and section forces as for Newton)."""
+    from rotorsim.analyses.nonlinear_static import nominal_tangent, nonlinear_equilibrium
+    from rotorsim.analyses.rolling_rotor_statics import StaticCase
+    from rotorsim.analyses.rotor_energy import energy_equilibrium
+    from rotorsim.assembly.system import assemble
+
+    system = assemble(rotor)
+    g = 0.0 if gravity is None else float(gravity)
+    f, _ = _applied_load(system, rotor.linear_part(), g, unit_direction(direction), loads)
+    K = system.matrices(speed).K
+    held = held_dofs(free_rigid_motions(system, sp.csr_matrix(K + nominal_tangent(system))))
+    eq = energy_equilibrium(system, f, speed=speed, held=held)
+    polished = nonlinear_equilibrium(system, f, speed=speed, q0=eq.q, held=held)
+    rolling = tuple(rotor.nonlinear_elements)
+    tags = tuple(str(getattr(rb, "tag", None) or i) for i, rb in enumerate(rolling))
+    case = StaticCase(rotor.linear_part(), gravity, direction, tuple(loads), speed, 0.0,
+                      rolling, tags, {})
+    q_all = system.dof_map.expand(polished.q).reshape(-1, DOFS_PER_NODE)
+    result, _, _ = case.solve(case.tangents(q_all))
+    return dataclasses.replace(result, options={
+        **result.options, "method": "energy", "energy": eq.energy,
+        "energy_iterations": eq.iterations, "energy_gradient": eq.gradient,
+        "newton_polish_iterations": polished.iterations, "hessian_min": eq.hessian_min})
 
 
 _POST_KEYS = ("bearing_nodes", "bearing_forces", "bearing_moments", "constraint_reactions",

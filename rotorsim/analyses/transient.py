@@ -23,7 +23,7 @@ import numpy as np
 import scipy.sparse as sp
 from numpy.typing import ArrayLike
 
-from rotorsim.analyses.nonlinear_static import nonlinear_equilibrium
+from rotorsim.analyses.nonlinear_static import nominal_tangent, nonlinear_equilibrium
 from rotorsim.analyses.speed_profile import BoundSpeed, SpeedProfile, as_speed_profile
 from rotorsim.analyses.static import free_rigid_motions, held_dofs
 from rotorsim.analyses.transient_loads import (
@@ -54,6 +54,7 @@ from rotorsim.time_integration.output import OutputSpec
 from rotorsim.time_integration.problem import SecondOrderProblem
 
 WHERE = "transient"
+_nominal_tangent = nominal_tangent  # former private name, still imported by periodic_problem
 DENSE_STEPPING = 400
 """Up to this many free DOFs the matrices are dense: a step's few matrix-vector products
 then cost less than scipy.sparse's call overhead."""
@@ -324,25 +325,10 @@ def _static_start(system: RotorSystem, f: FloatArray, profile: BoundSpeed,
             raise ModelError(f"the rotor has free rigid motions ({', '.join(rigid.labels)}):"
                              " use initial='zero'", f"{WHERE}.initial")
         return np.asarray(factorize(K, where="transient: static start").solve(f))
-    nominal = _nominal_tangent(system)
+    nominal = nominal_tangent(system)
     held = held_dofs(free_rigid_motions(system, sp.csr_matrix(K + nominal)))
     return nonlinear_equilibrium(system, f, speed=W, phi=phi, q0=start, held=held,
                                  nominal=nominal, stats=Stats()).q
-
-
-def _nominal_tangent(system: RotorSystem) -> sp.csr_matrix:
-    """Mean symmetric tangent of the nonlinear elements over probe displacements of 1, 10
-    and 100 um (or urad) along each of their DOFs, on the free DOFs: it reveals the rigid
-    motions no element restrains (torsion; axial motion on cylindrical rollers) and starts
-    the static Newton iteration."""
-    nl = system.nonlinear
-    assert nl is not None
-    probes = np.vstack([s * np.eye(nl.k) * sign for s in (1e-6, 1e-5, 1e-4)
-                        for sign in (1.0, -1.0)])
-    kt = nl.evaluate(probes, np.zeros_like(probes), 0.0, 0.0).K.mean(axis=0)
-    rows, cols = np.repeat(nl.dofs, nl.k), np.tile(nl.dofs, nl.k)
-    n = system.n_free
-    return sp.csr_matrix((0.5 * (kt + kt.T).ravel(), (rows, cols)), shape=(n, n))
 
 
 def _kept_dofs(system: RotorSystem, nodes: Sequence[int] | None) -> np.ndarray:
