@@ -82,6 +82,7 @@ def transient(
     checkpoint_every: int = 1000,
     resume: str | os.PathLike[str] | None = None,
     progress: bool = False,
+    reduction: int | None = None,
 ) -> TransientResult:
     """Integrate the rotor's equation of motion from 0 (or ``t0``) to ``t_end``.
 
@@ -131,6 +132,10 @@ def transient(
         As in :func:`~rotorsim.time_integration.integrate.integrate`: an HDF5 checkpoint
         every ``checkpoint_every`` steps, resume from one (same result as an uninterrupted
         run), progress bar.
+    reduction : int, optional
+        Craig-Bampton reduction of the linear part with this many fixed-interface modes,
+        the nonlinear DOFs kept physical (:mod:`~.transient_reduction`); the accuracy check
+        is in ``result.options["reduction"]``.
 
     Returns
     -------
@@ -172,17 +177,29 @@ def transient(
                                profile.speed(t0), profile.angle(t0))
     q0, v0 = _initial(system, initial, loads_fn.constant, profile, t0, start)
     kept = _kept_dofs(system, nodes)
+    basis, report = None, None
+    if reduction is not None:
+        from rotorsim.analyses.transient_reduction import reduce_problem
+
+        problem, basis, report = reduce_problem(system, problem, loads_fn, int(reduction),
+                                                profile.speed(t0))
+        q0, v0 = basis.project(q0), basis.project(v0)
     sample_times = None if times is None else np.asarray(times, dtype=float)
     output = OutputSpec(times=sample_times, every=None if times is not None else every,
-                        dofs=kept)
+                        dofs=kept if basis is None else None)
     run = integrate(problem, stepper, (t0, t_end), q0, v0, dt=dt, output=output,
                     checkpoint=checkpoint, checkpoint_every=checkpoint_every, resume=resume,
                     progress=progress)
+    if basis is not None:
+        from rotorsim.analyses.transient_reduction import expand_run
+
+        run = expand_run(run, basis, kept)
     options = {"t_span": [t0, t_end], "dt": dt, "method": stepper.name,
                "speed": profile.describe(), "gravity": gravity,
                "unbalance": [list(map(float, u)) for u in unbalance],
                "base": None if base is None else list(base.direction),
-               "initial": initial if isinstance(initial, str) else "given", "every": every}
+               "initial": initial if isinstance(initial, str) else "given", "every": every,
+               "reduction": report}
     return _result(system, run, profile, kept, options)
 
 

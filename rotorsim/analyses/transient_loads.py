@@ -136,19 +136,31 @@ class TransientLoads:
 @dataclass(eq=False)
 class RestoringForce:
     """``r(q, v, t)`` of the nonlinear elements with :class:`LocalMatrix` tangents; keeps
-    the elements' internal state (warm start) between calls."""
+    the elements' internal state (warm start) between calls.
+
+    ``index`` and ``size`` place the nonlinear DOFs in the problem's unknowns: by default
+    the free DOFs themselves; in a reduced problem the leading boundary coordinates.
+    """
 
     assembly: NonlinearAssembly
     speed: BoundSpeed
     internal: Any = None
+    index: Any = None
+    size: int | None = None
+
+    def __post_init__(self) -> None:
+        if self.index is None:
+            self.index = self.assembly.dofs
+        if self.size is None:
+            self.size = self.assembly.n_free
 
     def __call__(self, q: FloatArray, v: FloatArray, t: float
                  ) -> tuple[FloatArray, LocalMatrix, LocalMatrix]:
-        a = self.assembly
-        out = a.evaluate(q[a.dofs], v[a.dofs], self.speed.angle(t), self.speed.speed(t),
+        a, index, size = self.assembly, self.index, int(self.size or 0)
+        out = a.evaluate(q[index], v[index], self.speed.angle(t), self.speed.speed(t),
                          self.internal)
         self.internal = out.internal
-        r = np.zeros(a.n_free)
-        r[a.dofs] = out.f[0]
-        return (r, LocalMatrix.trusted(a.n_free, a.dofs, out.K[0]),
-                LocalMatrix.trusted(a.n_free, a.dofs, out.C[0]))
+        r = np.zeros(size)
+        r[index] = out.f[0]
+        return (r, LocalMatrix.trusted(size, index, out.K[0]),
+                LocalMatrix.trusted(size, index, out.C[0]))
