@@ -28,6 +28,10 @@ def test_integration_agrees_with_dop853(report):
     fine = ref["max error uy, 128 steps per VC period [m]"]
     assert coarse < 1e-3 * ref["max |uy| [m]"]
     assert coarse / fine > 3.0  # order ~2 (4 for a clean second-order error)
+    # the seed's enhanced 4th-order Adams method (Appendix F) on the same run
+    adams_coarse = ref["adams, max error uy, 64 steps per VC period [m]"]
+    adams_fine = ref["adams, max error uy, 128 steps per VC period [m]"]
+    assert adams_fine < fine / 5 and adams_coarse / adams_fine > 8.0  # order ~4
 
 
 def test_initial_state_sets_the_free_vibration(report):

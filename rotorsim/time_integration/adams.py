@@ -55,8 +55,9 @@ import numpy as np
 import scipy.sparse as sp
 
 from rotorsim.errors import ConvergenceError, ModelError
-from rotorsim.solvers.linear import Factorization, factorize
+from rotorsim.solvers.linear import DENSE_THRESHOLD, Factorization, factorize
 from rotorsim.time_integration.base import Counters, FloatArray, IntArray, State, cubic_hermite
+from rotorsim.time_integration.local_tangent import LocalMatrix
 from rotorsim.time_integration.newmark import _check_finite, _vector
 from rotorsim.time_integration.problem import SecondOrderProblem, combine, matrix_digest
 
@@ -283,7 +284,8 @@ class _AdamsStep:
             if not p.is_linear:
                 self.tally["residual_evaluations"] += 1
             ev = p.forces(q, v, self.t1, spin=self.spin, external=self.f1)
-            return p.mass @ a + ev.net, ev.stiffness_tangent, ev.damping_tangent
+            return p.mass @ a + ev.net, _plain(ev.stiffness_tangent), \
+                _plain(ev.damping_tangent)
         g0, k0, c0 = self.start
         g1, k1, c1 = self._linear_and_tangents(q, v, self.t1, self.spin, self.f1)
         kt, ct = _mean(k0, k1), _mean(c0, c1)
@@ -307,7 +309,7 @@ class _AdamsStep:
             return g, None, None
         self.tally["residual_evaluations"] += 1
         out = p.restoring(q, v, t)
-        return (g, None, None) if out is None else (g, out[1], out[2])
+        return (g, None, None) if out is None else (g, _plain(out[1]), _plain(out[2]))
 
     def _lu(self, kt: Any, ct: Any, iteration: int) -> Factorization:
         tangent = (matrix_digest(kt) * 1_000_003 + matrix_digest(ct)) % (2 ** 63)
@@ -327,6 +329,14 @@ class _AdamsStep:
         self.cache.lu, self.cache.key = factorize(S, where=where), key
         self.tally["factorizations"] += 1
         return self.cache.lu
+
+
+def _plain(T: Any) -> Any:
+    """A :class:`~.local_tangent.LocalMatrix` as a dense or CSR matrix (the averaged
+    coefficients of eq 3.27 add tangents of two points); others unchanged."""
+    if isinstance(T, LocalMatrix):
+        return T.toarray() if T.n <= DENSE_THRESHOLD else T.tocsr()
+    return T
 
 
 def _mean(A: Any, B: Any) -> Any:
