@@ -166,37 +166,9 @@ def bordered(jh: Matrix, jlh: FloatArray, border: FloatArray) -> tuple[Matrix, f
 
 
 def signed_log_det(fact: Factorization) -> tuple[int, float]:
-    """``(sign, log |det|)`` of a factorised matrix, without overflow.
-
-    Reads the LU factors kept by :class:`~rotorsim.solvers.linear.Factorization` (dense
-    LAPACK ``getrf`` or SuperLU): ``det = sign(P_r) sign(P_c) prod(diag U)``.
-    """
-    if fact._dense is not None:
-        lu, piv = fact._dense
-        diag = np.diag(lu)
-        swaps = int(np.count_nonzero(piv != np.arange(piv.size)))
-        perm_sign = -1 if swaps % 2 else 1
-    else:
-        diag = fact._sparse.U.diagonal()
-        perm_sign = _permutation_sign(fact._sparse.perm_r) \
-            * _permutation_sign(fact._sparse.perm_c)
-    if np.any(diag == 0.0):
-        return 0, -math.inf
-    negatives = int(np.count_nonzero(diag < 0.0))
-    sign = perm_sign * (-1 if negatives % 2 else 1)
-    return sign, float(np.sum(np.log(np.abs(diag))))
-
-
-def _permutation_sign(perm: NDArray[np.int_]) -> int:
-    """Sign of a permutation: ``(-1)^(n - cycles)``, cycles found by pointer doubling."""
-    n = perm.size
-    label = np.arange(n)
-    jump = np.asarray(perm)
-    for _ in range(max(1, int(n).bit_length())):
-        label = np.minimum(label, label[jump])
-        jump = jump[jump]
-    cycles = int(np.count_nonzero(label == np.arange(n)))
-    return -1 if (n - cycles) % 2 else 1
+    """``(sign, log |det|)`` of a factorised matrix, without overflow
+    (:meth:`~rotorsim.solvers.linear.Factorization.slogdet`)."""
+    return fact.slogdet()
 
 
 @dataclass(frozen=True, eq=False)
