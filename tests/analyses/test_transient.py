@@ -232,3 +232,17 @@ def test_linear_analyses_refuse_a_rotor_with_rolling_bearings():
     lin = rs.linearize_rolling_bearings(rotor)
     assert len(lin.rotor.bearing_elements) == 2 and not lin.rotor.nonlinear_elements
     assert rs.modal(lin.rotor, speed=0.0, num_modes=4).wn.size == 4
+
+
+def test_memory_is_bounded_by_the_output_not_the_number_of_steps():
+    """Issue 6: a long run keeping one node does not grow with the number of steps."""
+    import tracemalloc
+
+    peaks = []
+    for steps in (1_000, 10_000):
+        tracemalloc.start()
+        transient(_rotor(), steps * 1e-5, 1e-5, speed=300.0, unbalance=[(3, 1e-4, 0.0)],
+                  gravity=None, initial="zero", nodes=[3], every=10**9)
+        peaks.append(tracemalloc.get_traced_memory()[1])
+        tracemalloc.stop()
+    assert peaks[1] < 1.2 * peaks[0] + 200_000
