@@ -15,6 +15,7 @@ rest up to the varying compliance of its bearings.
 
 from __future__ import annotations
 
+import dataclasses
 import os
 from collections.abc import Callable, Sequence
 from typing import Any
@@ -83,6 +84,7 @@ def transient(
     resume: str | os.PathLike[str] | None = None,
     progress: bool = False,
     reduction: int | None = None,
+    rolling_elements: bool = False,
 ) -> TransientResult:
     """Integrate the rotor's equation of motion from 0 (or ``t0``) to ``t_end``.
 
@@ -136,6 +138,9 @@ def transient(
         Craig-Bampton reduction of the linear part with this many fixed-interface modes,
         the nonlinear DOFs kept physical (:mod:`~.transient_reduction`); the accuracy check
         is in ``result.options["reduction"]``.
+    rolling_elements : bool
+        Also keep the load and contact angle of every rolling element of each bearing at
+        every sample (``result.element_loads``, ``result.contact_angles``).
 
     Returns
     -------
@@ -200,7 +205,13 @@ def transient(
                "base": None if base is None else list(base.direction),
                "initial": initial if isinstance(initial, str) else "given", "every": every,
                "reduction": report}
-    return _result(system, run, profile, kept, options)
+    result = _result(system, run, profile, kept, options)
+    if rolling_elements and system.nonlinear is not None:
+        from rotorsim.analyses.transient_output import rolling_element_histories
+
+        loads_, angles = rolling_element_histories(system, result)
+        result = dataclasses.replace(result, element_loads=loads_, contact_angles=angles)
+    return result
 
 
 def _system(model: Rotor | RotorSystem, nonlinear: Sequence[NonlinearElement]) -> RotorSystem:

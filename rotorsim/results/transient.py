@@ -57,6 +57,10 @@ class TransientResult:
     options, stats, status, summary
         Options used (JSON-able), cost counters (steps, factorisations, Newton iterations,
         rejected steps, wall time), overall status and model summary.
+    element_loads, contact_angles : dict of str to array (k, Z)
+        With ``rolling_elements=True``: the (inner-contact) load [N] and contact angle [rad]
+        of every rolling element of each bearing (by tag) at every sample; element ``j``
+        sits at ``psi_0 + 2 pi j / Z + kappa phi``.
     """
 
     t: FloatArray
@@ -78,6 +82,8 @@ class TransientResult:
     stats: dict[str, float] = field(default_factory=dict)
     status: Status = Status.OK
     summary: dict[str, Any] = field(default_factory=dict)
+    element_loads: dict[str, FloatArray] = field(default_factory=dict)
+    contact_angles: dict[str, FloatArray] = field(default_factory=dict)
 
     @property
     def dof_labels(self) -> list[str]:

@@ -246,3 +246,18 @@ def test_memory_is_bounded_by_the_output_not_the_number_of_steps():
         peaks.append(tracemalloc.get_traced_memory()[1])
         tracemalloc.stop()
     assert peaks[1] < 1.2 * peaks[0] + 200_000
+
+
+def test_rolling_element_histories_add_up_to_the_bearing_load():
+    model = _rolling_model()
+    rotor = model.rotor.with_nonlinear(model.rolling_bearings)
+    res = transient(rotor, 0.002, 2e-5, speed=300.0, nodes=[5], rolling_elements=True)
+    b = model.rolling_bearings[0].bearing
+    psi = b.element_angles(res.angle)
+    loads, alpha = res.element_loads["DE"], res.contact_angles["DE"]
+    assert loads.shape == (res.t.size, b.n_elements) and np.all(loads >= 0)
+    fx = (loads * np.cos(alpha) * np.cos(psi)).sum(axis=1)
+    fy = (loads * np.cos(alpha) * np.sin(psi)).sum(axis=1)
+    # at rest (first sample) the bearing force is the elastic one: the element loads add up
+    np.testing.assert_allclose([fx[0], fy[0]], res.bearing_loads[0, 0, :2], rtol=0,
+                               atol=1e-9 * abs(res.bearing_loads[0, 0, 1]))
