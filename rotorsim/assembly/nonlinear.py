@@ -42,22 +42,35 @@ class _Group:
     tangent_index: IntArray  # target position in (k*k,) of each kept tangent entry
     tangent_kept: IntArray  # kept entries of the flattened (G*nd*nd,) element tangents
     distinct: bool  # no two element DOFs share a nonlinear DOF (plain assignment)
+    complete: bool  # no element DOF was removed (positions >= 0 everywhere)
+    member_list: tuple[int, ...]  # members as Python ints (cheap loops)
 
-    def scatter_forces(self, fe: FloatArray, k: int) -> FloatArray:
-        """Sum of element forces (S, G*nd) on the nonlinear DOFs (S, k)."""
-        return _scatter(fe[:, self.force_kept], self.force_index, k, self.distinct)
+    def add_forces(self, total: FloatArray, fe: FloatArray, first: bool = False) -> None:
+        """``total`` (S, k) += the element forces (S, G*nd) on their nonlinear DOFs
+        (``first``: ``total`` is still zero)."""
+        self._add(total, fe, self.force_index, self.force_kept, first)
 
-    def scatter_tangents(self, ke: FloatArray, k: int) -> FloatArray:
-        """Sum of element tangents (S, G*nd*nd) on the nonlinear DOFs (S, k*k)."""
-        return _scatter(ke[:, self.tangent_kept], self.tangent_index, k * k, self.distinct)
+    def add_tangents(self, total: FloatArray, ke: FloatArray, first: bool = False) -> None:
+        """``total`` (S, k*k) += the element tangents (S, G*nd*nd)."""
+        self._add(total, ke, self.tangent_index, self.tangent_kept, first)
 
-    @property
-    def size(self) -> int:
-        return int(self.members.size)
+    def _add(self, total: FloatArray, values: FloatArray, index: IntArray,
+             kept: IntArray, first: bool) -> None:
+        if not self.complete:
+            values = values[:, kept]
+        if not self.distinct:
+            total += _scatter(values, index, total.shape[1])
+        elif first:  # each target once into zeros: a plain assignment
+            total[:, index] = values
+        else:  # each target once: a buffered fancy-index add is exact
+            total[:, index] += values
 
-    @property
-    def nd(self) -> int:
-        return int(self.positions.shape[1])
+    def take(self, x: FloatArray) -> FloatArray:
+        """``x[:, positions]`` as (S * G, nd) with zeros where an element DOF was removed."""
+        if self.complete:
+            return np.asarray(x.take(self.positions.reshape(-1), axis=1)).reshape(
+                -1, self.positions.shape[1])
+        return _take(x, self.positions).reshape(-1, self.positions.shape[1])
 
 
 @dataclass(frozen=True, eq=False)
@@ -156,34 +169,51 @@ class NonlinearAssembly:
         -------
         NonlinearForces
         """
-        q2, v2 = (np.atleast_2d(np.asarray(x, dtype=float)) for x in (q, v))
+        q2, v2 = _two_d(q), _two_d(v)
         S, k = q2.shape
         if k != self.k or v2.shape != (S, k):
             raise ModelError(f"expected (S, {self.k}) displacements and velocities, got "
                              f"{q2.shape} and {v2.shape}", "NonlinearAssembly.evaluate")
-        phi_s = np.broadcast_to(np.asarray(phi, dtype=float), (S,))
-        speed_s = np.broadcast_to(np.asarray(speed, dtype=float), (S,))
+        phi_s, speed_s = _per_sample(phi, S), _per_sample(speed, S)
         f = np.zeros((S, k))
         K = np.zeros((S, k * k))
         C = np.zeros((S, k * k))
         per_element: list[FloatArray] = [np.zeros(0)] * len(self.elements)
         states = []
         for gi, g in enumerate(self.groups):
-            G, nd = g.size, g.nd
-            u = _take(q2, g.positions)  # (S, G, nd)
-            w = _take(v2, g.positions)
+            G, nd = g.positions.shape
+            u, w = g.take(q2), g.take(v2)
             warm = None if internal is None else internal[gi]
-            out = g.element.force(u.reshape(S * G, nd), w.reshape(S * G, nd),
-                                  np.repeat(phi_s, G), np.repeat(speed_s, G), warm)
+            phis, speeds = (phi_s, speed_s) if G == 1 else (phi_s.repeat(G),
+                                                            speed_s.repeat(G))
+            out = g.element.force(u, w, phis, speeds, warm)
             fe = np.asarray(out.f).reshape(S, G * nd)
-            f += g.scatter_forces(fe, k)
-            K += g.scatter_tangents(np.asarray(out.K).reshape(S, G * nd * nd), k)
-            C += g.scatter_tangents(np.asarray(out.C).reshape(S, G * nd * nd), k)
-            for j, m in enumerate(g.members):
-                per_element[m] = fe.reshape(S, G, nd)[:, j]
+            first = gi == 0
+            g.add_forces(f, fe, first)
+            g.add_tangents(K, np.asarray(out.K).reshape(S, G * nd * nd), first)
+            g.add_tangents(C, np.asarray(out.C).reshape(S, G * nd * nd), first)
+            per_sample = fe.reshape(S, G, nd)
+            for j, m in enumerate(g.member_list):
+                per_element[m] = per_sample[:, j]
             states.append(out.internal)
         return NonlinearForces(f, K.reshape(S, k, k), C.reshape(S, k, k),
                                tuple(per_element), tuple(states))
+
+
+def _two_d(x: ArrayLike) -> FloatArray:
+    """``np.atleast_2d`` of a float array."""
+    arr = np.asarray(x, dtype=float)
+    return arr if arr.ndim >= 2 else arr.reshape(1, -1)
+
+
+def _per_sample(x: ArrayLike, n_samples: int) -> FloatArray:
+    """A scalar or (S,) array as (S,) floats (a broadcast view of a scalar)."""
+    arr = np.asarray(x, dtype=float)
+    if arr.shape == (n_samples,):
+        return arr
+    if arr.ndim == 0:
+        return arr.reshape(1).repeat(n_samples)
+    return np.broadcast_to(arr, (n_samples,))
 
 
 def _n_free(full_to_free: IntArray) -> int:
@@ -239,16 +269,13 @@ def _group(elements: tuple[Any, ...], members: list[int], free: list[IntArray],
     ok2 = np.flatnonzero(((positions[:, :, None] >= 0)
                           & (positions[:, None, :] >= 0)).reshape(-1))
     return _Group(elements[members[0]], np.asarray(members, dtype=np.int64), positions,
-                  flat[ok], ok, rows[ok2], ok2, bool(np.unique(flat[ok]).size == ok.size))
+                  flat[ok], ok, rows[ok2], ok2, bool(np.unique(flat[ok]).size == ok.size),
+                  bool(ok.size == flat.size), tuple(int(m) for m in members))
 
 
-def _scatter(values: FloatArray, index: IntArray, size: int, distinct: bool) -> FloatArray:
+def _scatter(values: FloatArray, index: IntArray, size: int) -> FloatArray:
     """``out[s, index[j]] += values[s, j]`` (repeated indices add, by one bincount)."""
     S = values.shape[0]
-    if distinct:
-        out = np.zeros((S, size))
-        out[:, index] = values
-        return out
     flat = (np.arange(S)[:, None] * size + index[None, :]).ravel()
     summed = np.bincount(flat, weights=values.ravel(), minlength=S * size)
     return np.asarray(summed, dtype=float).reshape(S, size)

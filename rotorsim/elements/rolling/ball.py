@@ -28,6 +28,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from functools import cached_property
 from typing import Any, NamedTuple
 
 import numpy as np
@@ -47,6 +48,31 @@ class _Resolved(NamedTuple):
     clearance: float  # radial clearance r_L [m]
     arm: float  # radius of the inner groove curvature centres r_j [m]
     kappa: float  # cage ratio
+    sin0: float  # sin(alpha0)
+    cos0: float  # cos(alpha0)
+    axial0: float  # A0 sin(alpha0): unloaded axial groove-centre offset [m]
+    radial0: float  # A0 cos(alpha0) - r_L: unloaded radial offset [m]
+
+
+class _Constants(NamedTuple):
+    """Hot-path constants as read-only 0-d arrays (same values as the floats)."""
+
+    axial0: FloatArray
+    radial0: FloatArray
+    arm: FloatArray
+    a0: FloatArray
+    kn: FloatArray  # Kn
+    n_kn: FloatArray  # n Kn
+    n_minus_1: FloatArray  # n - 1
+
+
+def _frozen(value: float) -> FloatArray:
+    arr = np.array(float(value))
+    arr.flags.writeable = False
+    return arr
+
+
+_ZERO, _ONE = _frozen(0.0), _frozen(1.0)
 
 
 @dataclass(frozen=True, eq=False)
@@ -150,7 +176,9 @@ class BallBearing:
         arm = self._resolve_arm(a0, where)
         kappa = (geometry.cage_ratio(self.ball_diameter, self.pitch_diameter,
                                      self.contact_angle) if self.cage == "rotating" else 0.0)
-        object.__setattr__(self, "_geo", _Resolved(a0, clearance, arm, kappa))
+        sin0, cos0 = math.sin(self.contact_angle), math.cos(self.contact_angle)
+        object.__setattr__(self, "_geo", _Resolved(a0, clearance, arm, kappa, sin0, cos0,
+                                                   a0 * sin0, a0 * cos0 - clearance))
 
     def _resolve_a0(self, where: str) -> float:
         if (self.f_i is None) != (self.f_o is None):
@@ -257,7 +285,7 @@ class BallBearing:
 
     def element_angles(self, phi: ArrayLike = 0.0) -> FloatArray:
         """Ball angles ``psi`` [rad], shape ``(S, N)``, at shaft angles ``phi`` (S,)."""
-        return geometry.element_angles(self.n_elements, phi, self._geo.kappa, self.psi0)
+        return geometry.element_angles(self.n_balls, phi, self._geo.kappa, self.psi0)
 
     def _inputs(self, delta: ArrayLike, psi: ArrayLike) -> tuple[FloatArray, FloatArray]:
         d = np.asarray(delta, dtype=float)
@@ -269,35 +297,46 @@ class BallBearing:
         if p.ndim != 2 or p.shape[1] != self.n_balls or p.shape[0] not in (1, d.shape[0]):
             raise ModelError(f"psi must have shape ({d.shape[0]}, {self.n_balls}), got "
                              f"{np.shape(psi)}", self.label)
-        if not (np.all(np.isfinite(d)) and np.all(np.isfinite(p))):
+        if not (np.isfinite(d).all() and np.isfinite(p).all()):
             raise ModelError("delta and psi must be finite", self.label)
-        return d, np.broadcast_to(p, (d.shape[0], self.n_balls))
+        if p.shape[0] != d.shape[0]:
+            p = np.broadcast_to(p, (d.shape[0], self.n_balls))
+        return d, p
 
     def _contacts(self, d: FloatArray, c: FloatArray, s: FloatArray
                   ) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
-        """Groove-centre components ``Z, R``, distance ``A`` and deflection, (S, N)."""
-        a0, clearance, arm, _ = self._geo
-        sin0, cos0 = math.sin(self.contact_angle), math.cos(self.contact_angle)
-        x, y, z, rx, ry = (d[:, k, None] for k in range(5))
-        axial = (a0 * sin0 + z) + arm * (rx * s - ry * c)
-        radial = (a0 * cos0 - clearance) + x * c + y * s
+        """Groove-centre components ``Z, R``, distance ``A`` and deflection, (..., N), of
+        checked ``d`` (..., 5) and ``c, s = cos, sin(psi)`` broadcastable to (..., N)."""
+        g, h = self._geo, self._hot
+        x, y, z, rx, ry = (d[..., k, None] for k in range(5))
+        axial = (h.axial0 + z) + h.arm * (rx * s - ry * c)
+        radial = (h.radial0 + x * c) + y * s
         dist = np.sqrt(axial * axial + radial * radial)
         # contact needs A > A0 and the centre line within 90 deg of its unloaded direction:
-        # beyond, |A| would describe a ball on the far side of the groove (not physical)
-        loaded = (dist > a0) & (axial * sin0 + radial * cos0 > 0.0)
-        deflection = np.where(loaded, dist - a0, 0.0)
+        # beyond, |A| would describe a ball on the far side of the groove (not physical);
+        # for alpha0 = 0 the second test is R > 0 exactly
+        front = radial > _ZERO if g.sin0 == 0.0 else axial * g.sin0 + radial * g.cos0 > 0.0
+        deflection = np.maximum(dist - h.a0, _ZERO)
+        deflection *= front
         return axial, radial, dist, deflection
+
+    @cached_property
+    def _hot(self) -> _Constants:
+        """Constants of the evaluation as 0-d arrays (cheaper operands than floats)."""
+        g, n = self._geo, self.exponent
+        values = (g.axial0, g.radial0, g.arm, g.a0, self.Kn, n * self.Kn, n - 1.0)
+        return _Constants(*(_frozen(v) for v in values))
 
     def _load(self, deflection: FloatArray) -> tuple[FloatArray, FloatArray]:
         """``Q = Kn delta^n`` and ``n Kn delta^(n-1)``."""
-        n = self.exponent
+        n, h = self.exponent, self._hot
         if n == 1.5:
             root = np.sqrt(deflection)
-            return self.Kn * deflection * root, 1.5 * self.Kn * root
+            return h.kn * deflection * root, h.n_kn * root
         if n == 1.0:
-            return self.Kn * deflection, np.where(deflection > 0, self.Kn, 0.0)
-        power = np.power(deflection, n - 1.0)
-        return self.Kn * deflection * power, n * self.Kn * power
+            return h.kn * deflection, np.where(deflection > _ZERO, h.kn, _ZERO)
+        power = np.power(deflection, h.n_minus_1)
+        return h.kn * deflection * power, h.n_kn * power
 
     def energy(self, delta: ArrayLike, psi: ArrayLike) -> FloatArray:
         """Strain energy ``U`` [J] of all ball contacts, shape ``(S,)`` (seed 000 eq 16)."""
@@ -330,16 +369,7 @@ class BallBearing:
         c, s = np.cos(p), np.sin(p)
         axial, radial, dist, deflection = self._contacts(d, c, s)
         load, slope = self._load(deflection)
-        inv = 1.0 / np.where(dist > 0, dist, 1.0)  # unloaded balls: load and slope are 0
-        sin_a, cos_a = axial * inv, radial * inv
-        w_geo = load * inv  # Q / A: the curvature term of the distance A
-        sin2, cos2 = sin_a * sin_a, cos_a * cos_a
-        rows = np.empty((d.shape[0], 5, self.n_balls))
-        rows[:, 0] = slope * cos2 + w_geo * sin2  # P: radial-radial
-        np.multiply(slope - w_geo, sin_a * cos_a, out=rows[:, 1])  # U: radial-axial
-        rows[:, 2] = slope * sin2 + w_geo * cos2  # V: axial-axial
-        np.multiply(load, cos_a, out=rows[:, 3])  # radial force
-        np.multiply(load, sin_a, out=rows[:, 4])  # axial force
+        rows, sin_a, cos_a = _rows(axial, radial, dist, load, slope)
         force, stiffness = assemble(ball_sums(rows, c, s), self._geo.arm)
         return BearingState(force=force, stiffness=stiffness,
                             energy=(load * deflection).sum(axis=1) / (self.exponent + 1.0),
@@ -348,6 +378,38 @@ class BallBearing:
                             contact_direction=directions(sin_a, cos_a, c, s,
                                                           self._geo.arm),
                             element_stiffness=slope)
+
+    def _force_stiffness(self, d: FloatArray, c: FloatArray, s: FloatArray
+                         ) -> tuple[FloatArray, FloatArray]:
+        """Force (..., 5) and exact tangent (..., 5, 5) only, as :meth:`state`, without
+        checks (the hot path of :class:`~rotorsim.elements.rolling.element.RollingBearing`).
+
+        ``d`` (..., 5) checked relative displacements, ``c, s`` (..., N) ``cos, sin(psi)``;
+        ``c, s`` may omit leading axes of ``d`` (shared ball angles, e.g. ``d`` (3, S, 5)
+        and ``c`` (S, N)).
+        """
+        axial, radial, dist, deflection = self._contacts(d, c, s)
+        load, slope = self._load(deflection)
+        rows = _rows(axial, radial, dist, load, slope)[0]
+        return assemble(np.matmul(rows, np.swapaxes(geometry.angle_basis(c, s), -1, -2)),
+                        self._geo.arm)
+
+
+def _rows(axial: FloatArray, radial: FloatArray, dist: FloatArray, load: FloatArray,
+          slope: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray]:
+    """Per-ball ``(P, U, V, F_R, F_Z)`` (..., 5, N) of eq 27 and ``sin, cos`` of the
+    contact angles (..., N) (module docstring)."""
+    inv = _ONE / np.where(dist > _ZERO, dist, _ONE)  # unloaded balls: load and slope are 0
+    sin_a, cos_a = axial * inv, radial * inv
+    w_geo = load * inv  # Q / A: the curvature term of the distance A
+    sin2, cos2 = sin_a * sin_a, cos_a * cos_a
+    rows = np.empty((*dist.shape[:-1], 5, dist.shape[-1]))
+    np.add(slope * cos2, w_geo * sin2, out=rows[..., 0, :])  # P: radial-radial
+    np.multiply(slope - w_geo, sin_a * cos_a, out=rows[..., 1, :])  # U: radial-axial
+    np.add(slope * sin2, w_geo * cos2, out=rows[..., 2, :])  # V: axial-axial
+    np.multiply(load, cos_a, out=rows[..., 3, :])  # radial force
+    np.multiply(load, sin_a, out=rows[..., 4, :])  # axial force
+    return rows, sin_a, cos_a
 
 
 def _finite(value: object, key: str, where: str) -> float:

@@ -6,15 +6,19 @@ and axial displacement of the inner groove curvature centre. Both are mapped to 
 relative DOFs ``(x, y, z, rx, ry)`` by ``dR/d delta = (cos psi, sin psi, 0, 0, 0)`` and
 ``dZ/d delta = (0, 0, 1, r_j sin psi, -r_j cos psi)`` (seed 000 eq 2). The sums over the
 balls need only the products of ``(P, U, V, F_R, F_Z)`` with ``cos^2, cos sin, sin^2, cos,
-sin, 1`` of ``psi_j``: one batched matrix product (:func:`assemble`). The rigid-ring model
+sin, 1`` of ``psi_j``: one batched matrix product (:func:`ball_sums`), mapped to force and
+tangent by a second, constant one (:func:`assemble`). The rigid-ring model
 (:mod:`~rotorsim.elements.rolling.ball`) and the centrifugal model
 (:mod:`~rotorsim.elements.rolling.ball_centrifugal`) share it.
 """
 
 from __future__ import annotations
 
+import functools
+
 import numpy as np
 
+from rotorsim.elements.rolling.geometry import angle_basis
 from rotorsim.elements.rolling.state import FloatArray
 
 # Stiffness entries (row, column) from the ball sums: (row of ``rows``, basis column,
@@ -27,12 +31,9 @@ _K_ENTRIES = (
     ((2, 2), 2, 5, 0, 1.0), ((2, 3), 2, 4, 1, 1.0), ((2, 4), 2, 3, 1, -1.0),
     ((3, 3), 2, 2, 2, 1.0), ((3, 4), 2, 1, 2, -1.0), ((4, 4), 2, 0, 2, 1.0),
 )
-_K_SOURCE = np.array([6 * e[1] + e[2] for e in _K_ENTRIES])
-_K_UPPER = np.array([5 * e[0][0] + e[0][1] for e in _K_ENTRIES])
-_K_LOWER = np.array([5 * e[0][1] + e[0][0] for e in _K_ENTRIES])
 # force: Fx = sum Q cos a c, Fy = sum Q cos a s, Fz = sum Q sin a, Mx = r sum Q sin a s,
 # My = -r sum Q sin a c
-_F_SOURCE = np.array([6 * 3 + 3, 6 * 3 + 4, 6 * 4 + 5, 6 * 4 + 4, 6 * 4 + 3])
+_F_SOURCE = (6 * 3 + 3, 6 * 3 + 4, 6 * 4 + 5, 6 * 4 + 4, 6 * 4 + 3)
 
 
 def ball_sums(rows: FloatArray, c: FloatArray, s: FloatArray) -> FloatArray:
@@ -41,31 +42,38 @@ def ball_sums(rows: FloatArray, c: FloatArray, s: FloatArray) -> FloatArray:
     ``rows`` holds ``(P, U, V, F_R, F_Z)`` per ball, ``c, s`` (S, N) ``cos, sin(psi_j)``;
     the basis columns are ``c^2, c s, s^2, c, s, 1``.
     """
-    basis = np.empty((c.shape[0], 6, c.shape[1]))
-    np.multiply(c, c, out=basis[:, 0])
-    np.multiply(c, s, out=basis[:, 1])
-    np.multiply(s, s, out=basis[:, 2])
-    basis[:, 3] = c
-    basis[:, 4] = s
-    basis[:, 5] = 1.0
-    return np.asarray(np.matmul(rows, basis.transpose(0, 2, 1)))
+    return np.asarray(np.matmul(rows, np.swapaxes(angle_basis(c, s), -1, -2)))
+
+
+@functools.lru_cache(maxsize=64)
+def sums_transform(arm: float) -> FloatArray:
+    """``(30, 30)`` matrix ``T``: ``sums.reshape(S, 30) @ T`` is ``[force | stiffness]``
+    (S, 5 + 25), the force and the row-major stiffness of :func:`assemble`.
+
+    Every column has one non-zero entry (``+-arm^p``), so the product is exact: each output
+    is one rounded product, as if picked and scaled entry by entry. Cached, read-only.
+    """
+    t = np.zeros((30, 30))
+    for i, (source, scale) in enumerate(zip(_F_SOURCE, (1.0, 1.0, 1.0, arm, -arm),
+                                            strict=True)):
+        t[source, i] = scale
+    for (row, col), b_row, b_col, power, sign in _K_ENTRIES:
+        t[6 * b_row + b_col, 5 + 5 * row + col] = sign * arm**power
+        t[6 * b_row + b_col, 5 + 5 * col + row] = sign * arm**power
+    t.flags.writeable = False
+    return t
 
 
 def assemble(sums: FloatArray, arm: float) -> tuple[FloatArray, FloatArray]:
-    """Force (S, 5) and symmetric stiffness (S, 5, 5) from the ball sums (S, 5, 6).
+    """Force (..., 5) and symmetric stiffness (..., 5, 5) from the ball sums (..., 5, 6).
 
-    ``sums[:, i, k]`` = sum_j row_i * basis_k with rows (P, U, V, Q cos a, Q sin a) and
-    basis (c^2, cs, s^2, c, s, 1), ``c, s = cos, sin(psi_j)``.
+    ``sums[..., i, k]`` = sum_j row_i * basis_k with rows (P, U, V, Q cos a, Q sin a) and
+    basis (c^2, cs, s^2, c, s, 1), ``c, s = cos, sin(psi_j)``; one product with
+    :func:`sums_transform`.
     """
-    n_samples = sums.shape[0]
-    flat = sums.reshape(n_samples, 30)
-    k_scale = np.array([sign * arm**power for _, _, _, power, sign in _K_ENTRIES])
-    f_scale = np.array([1.0, 1.0, 1.0, arm, -arm])
-    values = flat[:, _K_SOURCE] * k_scale
-    k = np.empty((n_samples, 25))
-    k[:, _K_LOWER] = values
-    k[:, _K_UPPER] = values
-    return flat[:, _F_SOURCE] * f_scale, k.reshape(n_samples, 5, 5)
+    lead = sums.shape[:-2]
+    flat = sums.reshape(-1, 30) @ sums_transform(float(arm))
+    return flat[:, :5].reshape(*lead, 5), flat[:, 5:].reshape(*lead, 5, 5)
 
 
 def directions(sin_a: FloatArray, cos_a: FloatArray, c: FloatArray, s: FloatArray,

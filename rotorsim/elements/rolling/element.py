@@ -35,6 +35,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from functools import cached_property
 from typing import Any
 
 import numpy as np
@@ -52,6 +53,29 @@ CONTACT_DAMPING = ("none", "proportional", "ehl")
 """Contact damping models of :class:`RollingBearing`."""
 _FD_STEP = 1e-9
 """Scaled step [m] of the central difference of the tangent along the velocity."""
+
+
+def _frozen(value: float) -> FloatArray:
+    arr = np.array(float(value))
+    arr.flags.writeable = False
+    return arr
+
+
+# 0-d arrays: cheaper operands than Python floats in the hot path (same values)
+_ZERO, _ONE, _FD_H, _FD_2H = (_frozen(x) for x in (0.0, 1.0, _FD_STEP, 2 * _FD_STEP))
+_SIGNS = np.array([1.0, -1.0])  # inner node +F, outer node -F
+_SIGN_BLOCKS = np.array([[1.0, -1.0], [-1.0, 1.0]])[:, None, :, None]  # (2, 1, 2, 1)
+
+
+def _per_sample(value: ArrayLike, n_samples: int) -> FloatArray:
+    """A scalar or (S,) array as (S,) floats (a broadcast view of a scalar)."""
+    arr = np.asarray(value, dtype=float).reshape(-1)
+    return arr if arr.shape[0] == n_samples else np.broadcast_to(arr, (n_samples,))
+
+
+def _apply(k: FloatArray, x: FloatArray) -> FloatArray:
+    """``k @ x`` per sample: (S, 5, 5) times (S, 5)."""
+    return np.asarray(np.matmul(k, x[:, :, None]))[:, :, 0]
 
 
 @dataclass(frozen=True, eq=False)
@@ -165,7 +189,7 @@ class RollingBearing:
 
     @property
     def n_dofs(self) -> int:
-        return 6 * len(self.nodes)
+        return 6 if self.n_link is None else 12
 
     @property
     def beta(self) -> float:
@@ -176,10 +200,11 @@ class RollingBearing:
         """``delta = u_inner[:5] - u_outer[:5]`` (S, 5) from element DOFs ``u`` (S, n)."""
         arr = np.asarray(u, dtype=float)
         arr = arr[None, :] if arr.ndim == 1 else arr
-        if arr.ndim != 2 or arr.shape[1] != self.n_dofs:
-            raise ModelError(f"element DOFs must have shape (S, {self.n_dofs}), got "
+        n_dofs = 6 if self.n_link is None else 12
+        if arr.ndim != 2 or arr.shape[1] != n_dofs:
+            raise ModelError(f"element DOFs must have shape (S, {n_dofs}), got "
                              f"{np.shape(u)}", self.label)
-        if not np.all(np.isfinite(arr)):
+        if not np.isfinite(arr).all():
             raise ModelError("element DOFs must be finite", self.label)
         return arr[:, :5] - arr[:, 6:11] if self.n_link is not None else arr[:, :5].copy()
 
@@ -212,8 +237,8 @@ class RollingBearing:
         if rate.shape[0] != n_samples:
             raise ModelError(f"u and v have {n_samples} and {rate.shape[0]} samples",
                              self.label)
-        phis = np.broadcast_to(np.asarray(phi, dtype=float).reshape(-1), (n_samples,))
-        speeds = np.broadcast_to(np.asarray(speed, dtype=float).reshape(-1), (n_samples,))
+        phis = _per_sample(phi, n_samples)
+        speeds = _per_sample(speed, n_samples)
         psi = self.bearing.element_angles(phis)
         if self._ehl is not None:
             st = self.bearing.state(delta, psi)
@@ -237,45 +262,72 @@ class RollingBearing:
                   speeds: FloatArray, internal: Any
                   ) -> tuple[FloatArray, FloatArray, FloatArray, Any]:
         """Force (S, 5), ``dF/d delta``, ``dF/d delta'`` (S, 5, 5) and internal DOFs."""
-        beta = self.beta
-        if beta == 0.0 or not np.any(rate):
-            st = self._state(delta, psi, speeds, internal)
-            return st.force + beta * np.einsum("sij,sj->si", st.stiffness, rate), \
-                st.stiffness.copy(), beta * st.stiffness, getattr(st, "internal", None)
-        arm = self._arm()
-        scale = np.array([1.0, 1.0, 1.0, arm, arm])  # scaled rate: rotations x arm [m]
-        size = np.linalg.norm(rate * scale, axis=1)
-        unit = rate / np.where(size > 0, size, 1.0)[:, None]
-        h = _FD_STEP
+        beta, scale = self._damping
+        fast = getattr(self.bearing, "_force_stiffness", None)  # rigid ball/roller models
+        if beta is None or not rate.any():
+            if fast is not None:
+                f0, k0 = fast(delta, np.cos(psi), np.sin(psi))
+                solved = None
+            else:
+                st = self._state(delta, psi, speeds, internal)
+                f0, k0, solved = st.force, st.stiffness, getattr(st, "internal", None)
+            # at rest beta K delta' = 0: the force is the elastic one
+            return f0, k0, np.zeros_like(k0) if beta is None else beta * k0, solved
+        scaled = rate * scale
+        size = np.sqrt(np.add.reduce(scaled * scaled, axis=1))  # as np.linalg.norm
+        step = _FD_H * (rate / np.where(size > _ZERO, size, _ONE)[:, None])
         n_samples = delta.shape[0]
-        warm = None if internal is None else np.concatenate([internal] * 3)
-        st = self._state(np.vstack([delta, delta + h * unit, delta - h * unit]),
-                         np.vstack([psi, psi, psi]), np.concatenate([speeds] * 3), warm)
-        k0 = st.stiffness[:n_samples]
-        dk = (st.stiffness[n_samples:2 * n_samples] - st.stiffness[2 * n_samples:]) / (2 * h)
-        force = st.force[:n_samples] + beta * np.einsum("sij,sj->si", k0, rate)
-        solved = getattr(st, "internal", None)
-        return force, k0 + beta * dk * size[:, None, None], beta * k0, \
-            None if solved is None else solved[:n_samples]
+        shifted = np.empty((3, n_samples, 5))
+        shifted[0] = delta
+        np.add(delta, step, out=shifted[1])
+        np.subtract(delta, step, out=shifted[2])
+        if fast is not None:
+            force3, k3 = fast(shifted, np.cos(psi), np.sin(psi))
+            f0, k0, k_plus, k_minus, solved = force3[0], k3[0], k3[1], k3[2], None
+        else:
+            warm = None if internal is None else np.concatenate([internal] * 3)
+            st = self._state(shifted.reshape(3 * n_samples, 5),
+                             np.concatenate([psi, psi, psi]), np.concatenate([speeds] * 3),
+                             warm)
+            f0, k0 = st.force[:n_samples], st.stiffness[:n_samples]
+            k_plus = st.stiffness[n_samples:2 * n_samples]
+            k_minus = st.stiffness[2 * n_samples:]
+            solved = getattr(st, "internal", None)
+            solved = None if solved is None else solved[:n_samples]
+        dk = (k_plus - k_minus) / _FD_2H
+        force = f0 + beta * _apply(k0, rate)
+        return force, k0 + beta * dk * size[:, None, None], beta * k0, solved
+
+    @cached_property
+    def _damping(self) -> tuple[FloatArray | None, FloatArray]:
+        """``beta_c`` as a 0-d array (``None`` without damping) and ``(1, 1, 1, arm,
+        arm)``, which scales the rate to metres (rotations x arm) for the FD step."""
+        beta = None if self.beta == 0.0 else _frozen(self.beta)
+        arm = float(getattr(self.bearing, "moment_arm", 0.5 * self.bearing.pitch_diameter))
+        scale = np.array([1.0, 1.0, 1.0, arm, arm])
+        scale.flags.writeable = False
+        return beta, scale
 
     def _arm(self) -> float:
-        return float(getattr(self.bearing, "moment_arm", 0.5 * self.bearing.pitch_diameter))
+        return float(self._damping[1][3])
 
     def _expand_vector(self, f5: FloatArray) -> FloatArray:
-        out = np.zeros((f5.shape[0], self.n_dofs))
-        out[:, :5] = f5
-        if self.n_link is not None:
-            out[:, 6:11] = -f5
-        return out
+        if self.n_link is None:
+            out = np.zeros((f5.shape[0], 6))
+            out[:, :5] = f5
+            return out
+        out = np.zeros((f5.shape[0], 2, 6))
+        np.multiply(f5[:, None, :], _SIGNS[:, None], out=out[:, :, :5])
+        return out.reshape(-1, 12)
 
     def _expand_matrix(self, k5: FloatArray) -> FloatArray:
-        out = np.zeros((k5.shape[0], self.n_dofs, self.n_dofs))
-        out[:, :5, :5] = k5
-        if self.n_link is not None:
-            out[:, 6:11, 6:11] = k5
-            out[:, :5, 6:11] = -k5
-            out[:, 6:11, :5] = -k5
-        return out
+        if self.n_link is None:
+            out = np.zeros((k5.shape[0], 6, 6))
+            out[:, :5, :5] = k5
+            return out
+        out = np.zeros((k5.shape[0], 2, 6, 2, 6))
+        np.multiply(k5[:, None, :, None, :], _SIGN_BLOCKS, out=out[:, :, :5, :, :5])
+        return out.reshape(-1, 12, 12)
 
     def linearize(self, load: ArrayLike | None = None, displacement: ArrayLike | None = None,
                   phi: float = 0.0, *, speed: float | None = None, frequency: float = 0.0,

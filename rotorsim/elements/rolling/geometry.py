@@ -8,6 +8,7 @@ element ``j`` sits at ``psi_j = psi_0 + 2 pi j / N + kappa * phi``. The element-
 
 from __future__ import annotations
 
+import functools
 import math
 
 import numpy as np
@@ -65,6 +66,43 @@ def element_angles(n_elements: int, phi: ArrayLike = 0.0, kappa: float = 0.0,
     if not isinstance(n_elements, int | np.integer) or n_elements < 1:
         raise ModelError(f"number of rolling elements must be >= 1, got {n_elements!r}",
                          "element_angles")
-    phi_arr = np.atleast_1d(np.asarray(phi, dtype=float))
+    phi_arr = np.asarray(phi, dtype=float)
+    if phi_arr.ndim == 0:
+        phi_arr = phi_arr.reshape(1)
+    return base_angles(int(n_elements), float(psi0))[None, :] + kappa * phi_arr[:, None]
+
+
+@functools.lru_cache(maxsize=256)
+def base_angles(n_elements: int, psi0: float = 0.0) -> FloatArray:
+    """``psi0 + 2 pi j / N`` [rad], shape ``(N,)``: the element angles at ``phi = 0``.
+
+    Cached (read-only array): bearings evaluated at every time step reuse it.
+
+    Examples
+    --------
+    >>> base_angles(4).round(6).tolist()
+    [0.0, 1.570796, 3.141593, 4.712389]
+    """
     base = psi0 + 2.0 * np.pi * np.arange(n_elements) / n_elements
-    return base[None, :] + kappa * phi_arr[:, None]
+    base.flags.writeable = False
+    return base
+
+
+def angle_basis(c: FloatArray, s: FloatArray) -> FloatArray:
+    """``c^2, c s, s^2, c, s, 1`` stacked on a new axis ``(..., 6, N)``, from ``c, s``
+    (..., N) ``= cos, sin(psi_j)``: the angle functions whose sums over the rolling
+    elements give the bearing force and tangent (ball and roller models).
+
+    Examples
+    --------
+    >>> angle_basis(np.array([[1.0]]), np.array([[0.0]]))[0, :, 0].tolist()
+    [1.0, 0.0, 0.0, 1.0, 0.0, 1.0]
+    """
+    basis = np.empty((*c.shape[:-1], 6, c.shape[-1]))
+    np.multiply(c, c, out=basis[..., 0, :])
+    np.multiply(c, s, out=basis[..., 1, :])
+    np.multiply(s, s, out=basis[..., 2, :])
+    basis[..., 3, :] = c
+    basis[..., 4, :] = s
+    basis[..., 5, :] = 1.0
+    return basis

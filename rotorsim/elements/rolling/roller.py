@@ -43,14 +43,21 @@ from numpy.typing import ArrayLike, NDArray
 from rotorsim.elements.rolling.geometry import cage_ratio, element_angles
 from rotorsim.elements.rolling.hertz_line import (
     LINE_EXPONENT,
+    _slice_sums,
+    _tilted,
     iso_roller_constant,
     line_moments,
+    slice_weights,
     tilted_line_integrals,
 )
 from rotorsim.elements.rolling.roller_integrals import (
     LineIntegrals,
+    RollerConstants,
     RollerLoads,
     assemble_tangent,
+    force_stiffness,
+    roller_constants,
+    roller_rows,
     tilt_limits,
     unit_load_directions,
 )
@@ -271,21 +278,37 @@ class RollerBearing:
             raise ModelError("delta and psi must be finite", self._where)
         return d, np.broadcast_to(p, (d.shape[0], self.n_rollers))
 
-    def _blocks(self, n_samples: int) -> list[slice]:
-        """Sample blocks of about 32k roller-slices: small temporaries stay in cache."""
+    @cached_property
+    def _block_size(self) -> int:
+        """Samples of about 32k roller-slices: small temporaries stay in cache."""
         per_sample = self.n_rollers * (self.n_slices if self.model == "slices" else 1)
-        size = max(1, 32768 // per_sample)
+        return max(1, 32768 // per_sample)
+
+    def _blocks(self, n_samples: int) -> list[slice]:
+        """Sample blocks of about 32k roller-slices (:attr:`_block_size`)."""
+        size = self._block_size
         return [slice(i, i + size) for i in range(0, n_samples, size)]
+
+    @cached_property
+    def _hot(self) -> RollerConstants:
+        """Constants of the evaluation (:func:`roller_constants`)."""
+        return roller_constants(self.contact_angle, self.pitch_diameter, self.clearance,
+                                self.effective_length, self.kn, float(self.exponent))
 
     def _kinematics(self, d: FloatArray, p: FloatArray) -> tuple[FloatArray, ...]:
         """``cos psi``, ``sin psi``, centre deflection ``V`` and tilt ``L omega`` (S, Z)."""
         c, s = np.cos(p), np.sin(p)
-        ca, sa = math.cos(self.contact_angle), math.sin(self.contact_angle)
-        r_sa = 0.5 * self.pitch_diameter * sa
-        x, y, z, rx, ry = (d[:, k:k + 1] for k in range(5))
-        v = ca * (x * c + y * s - self.clearance) + sa * z + r_sa * (rx * s - ry * c)
-        lw = self.effective_length * (ry * c - rx * s)
-        return c, s, v, lw
+        return (c, s, *self._approach(d, c, s))
+
+    def _approach(self, d: FloatArray, c: FloatArray, s: FloatArray
+                  ) -> tuple[FloatArray, FloatArray]:
+        """Centre deflection ``V`` and tilt ``L omega`` (..., Z) of ``d`` (..., 5) at
+        ``c, s = cos, sin(psi)`` (..., Z), which may omit leading axes of ``d``."""
+        h = self._hot
+        x, y, z, rx, ry = (d[..., k, None] for k in range(5))
+        rx_s, ry_c = rx * s, ry * c
+        v = h.ca0 * (x * c + y * s - h.clearance) + h.sa0 * z + h.r_sa0 * (rx_s - ry_c)
+        return v, h.length * (ry_c - rx_s)
 
     # ------------------------------------------------------------------ integrals
     def _integrals(self, v: FloatArray, lw: FloatArray, energy_only: bool = False
@@ -293,9 +316,52 @@ class RollerBearing:
         n = float(self.exponent)
         if self.model == "tilt_integral":
             return LineIntegrals(*tilted_line_integrals(v, lw, n, energy_only))
-        xi = self._slice_xi
-        dk = v[..., None] + lw[..., None] * xi - self._slice_drop
-        return LineIntegrals(*line_moments(dk, xi, n, energy_only))
+        return LineIntegrals(*line_moments(self._slice_deflection(v, lw), self._slice_xi, n,
+                                           energy_only))
+
+    def _load_integrals(self, v: FloatArray, lw: FloatArray) -> tuple[FloatArray, ...]:
+        """``int delta^n``, ``int xi delta^n`` and ``int xi^p delta^(n-1)`` (p = 0, 1, 2)
+        (..., Z) of :meth:`_integrals`, without the energy and the peak deflection."""
+        n = float(self.exponent)
+        if self.model == "tilt_integral":
+            return _tilted(v, lw, n, True, False)[1:6]
+        return _slice_sums(self._slice_deflection(v, lw), self._slice_weights, n, False)[1:6]
+
+    def _slice_deflection(self, v: FloatArray, lw: FloatArray) -> FloatArray:
+        """``V + xi_k L omega - c(xi_k)`` at the slice centres (..., Z, K)."""
+        return np.asarray(v[..., None] + lw[..., None] * self._slice_xi - self._slice_drop)
+
+    @cached_property
+    def _slice_weights(self) -> FloatArray:
+        weights = slice_weights(self._slice_xi)
+        weights.flags.writeable = False
+        return weights
+
+    def _force_stiffness(self, d: FloatArray, c: FloatArray, s: FloatArray
+                         ) -> tuple[FloatArray, FloatArray]:
+        """Force (..., S, 5) and exact tangent (..., S, 5, 5) only, as :meth:`state`,
+        without checks (the hot path of
+        :class:`~rotorsim.elements.rolling.element.RollingBearing`).
+
+        ``d`` (..., S, 5) checked relative displacements, ``c, s`` (S, Z) ``cos, sin(psi)``
+        shared by the leading axes of ``d`` (e.g. ``d`` (3, S, 5)).
+        """
+        n_samples = c.shape[0]
+        copies = d.size // (5 * n_samples) if n_samples else 1
+        size = max(1, self._block_size // copies)
+        if n_samples <= size:
+            return self._force_block(d, c, s)
+        parts = [self._force_block(d[..., i:i + size, :], c[i:i + size], s[i:i + size])
+                 for i in range(0, n_samples, size)]
+        return (np.concatenate([f for f, _ in parts], axis=-2),
+                np.concatenate([k for _, k in parts], axis=-3))
+
+    def _force_block(self, d: FloatArray, c: FloatArray, s: FloatArray
+                     ) -> tuple[FloatArray, FloatArray]:
+        h = self._hot
+        rows = roller_rows(h, *self._load_integrals(*self._approach(d, c, s)))
+        force, tangent = force_stiffness(rows, c, s, h.ca, h.sa)
+        return force, h.n_kn * tangent
 
     # ------------------------------------------------------------------ public API
     def energy(self, delta: ArrayLike, psi: ArrayLike) -> FloatArray:
@@ -327,25 +393,19 @@ class RollerBearing:
     def _state_block(self, d: FloatArray, p: FloatArray) -> BearingState:
         c, s, v, lw = self._kinematics(d, p)
         ints = self._integrals(v, lw)
-        kn, n, length = self.kn, float(self.exponent), self.effective_length
-        ca, sa = math.cos(self.contact_angle), math.sin(self.contact_angle)
-        r_sa = 0.5 * self.pitch_diameter * sa
-        q = kn * ints.load
-        arm = r_sa * q - kn * length * ints.load_moment  # Q_j (r_p sin a0 - e_j)
-        force = np.stack([ca * (q * c).sum(1), ca * (q * s).sum(1), sa * q.sum(1),
-                          (arm * s).sum(1), -(arm * c).sum(1)], axis=1)
-        w0 = ints.tangent0
-        w1 = r_sa * w0 - length * ints.tangent1
-        w2 = r_sa**2 * w0 - 2.0 * r_sa * length * ints.tangent1 + length**2 * ints.tangent2
-        stiffness = n * kn * assemble_tangent(c, s, w0, w1, w2, ca, sa)
+        h = self._hot
+        rows = roller_rows(h, ints.load, ints.load_moment, ints.tangent0, ints.tangent1,
+                           ints.tangent2)
+        force, tangent = force_stiffness(rows, c, s, h.ca, h.sa)
+        q, arm = rows[3].copy(), rows[4]  # Q_j and Q_j (r_p sin a0 - e_j)
         # unit-load direction g_j = dF/dQ_j: the moment arm r_p sin a0 - e_j of eq 10
-        unit_arm = np.where(q > 0.0, arm / np.where(q > 0.0, q, 1.0), r_sa)
-        direction = unit_load_directions(c, s, unit_arm, ca, sa)
+        unit_arm = np.where(q > 0.0, arm / np.where(q > 0.0, q, 1.0), h.r_sa)
+        direction = unit_load_directions(c, s, unit_arm, h.ca, h.sa)
         return BearingState(
-            force=force, stiffness=stiffness, energy=kn * ints.energy.sum(axis=1),
+            force=force, stiffness=h.n_kn * tangent, energy=self.kn * ints.energy.sum(axis=1),
             element_load=q, contact_angle=np.full(q.shape, self.contact_angle),
             deflection=ints.peak, contact_direction=direction,
-            element_stiffness=n * kn * w0)
+            element_stiffness=h.n_kn * ints.tangent0)
 
     def slice_deflections(self, delta: ArrayLike, psi: ArrayLike) -> FloatArray:
         """Deflection at the ``n_slices`` slice centres, ``(S, Z, K)`` [m] (negative: open).
@@ -360,7 +420,7 @@ class RollerBearing:
         array([ 9.25,  9.75, 10.25, 10.75])
         """
         _, _, v, lw = self._kinematics(*self._inputs(delta, psi))
-        return np.asarray(v[..., None] + lw[..., None] * self._slice_xi - self._slice_drop)
+        return self._slice_deflection(v, lw)
 
     def roller_loads(self, delta: ArrayLike, psi: ArrayLike) -> RollerLoads:
         """Per-roller load, eccentricity (seed 000 eq 9) and loaded zone (eq 8)."""
@@ -372,8 +432,7 @@ class RollerBearing:
                        / np.where(loaded, ints.load, 1.0), 0.0)
         if self.model == "tilt_integral":
             return RollerLoads(q, ecc, tilt_limits(v, lw))
-        xi = self._slice_xi
-        dk = v[..., None] + lw[..., None] * xi - self._slice_drop
+        xi, dk = self._slice_xi, self._slice_deflection(v, lw)
         pos = np.maximum(dk, 0.0)
         slice_load = (self.kn / self.n_slices) * pos**self.exponent
         half = 0.5 / self.n_slices
