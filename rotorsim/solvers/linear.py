@@ -65,7 +65,13 @@ class Factorization:
         if self._stats is not None:
             self._stats.solves += 1
         if self._dense is not None:
-            return sl.lu_solve(self._dense, b, check_finite=False)
+            lu, piv = self._dense
+            rhs = np.asarray(b)
+            (getrs,) = sl.get_lapack_funcs(("getrs",), (lu, rhs))
+            x, info = getrs(lu, piv, rhs)  # LAPACK directly: no wrapper checks per solve
+            if info != 0:
+                raise ValueError(f"getrs failed with info = {info}")
+            return x
         b = np.asarray(b)
         if np.iscomplexobj(b) and not self._complex:
             return self._sparse.solve(b.real) + 1j * self._sparse.solve(b.imag)

@@ -30,6 +30,8 @@ from rotorsim.solvers.linear import Factorization
 
 FloatArray = NDArray[np.float64]
 IntArray = NDArray[np.int64]
+_GETRF, _GETRS = sl.get_lapack_funcs(("getrf", "getrs"), (np.zeros((1, 1)),))
+"""LAPACK LU of the small capacitance matrix, called directly (no wrapper checks)."""
 
 
 @dataclass(frozen=True, eq=False)
@@ -149,7 +151,7 @@ class LowRankSolve:
             When the updated iteration matrix is singular.
         """
         cap = np.eye(block.shape[0]) + block @ base.Z[base.dofs]
-        lu, piv = sl.lu_factor(cap, check_finite=False)
+        lu, piv, _ = _GETRF(cap)
         d = np.abs(np.diag(lu))
         if not np.all(np.isfinite(d)) or d.min() <= 1e-14 * max(d.max(), 1.0):
             raise ConvergenceError(f"iteration matrix is singular ({where})", where)
@@ -162,5 +164,6 @@ class LowRankSolve:
     def solve(self, b: FloatArray) -> FloatArray:
         """``S^-1 b`` for ``b`` of shape ``(n,)``."""
         y = np.asarray(self.base.lu.solve(b))
-        w = sl.lu_solve(self.capacitance, self.block @ y[self.base.dofs], check_finite=False)
+        lu, piv = self.capacitance
+        w, _ = _GETRS(lu, piv, self.block @ y[self.base.dofs])
         return y - self.base.Z @ w

@@ -40,7 +40,7 @@ import scipy.sparse as sp
 from numpy.typing import ArrayLike
 
 from rotorsim.errors import ConvergenceError, ModelError
-from rotorsim.solvers.linear import Factorization, factorize
+from rotorsim.solvers.linear import DENSE_THRESHOLD, Factorization, factorize
 from rotorsim.time_integration.base import (
     Counters,
     FloatArray,
@@ -320,9 +320,13 @@ class _StepSolver:
 
     def _lu(self, ev: ForceEvaluation) -> Factorization | LowRankSolve:
         kt, ct = ev.stiffness_tangent, ev.damping_tangent
-        tangent = (matrix_digest(kt) * 1_000_003 + matrix_digest(ct)) % (2 ** 63)
+        local = any(T is not None for T in (kt, ct)) and all(
+            T is None or isinstance(T, LocalMatrix) for T in (kt, ct))
+        # local tangents: the k x k update is rebuilt every iteration (cheaper than hashing)
+        tangent = -2 if local else (matrix_digest(kt) * 1_000_003 + matrix_digest(ct)) % (2 ** 63)
         c = self.cache
-        if c is not None and (c.dt, c.spin, c.tangent) == (self.dt, self.spin, tangent):
+        if not local and c is not None and \
+                (c.dt, c.spin, c.tangent) == (self.dt, self.spin, tangent):
             return c.lu
         m, p = self.m, self.p
         for name, T in (("dr/dq", kt), ("dr/dv", ct)):
@@ -334,20 +338,22 @@ class _StepSolver:
         w = 1.0 - m.alpha_f
         constant = [(1.0 - m.alpha_m, p.mass), (w * self.gdt, p.damping),
                     (w * self.gdt * self.spin, p.gyroscopic), (w * self.bdt2, p.stiffness)]
-        local = [(w * self.gdt, ct), (w * self.bdt2, kt)]
+        updates = [(w * self.gdt, ct), (w * self.bdt2, kt)]
         where = f"{m.name}: iteration matrix at t = {self.t1:.9g} s"
         base = None
-        if any(T is not None for _, T in local) and all(
-                T is None or isinstance(T, LocalMatrix) for _, T in local):
-            dofs, block = embed(local)
+        if local:
+            dofs, block = embed(updates)
             base = c.base if c is not None and c.base_matches(self.dt, self.spin, dofs) \
                 else None
             if base is None:
-                base = BaseFactors.build(factorize(combine(constant, p.n), where=where), dofs)
+                S0 = combine(constant, p.n)
+                dense = max(DENSE_THRESHOLD, p.n) if not sp.issparse(S0) else DENSE_THRESHOLD
+                base = BaseFactors.build(factorize(S0, where=where, dense_threshold=dense),
+                                         dofs)
                 self.tally["factorizations"] += 1
             lu: Factorization | LowRankSolve = LowRankSolve.build(base, block, where)
         else:
-            lu = factorize(combine(constant + local, p.n), where=where)
+            lu = factorize(combine(constant + updates, p.n), where=where)
             self.tally["factorizations"] += 1
         self.cache = _FactorCache(self.dt, self.spin, tangent, lu, base)
         return lu
