@@ -76,6 +76,14 @@ class NonlinearElement(Protocol):
               internal: Any = None) -> ElementForce: ...
 
 
+def frozen_scalar(value: float) -> FloatArray:
+    """A read-only 0-d float array: with numpy 2 it is a cheaper operand than a Python float
+    in small-array hot paths (the same value, bit for bit)."""
+    arr = np.array(float(value))
+    arr.flags.writeable = False
+    return arr
+
+
 def check_finite(value: float, name: str, where: str, *, positive: bool = False,
                  nonnegative: bool = False) -> None:
     """Raise :class:`~rotorsim.errors.ModelError` unless ``value`` is finite and signed as asked."""

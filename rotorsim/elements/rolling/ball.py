@@ -34,6 +34,7 @@ from typing import Any, NamedTuple
 import numpy as np
 from numpy.typing import ArrayLike
 
+from rotorsim.elements.base import frozen_scalar
 from rotorsim.elements.rolling import geometry
 from rotorsim.elements.rolling.ball_tangent import assemble, ball_sums, directions
 from rotorsim.elements.rolling.hertz_point import ball_bearing_constant
@@ -66,13 +67,7 @@ class _Constants(NamedTuple):
     n_minus_1: FloatArray  # n - 1
 
 
-def _frozen(value: float) -> FloatArray:
-    arr = np.array(float(value))
-    arr.flags.writeable = False
-    return arr
-
-
-_ZERO, _ONE = _frozen(0.0), _frozen(1.0)
+_ZERO, _ONE = frozen_scalar(0.0), frozen_scalar(1.0)
 
 
 @dataclass(frozen=True, eq=False)
@@ -325,7 +320,7 @@ class BallBearing:
         """Constants of the evaluation as 0-d arrays (cheaper operands than floats)."""
         g, n = self._geo, self.exponent
         values = (g.axial0, g.radial0, g.arm, g.a0, self.Kn, n * self.Kn, n - 1.0)
-        return _Constants(*(_frozen(v) for v in values))
+        return _Constants(*(frozen_scalar(v) for v in values))
 
     def _load(self, deflection: FloatArray) -> tuple[FloatArray, FloatArray]:
         """``Q = Kn delta^n`` and ``n Kn delta^(n-1)``."""

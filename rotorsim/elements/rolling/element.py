@@ -41,7 +41,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from rotorsim.elements.base import ElementForce
+from rotorsim.elements.base import ElementForce, frozen_scalar
 from rotorsim.elements.linear_bearing import BearingElement
 from rotorsim.elements.rolling.centrifugal import CentrifugalBearing
 from rotorsim.elements.rolling.ehl import Lubricant, LubricatedContacts
@@ -55,14 +55,8 @@ _FD_STEP = 1e-9
 """Scaled step [m] of the central difference of the tangent along the velocity."""
 
 
-def _frozen(value: float) -> FloatArray:
-    arr = np.array(float(value))
-    arr.flags.writeable = False
-    return arr
-
-
 # 0-d arrays: cheaper operands than Python floats in the hot path (same values)
-_ZERO, _ONE, _FD_H, _FD_2H = (_frozen(x) for x in (0.0, 1.0, _FD_STEP, 2 * _FD_STEP))
+_ZERO, _ONE, _FD_H, _FD_2H = (frozen_scalar(x) for x in (0.0, 1.0, _FD_STEP, 2 * _FD_STEP))
 _SIGNS = np.array([1.0, -1.0])  # inner node +F, outer node -F
 _SIGN_BLOCKS = np.array([[1.0, -1.0], [-1.0, 1.0]])[:, None, :, None]  # (2, 1, 2, 1)
 
@@ -302,7 +296,7 @@ class RollingBearing:
     def _damping(self) -> tuple[FloatArray | None, FloatArray]:
         """``beta_c`` as a 0-d array (``None`` without damping) and ``(1, 1, 1, arm,
         arm)``, which scales the rate to metres (rotations x arm) for the FD step."""
-        beta = None if self.beta == 0.0 else _frozen(self.beta)
+        beta = None if self.beta == 0.0 else frozen_scalar(self.beta)
         arm = float(getattr(self.bearing, "moment_arm", 0.5 * self.bearing.pitch_diameter))
         scale = np.array([1.0, 1.0, 1.0, arm, arm])
         scale.flags.writeable = False

@@ -34,6 +34,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from rotorsim.elements.base import frozen_scalar
 from rotorsim.errors import ModelError
 
 FloatArray = NDArray[np.float64]
@@ -206,14 +207,8 @@ _SERIES_TERMS = 8
 _BATCH_LIMIT = 32768  # size up to which the moments are evaluated as one stacked array
 
 
-def _frozen(value: float) -> FloatArray:
-    arr = np.array(float(value))
-    arr.flags.writeable = False
-    return arr
-
-
 # 0-d arrays: cheaper operands than Python floats (same values)
-_ZERO, _HALF, _ONE = _frozen(0.0), _frozen(0.5), _frozen(1.0)
+_ZERO, _HALF, _ONE = frozen_scalar(0.0), frozen_scalar(0.5), frozen_scalar(1.0)
 
 
 def _power(x: FloatArray, exponent: float) -> FloatArray:

@@ -20,6 +20,7 @@ from typing import NamedTuple
 
 import numpy as np
 
+from rotorsim.elements.base import frozen_scalar
 from rotorsim.elements.rolling.state import FloatArray
 
 
@@ -87,13 +88,7 @@ def roller_constants(contact_angle: float, pitch_diameter: float, clearance: flo
     r_sa = 0.5 * pitch_diameter * sa
     values = (ca, sa, r_sa, clearance, length, kn, kn * length, r_sa**2,
               2.0 * r_sa * length, length**2, exponent * kn)
-    return RollerConstants(ca, sa, r_sa, *(_frozen(x) for x in values))
-
-
-def _frozen(value: float) -> FloatArray:
-    arr = np.array(float(value))
-    arr.flags.writeable = False
-    return arr
+    return RollerConstants(ca, sa, r_sa, *(frozen_scalar(x) for x in values))
 
 
 def roller_rows(h: RollerConstants, load: FloatArray, load_moment: FloatArray,
