@@ -14,6 +14,8 @@ The workflow is model -> assemble -> analyse -> save/plot::
     system = rs.assemble(rotor)                           # sparse M, C, G, K + DofMap
     run = rs.transient(rotor, 0.5, 1e-4, speed=rs.LinearSpeed(0, 300, 0, 0.5),
                        unbalance=[(2, 1e-4, 0.0)])        # TransientResult (run-up)
+    branch = rs.periodic(rotor, start=100, stop=500,
+                         unbalance=[(2, 1e-4, 0.0)])      # PeriodicResult (HB branch)
 
 Rolling bearings (``rs.RollingBearing``) go into the rotor beside the linear bearings; the
 transient and static analyses use them as they are, the linear analyses after
@@ -34,6 +36,8 @@ from rotorsim.analyses.linearized_rotor import (
     linearize_rolling_bearings,
 )
 from rotorsim.analyses.modal import modal
+from rotorsim.analyses.periodic import periodic
+from rotorsim.analyses.periodic_excitation import HarmonicBase
 from rotorsim.analyses.speed_profile import ConstantSpeed, LinearSpeed, SpeedFunction
 from rotorsim.analyses.static import static
 from rotorsim.analyses.sweep import (
@@ -74,6 +78,7 @@ from rotorsim.results.critical_speeds import CriticalSpeedMapResult, CriticalSpe
 from rotorsim.results.frequency_response import FrequencyResponseResult
 from rotorsim.results.modal import ModalResult
 from rotorsim.results.orbits import Ellipse, ellipse
+from rotorsim.results.periodic import PeriodicBifurcation, PeriodicResult
 from rotorsim.results.static import StaticResult
 from rotorsim.results.sweep import SweepResult
 from rotorsim.results.transient import TransientResult
@@ -105,6 +110,7 @@ __all__ = [
     "FlexibleRingRollerBearing",
     "FrequencyResponseResult",
     "Grid",
+    "HarmonicBase",
     "LinearSpeed",
     "LinearizationPoint",
     "LinearizedRotor",
@@ -114,6 +120,8 @@ __all__ = [
     "ModelError",
     "Newmark",
     "Normal",
+    "PeriodicBifurcation",
+    "PeriodicResult",
     "PointMass",
     "ResultsFileError",
     "ReversedBearing",
@@ -146,6 +154,7 @@ __all__ = [
     "load_model",
     "load_sweep",
     "modal",
+    "periodic",
     "plot",
     "run_analysis",
     "save",

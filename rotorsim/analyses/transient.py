@@ -55,7 +55,6 @@ from rotorsim.time_integration.output import OutputSpec
 from rotorsim.time_integration.problem import SecondOrderProblem
 
 WHERE = "transient"
-_nominal_tangent = nominal_tangent  # former private name, still imported by periodic_problem
 DENSE_STEPPING = 400
 """Up to this many free DOFs the matrices are dense: a step's few matrix-vector products
 then cost less than scipy.sparse's call overhead."""

@@ -15,6 +15,7 @@ from rotorsim.results.frequency_response import DeflectedShape, FrequencyRespons
 from rotorsim.results.modal import ModalResult
 from rotorsim.results.orbits import Ellipse
 from rotorsim.results.order_tracking import OrderTrack, Waterfall
+from rotorsim.results.periodic import PeriodicBifurcation, PeriodicResult
 from rotorsim.results.spectra import HarmonicFit, Spectrum
 from rotorsim.results.static import StaticResult
 from rotorsim.results.transient import TransientResult
@@ -73,3 +74,10 @@ register_result_type(Waterfall, {
 register_result_type(OrderTrack, {
     "orders": "1", "speed": _ANGULAR, "times": "s", "amplitude": _SIGNAL, "phase": "rad",
     "order_axis": "1", "order_spectrum": _SIGNAL})
+register_result_type(PeriodicBifurcation, {
+    "parameter": _ANGULAR, "multiplier": "1", "max_abs": "m, rad", "peak_to_peak": "m, rad"})
+register_result_type(PeriodicResult, {
+    "parameter": _ANGULAR, "speed": _ANGULAR, "fundamental": _ANGULAR, "order": "1",
+    "dofs": "1", "coefficients": "m, rad", "max_abs": "m, rad", "peak_to_peak": "m, rad",
+    "multipliers": "1", "stability_tol": "1", "iterations": "1", "residuals": "1",
+    "held_dofs": "1", "nodes_pos": "m"})

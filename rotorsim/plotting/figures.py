@@ -13,6 +13,7 @@ from rotorsim.plotting.bearing_figures import (
     stiffness_variation_figure,
 )
 from rotorsim.plotting.layout import rotor_layout_figure
+from rotorsim.plotting.periodic_figures import periodic_figure
 from rotorsim.plotting.transient_figures import (
     order_track_figure,
     spectrum_figure,
@@ -225,4 +226,5 @@ DRAWERS: dict[str, Callable[..., Any]] = {
     "Spectrum": spectrum_figure,
     "Waterfall": waterfall_figure,
     "OrderTrack": order_track_figure,
+    "PeriodicResult": periodic_figure,
 }

@@ -119,6 +119,7 @@ def results() -> dict[str, Any]:
         "intersections": MapIntersections.empty(),
         **_bearing_results(),
         **_transient_results(),
+        **_periodic_results(),
     }
 
 
@@ -154,11 +155,39 @@ def _transient_results() -> dict[str, Any]:
             "order_track": order_track(t, x, angle, [1.0], revolutions_per_block=2)}
 
 
+def _periodic_results() -> dict[str, Any]:
+    from rotorsim.results.periodic import PeriodicBifurcation, PeriodicResult
+
+    rng = np.random.default_rng(7)
+    fold = PeriodicBifurcation("fold", 1250.0, 1, True, "extended_system",
+                               complex(np.nan, np.nan), rng.random(3), rng.random(3))
+    doubling = PeriodicBifurcation("period_doubling", 1300.5, 2, False, "test_function",
+                                   -1.00001 + 0j, rng.random(3), rng.random(3))
+    mu = rng.random((4, 6)) + 1j * rng.random((4, 6))
+    mu[3] = np.nan
+    run = PeriodicResult(
+        parameter=np.array([1200.0, 1250.0, 1240.0, 1310.0]), parameter_name="speed",
+        speed=np.array([1200.0, 1250.0, 1240.0, 1310.0]),
+        fundamental=np.array([1200.0, 1250.0, 1240.0, 1310.0]), order=1.0, harmonics=2,
+        samples=16, dofs=np.array([6, 7, 8]), coefficients=rng.random((4, 5, 3)),
+        max_abs=rng.random((4, 3)), peak_to_peak=rng.random((4, 3)), multipliers=mu,
+        stability_method="hsu", stability_tol=1e-5, bifurcations=(fold, doubling),
+        iterations=np.array([0, 3, 4, 2]), residuals=rng.random(4) * 1e-10,
+        approximation="rolling elements frozen", held_dofs=np.array([5]), dof_map=DofMap(3),
+        nodes_pos=np.array([0.0, 0.1, 0.2]), options={"unbalance": [[1, 3e-5, 0.0]],
+                                                      "stability_modes": "auto"},
+        stats={"points": 4.0}, reason="lam_max = 1310 reached")
+    return {"periodic": run, "periodic_bifurcation": fold,
+            "periodic_without_stability": dataclasses.replace(
+                run, bifurcations=(), multipliers=np.zeros((4, 0), complex))}
+
+
 RESULT_NAMES = ["modal", "campbell", "critical_exact", "critical_campbell", "map",
                 "unbalance", "receptance", "static", "static_system", "deflected_shape",
                 "ellipse", "intersections", "bearing_equilibrium", "energy_minimum",
                 "stiffness_over_pass", "transient", "spectrum", "harmonic_fit", "waterfall",
-                "order_track"]
+                "order_track", "periodic", "periodic_bifurcation",
+                "periodic_without_stability"]
 
 
 @pytest.mark.parametrize("name", RESULT_NAMES)
