@@ -108,7 +108,10 @@ def floquet_arrays(model: StabilityModel | None, branch: Branch) -> tuple[np.nda
             fl = model.floquet(x, float(lam))
         except (ModelError, ConvergenceError, np.linalg.LinAlgError):
             continue
-        out[i] = fl.multipliers
+        mu = np.asarray(fl.multipliers)
+        # Hill's selection may drop a shifted copy and return fewer than 2 n_s exponents:
+        # the set stays sorted by modulus, the missing ones are left NaN at the end
+        out[i, : min(mu.size, model.size)] = mu[: model.size]
         spent += fl.stats.get("wall_time", 0.0)
     return out, spent
 

@@ -26,6 +26,7 @@ _SUBCOMMAND_HELP = {
     "unbalance": "unbalance response",
     "static": "static deflection, bearing reactions and section forces",
     "transient": "time integration on the nonlinear bearings (run-up, orbits, bearing loads)",
+    "periodic": "harmonic-balance branch over speed with Floquet stability and bifurcations",
 }
 _BEARING_HELP = "load distribution and stiffness matrix of each rolling bearing"
 _SUBCOMMAND_TYPES = {
@@ -36,6 +37,7 @@ _SUBCOMMAND_TYPES = {
     "unbalance": "unbalance",
     "static": "static",
     "transient": "transient",
+    "periodic": "periodic",
 }
 
 
@@ -70,6 +72,13 @@ def build_parser() -> argparse.ArgumentParser:
             p.add_argument("--dt", help='time step, e.g. "20 us"')
             p.add_argument("--speed", help='spin speed (start of a ramp), e.g. "3000 rpm"')
             p.add_argument("--speed-stop", help="end speed of a linear run-up/coast-down")
+        if kind == "periodic":
+            p.add_argument("--start", help='first speed of the branch, e.g. "1000 rpm"')
+            p.add_argument("--stop", help="last speed of the branch")
+            p.add_argument("--harmonics", type=int, help="number of harmonics H")
+            p.add_argument("--max-points", type=int, help="largest number of branch points")
+            p.add_argument("--no-stability", action="store_true",
+                           help="skip the Floquet stability analysis")
         if kind == "critical_speed_map":
             p.add_argument("--stiffness", nargs=3, metavar=("KMIN", "KMAX", "NUM"),
                            help='support stiffness range, e.g. "0.1 MN/m" "1 GN/m" 40')
@@ -213,10 +222,16 @@ def _adhoc_job(model: Any, args: argparse.Namespace) -> tuple[str, Any]:
     changes: dict[str, Any] = {}
     if getattr(args, "num_modes", None) is not None:
         changes["num_modes"] = args.num_modes
+    for option in ("harmonics", "max_points"):
+        if getattr(args, option, None) is not None:
+            changes[option] = _count(str(getattr(args, option)))
+    if getattr(args, "no_stability", False):
+        changes["stability"] = "none"
     if getattr(args, "speed", None) is not None:
         changes["speed"] = to_si(args.speed, "speed", "--speed")
     for option, key, kind_of in (("t_end", "t_end", "time"), ("dt", "dt", "time"),
-                                 ("speed_stop", "speed_stop", "speed")):
+                                 ("speed_stop", "speed_stop", "speed"),
+                                 ("start", "start", "speed"), ("stop", "stop", "speed")):
         if getattr(args, option, None) is not None:
             changes[key] = to_si(getattr(args, option), kind_of,
                                  f"--{option.replace('_', '-')}")
@@ -239,6 +254,11 @@ def _adhoc_job(model: Any, args: argparse.Namespace) -> tuple[str, Any]:
             from rotorsim.errors import ModelError
 
             raise ModelError("the model has no transient analysis; give --t-end and --dt",
+                             args.command)
+        if kind == "periodic" and not {"start", "stop"} <= set(changes):
+            from rotorsim.errors import ModelError
+
+            raise ModelError("the model has no periodic analysis; give --start and --stop",
                              args.command)
         spec = cls(**changes)
     else:

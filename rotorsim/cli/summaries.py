@@ -232,6 +232,37 @@ def transient_summary(result: Any, units: str = "rpm") -> str:
     return "\n".join(lines)
 
 
+def periodic_summary(result: Any, units: str = "rpm") -> str:
+    """Points, status, stability and bifurcations of a harmonic-balance branch, and the
+    largest responses of the kept nodes."""
+    f = _factor(units)
+    p = result.parameter
+    head = (f"periodic branch: {len(p)} points, speed {result.speed[0] * f:.1f} -> "
+            f"{result.speed[-1] * f:.1f} {units}, H = {result.harmonics}, status "
+            f"{result.status.name}" + (f" ({result.reason})" if result.reason else ""))
+    lines = [head]
+    if result.approximation:
+        lines.append(f"approximation: {result.approximation}")
+    if result.has_stability:
+        lines.append(f"stable points: {int(result.stable.sum())} of {len(p)} "
+                     f"({result.stability_method})")
+    rows = []
+    for node in sorted({int(i) // 6 for i in result.dofs}):
+        try:
+            amp = result.amplitude(node, "uy", "peak_to_peak")
+        except Exception:  # a node without uy kept
+            continue
+        k = int(np.argmax(amp))
+        rows.append((node, f"{amp[k] * 1e6:.3f}", f"{result.speed[k] * f:.1f}"))
+    rows.sort(key=lambda r: -float(r[1]))
+    lines.append(table(rows[:6], ("node", "max uy p-p [um]", f"at [{units}]")))
+    if result.bifurcations:
+        lines.append(table([(b.kind, f"{b.parameter * f:.2f}", "yes" if b.located else "no")
+                            for b in result.bifurcations],
+                           ("bifurcation", f"speed [{units}]", "located")))
+    return "\n".join(lines)
+
+
 SUMMARIES: dict[str, Callable[..., str]] = {
     "ModalResult": modal_summary,
     "CampbellResult": campbell_summary,
@@ -242,6 +273,7 @@ SUMMARIES: dict[str, Callable[..., str]] = {
     "BearingEquilibriumResult": bearing_summary,
     "StiffnessVariation": stiffness_variation_summary,
     "TransientResult": transient_summary,
+    "PeriodicResult": periodic_summary,
 }
 
 

@@ -130,6 +130,21 @@ class TransientTable(AnalysisTable):
     unbalance: Annotated[list[UnbalanceTable], Field(min_length=1)] | None = None
 
 
+class PeriodicTable(AnalysisTable):
+    """A harmonic-balance branch over the speed range ``start`` .. ``stop``."""
+
+    type: Literal["periodic"]
+    start: Speed
+    stop: Speed
+    harmonics: Annotated[int, Field(ge=1, le=200)] = 10
+    samples: Annotated[int, Field(ge=4)] | None = None
+    max_points: Annotated[int, Field(ge=2)] = 500
+    max_step: Annotated[float, Field(gt=0)] = 0.02
+    varying_compliance: bool | None = None
+    stability: Literal["auto", "hill", "hsu", "none"] = "auto"
+    unbalance: Annotated[list[UnbalanceTable], Field(min_length=1)] | None = None
+
+
 TABLES: dict[str, type[AnalysisTable]] = {
     "modal": ModalTable,
     "campbell": CampbellTable,
@@ -139,6 +154,7 @@ TABLES: dict[str, type[AnalysisTable]] = {
     "frequency_response": FrequencyResponseTable,
     "static": StaticTable,
     "transient": TransientTable,
+    "periodic": PeriodicTable,
 }
 """Analysis types of model files and their tables."""
 

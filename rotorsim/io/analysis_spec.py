@@ -242,10 +242,29 @@ class TransientSpec(AnalysisSpec):
     unbalance: Unbalance | None = None
 
 
+@dataclass(frozen=True, kw_only=True)
+class PeriodicSpec(AnalysisSpec):
+    """Harmonic-balance branch over the speed range ``start`` .. ``stop`` [rad/s]:
+    :func:`rotorsim.periodic` with ``harmonics`` harmonics, Floquet stability
+    (``stability="none"`` skips it) and bifurcations; ``unbalance=None`` uses the model's
+    ``[[loads.unbalance]]``; rolling bearings act with their full nonlinear force."""
+
+    type: ClassVar[str] = "periodic"
+    start: float
+    stop: float
+    harmonics: int = 10
+    samples: int | None = None
+    max_points: int = 500
+    max_step: float = 0.02
+    varying_compliance: bool | None = None
+    stability: str = "auto"
+    unbalance: Unbalance | None = None
+
+
 SPEC_TYPES: dict[str, type[AnalysisSpec]] = {
     cls.type: cls for cls in (ModalSpec, CampbellSpec, CriticalSpeedsSpec,
                               CriticalSpeedMapSpec, UnbalanceSpec, FrequencyResponseSpec,
-                              StaticSpec, TransientSpec)
+                              StaticSpec, TransientSpec, PeriodicSpec)
 }
 """Analysis ``type`` names of model files and their spec classes."""
 
@@ -261,8 +280,9 @@ def run_analysis(model: Model, name: str, *, fast: bool = False,
     name : str
         Key of the analysis in ``model.analyses``.
     fast : bool
-        Shrink every grid to at most :data:`FAST_POINTS` points and a transient to a tenth
-        of its duration (tests, smoke runs).
+        Shrink every grid to at most :data:`FAST_POINTS` points, a transient to a tenth of
+        its duration and a periodic branch to 10 points with at most 4 harmonics (tests,
+        smoke runs).
     progress : bool
         Show progress bars on sweeps that support them.
 
@@ -270,8 +290,8 @@ def run_analysis(model: Model, name: str, *, fast: bool = False,
     -------
     result
         The analysis result (``ModalResult``, ``CampbellResult``, ``CriticalSpeeds``,
-        ``CriticalSpeedMapResult``, ``FrequencyResponseResult``, ``StaticResult`` or
-        ``TransientResult``).
+        ``CriticalSpeedMapResult``, ``FrequencyResponseResult``, ``StaticResult``,
+        ``TransientResult`` or ``PeriodicResult``).
 
     Raises
     ------
@@ -291,7 +311,7 @@ def run_analysis(model: Model, name: str, *, fast: bool = False,
                          model.name)
     spec = model.analyses[name]
     runner = _RUNNERS[spec.type]
-    if spec.type == "transient":
+    if spec.type in ("transient", "periodic"):
         return runner(model.rotor.with_nonlinear(model.rolling_bearings), model, spec, fast,
                       progress)
     if not model.rolling_bearings:
@@ -380,8 +400,25 @@ def _transient(rotor: Rotor, model: Model, spec: Any, fast: bool, progress: bool
                      nodes=spec.nodes, every=spec.every, progress=progress)
 
 
+def _periodic(rotor: Rotor, model: Model, spec: Any, fast: bool, progress: bool) -> Any:
+    from rotorsim.analyses.periodic import periodic
+
+    unbalance = model.loads.unbalance if spec.unbalance is None else spec.unbalance
+    loads = model.loads
+    harmonics = min(spec.harmonics, 4) if fast else spec.harmonics
+    max_points = min(spec.max_points, 10) if fast else spec.max_points
+    return periodic(rotor, start=spec.start, stop=spec.stop, harmonics=harmonics,
+                    samples=None if fast else spec.samples, unbalance=list(unbalance),
+                    gravity=loads.gravity, direction=loads.gravity_direction,
+                    loads=list(loads.point_loads), varying_compliance=spec.varying_compliance,
+                    max_points=max_points, max_step=spec.max_step,
+                    stability=None if spec.stability == "none" else spec.stability,
+                    nodes=spec.nodes, progress=progress)
+
+
 _RUNNERS = {
     "modal": _modal, "campbell": _campbell, "critical_speeds": _critical_speeds,
     "critical_speed_map": _critical_speed_map, "unbalance": _unbalance,
     "frequency_response": _frequency_response, "static": _static, "transient": _transient,
+    "periodic": _periodic,
 }

@@ -313,7 +313,7 @@ def build_spec(table: Any, loc: tuple[str | int, ...], nodes: Nodes,
     for f in fields(cls):
         if f.name not in common and hasattr(table, f.name):
             options[f.name] = getattr(table, f.name)
-    if table.type in ("unbalance", "transient"):
+    if table.type in ("unbalance", "transient", "periodic"):
         options["unbalance"] = _analysis_unbalance(table, nodes, loads, where)
     elif table.type == "frequency_response":
         options["inputs"] = tuple((nodes.any_node(item, f"{where}.inputs[{i}]"), str(item.dof))
@@ -329,7 +329,7 @@ def build_spec(table: Any, loc: tuple[str | int, ...], nodes: Nodes,
 def _analysis_unbalance(table: Any, nodes: Nodes, loads: spec.Loads, where: str
                         ) -> spec.Unbalance | None:
     if table.unbalance is None:
-        if not loads.unbalance and table.type != "transient":
+        if not loads.unbalance and table.type == "unbalance":
             raise ModelError("no unbalance given: add [[loads.unbalance]] or unbalance = "
                              "[...] to this analysis", where)
         return None

@@ -116,3 +116,21 @@ def test_transient_subcommand_needs_a_duration(tmp_path, capsys):
     code = main(["transient", str(MODELS / "rolling_ball.toml"), "--out", str(tmp_path)])
     assert code == EXIT_BAD_INPUT
     assert "--t-end and --dt" in capsys.readouterr().err
+
+
+def test_periodic_subcommand_traces_a_branch(tmp_path, capsys):
+    code = main(["periodic", str(MODELS / "rolling_ball.toml"), "--start", "1000 rpm",
+                 "--stop", "3000 rpm", "--harmonics", "3", "--max-points", "8",
+                 "--out", str(tmp_path)])
+    assert code == 0
+    result = rs.load(tmp_path / "rolling_ball" / "periodic.h5")
+    assert type(result).__name__ == "PeriodicResult" and len(result) == 8
+    assert result.harmonics == 3 and result.has_stability
+    out = capsys.readouterr().out
+    assert "periodic branch: 8 points" in out and "stable points" in out
+
+
+def test_periodic_subcommand_needs_a_speed_range(tmp_path, capsys):
+    code = main(["periodic", str(MODELS / "rolling_ball.toml"), "--out", str(tmp_path)])
+    assert code == EXIT_BAD_INPUT
+    assert "--start and --stop" in capsys.readouterr().err

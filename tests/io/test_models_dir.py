@@ -18,6 +18,7 @@ from rotorsim.results.campbell import CampbellResult
 from rotorsim.results.critical_speeds import CriticalSpeedMapResult, CriticalSpeeds
 from rotorsim.results.frequency_response import FrequencyResponseResult
 from rotorsim.results.modal import ModalResult
+from rotorsim.results.periodic import PeriodicResult
 from rotorsim.results.static import StaticResult
 from rotorsim.results.transient import TransientResult
 
@@ -33,7 +34,7 @@ RESULT_TYPES = {
     "modal": ModalResult, "campbell": CampbellResult, "critical_speeds": CriticalSpeeds,
     "critical_speed_map": CriticalSpeedMapResult, "unbalance": FrequencyResponseResult,
     "frequency_response": FrequencyResponseResult, "static": StaticResult,
-    "transient": TransientResult,
+    "transient": TransientResult, "periodic": PeriodicResult,
 }
 FILES = sorted(p.stem for p in MODELS.glob("*.toml"))
 CASES = [(f, a) for f in FILES for a in load_model(MODELS / f"{f}.toml").analyses]
