@@ -161,10 +161,14 @@ def _nonlinear_static(rotor: Rotor, gravity: float | None, direction: ArrayLike,
 
     lin = linearize_rolling_bearings(rotor, gravity=gravity, direction=direction, loads=loads,
                                      speed=speed, tol=1e-10, max_iter=50)
-    return dataclasses.replace(lin.static, options={
-        **lin.static.options, "method": "newton",
-        "nonlinear_elements": len(rotor.nonlinear_elements),
-        "newton_iterations": lin.iterations, "newton_residual": lin.residual})
+    return dataclasses.replace(
+        lin.static,
+        element_loads={t: e.element_load for t, e in zip(lin.tags, lin.equilibria, strict=True)},
+        contact_angles={t: e.contact_angle for t, e in zip(lin.tags, lin.equilibria,
+                                                           strict=True)},
+        options={**lin.static.options, "method": "newton",
+                 "nonlinear_elements": len(rotor.nonlinear_elements),
+                 "newton_iterations": lin.iterations, "newton_residual": lin.residual})
 
 
 def _energy_static(rotor: Rotor, gravity: float | None, direction: ArrayLike,
@@ -189,10 +193,21 @@ def _energy_static(rotor: Rotor, gravity: float | None, direction: ArrayLike,
                       rolling, tags, {})
     q_all = system.dof_map.expand(polished.q).reshape(-1, DOFS_PER_NODE)
     result, _, _ = case.solve(case.tangents(q_all))
-    return dataclasses.replace(result, options={
+    states = [rb.bearing.state(_relative_of(rb, q_all)[None, :], rb.bearing.element_angles(0.0))
+              for rb in rolling]
+    return dataclasses.replace(
+        result, element_loads={t: st.element_load[0] for t, st in zip(tags, states, strict=True)},
+        contact_angles={t: st.contact_angle[0] for t, st in zip(tags, states, strict=True)},
+        options={
         **result.options, "method": "energy", "energy": eq.energy,
         "energy_iterations": eq.iterations, "energy_gradient": eq.gradient,
         "newton_polish_iterations": polished.iterations, "hessian_min": eq.hessian_min})
+
+
+def _relative_of(rb: Any, q_nodes: FloatArray) -> FloatArray:
+    """Relative displacement ``(x, y, z, rx, ry)`` of a rolling bearing's rings."""
+    u = q_nodes[list(rb.nodes)].reshape(1, -1)
+    return np.asarray(rb.relative(u))[0]
 
 
 _POST_KEYS = ("bearing_nodes", "bearing_forces", "bearing_moments", "constraint_reactions",

@@ -64,6 +64,9 @@ class StaticResult:
         ``||K q - f|| / ||f||`` on the free DOFs.
     options, stats, status, summary
         Options used, cost counters, status and model summary.
+    element_loads, contact_angles : dict of str to array (Z,)
+        With rolling bearings: the load [N] and contact angle [rad] of every rolling element
+        of each bearing (by tag) at the equilibrium.
     """
 
     displacement: FloatArray
@@ -87,6 +90,8 @@ class StaticResult:
     stats: dict[str, float] = field(default_factory=dict)
     status: Status = Status.OK
     summary: dict[str, Any] = field(default_factory=dict)
+    element_loads: dict[str, FloatArray] = field(default_factory=dict)
+    contact_angles: dict[str, FloatArray] = field(default_factory=dict)
 
     def deflection(self, dof: str = "uy") -> FloatArray:
         """Displacement ``dof`` of every node, shape ``(n_nodes,)`` [m or rad].

@@ -70,3 +70,16 @@ def test_energy_minimum_is_the_newton_equilibrium(name):
 def test_unknown_static_method_is_refused():
     with pytest.raises(ModelError, match="method"):
         rs.static(_rotor("rolling_ball"), method="simplex")
+
+
+def test_static_result_lists_the_rolling_element_loads():
+    rotor = _rotor("rolling_ball")
+    for method in ("newton", "energy"):
+        res = rs.static(rotor, method=method)
+        assert set(res.element_loads) == {"DE", "NDE"}
+        for tag, loads in res.element_loads.items():
+            b = next(el for el in rotor.nonlinear_elements if el.tag == tag).bearing
+            psi, alpha = b.element_angles(0.0), res.contact_angles[tag]
+            fy = float(np.sum(loads * np.cos(alpha) * np.sin(psi)))
+            # the element loads add up to the load the bearing carries (half the weight)
+            assert fy == pytest.approx(-9.80665 * rotor.m / 2, rel=1e-6)
