@@ -63,6 +63,7 @@ from rotorsim.elements.rolling import (
 from rotorsim.elements.rolling.element import RollingBearing
 from rotorsim.elements.rolling.flexible_ring_element import FlexibleRingBearingElement
 from rotorsim.elements.rolling.flexible_rings import FlexibleRingRollerBearing
+from rotorsim.elements.rolling.large_rotation import LargeRotationBearing
 from rotorsim.elements.shaft import ShaftElement, cowper_shear_coefficient
 from rotorsim.errors import ConvergenceError, ModelError, RotorsimError, Status
 from rotorsim.io.hdf5 import ResultsFileError, load, save
@@ -111,6 +112,7 @@ __all__ = [
     "FrequencyResponseResult",
     "Grid",
     "HarmonicBase",
+    "LargeRotationBearing",
     "LinearSpeed",
     "LinearizationPoint",
     "LinearizedRotor",
