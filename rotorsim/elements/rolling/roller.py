@@ -45,10 +45,14 @@ from rotorsim.elements.rolling.hertz_line import (
     LINE_EXPONENT,
     _slice_sums,
     _tilted,
-    iso_roller_constant,
     line_moments,
     slice_weights,
     tilted_line_integrals,
+)
+from rotorsim.elements.rolling.roller_checks import (
+    check_options,
+    resolve_clearance,
+    resolve_kn,
 )
 from rotorsim.elements.rolling.roller_integrals import (
     LineIntegrals,
@@ -62,8 +66,6 @@ from rotorsim.elements.rolling.roller_integrals import (
     unit_load_directions,
 )
 from rotorsim.elements.rolling.roller_profile import (
-    CircularCrown,
-    LogarithmicProfile,
     RollerProfile,
     StraightProfile,
     slice_centres,
@@ -75,10 +77,6 @@ FloatArray = NDArray[np.float64]
 
 _assemble_tangent = assemble_tangent  # the name rotorsim.elements.rolling.ehl imports
 
-ROLLER_MODELS = ("tilt_integral", "slices")
-"""Names of the roller contact models."""
-CAGE_LAWS = ("rotating", "fixed")
-"""Cage laws: ``"rotating"`` (inner ring turns, outer fixed) or ``"fixed"`` rollers."""
 
 
 @dataclass(frozen=True, eq=False)
@@ -185,29 +183,10 @@ class RollerBearing:
         return f"RollerBearing '{self.tag}'" if self.tag else "RollerBearing"
 
     def _resolve_clearance(self, where: str) -> None:
-        radial, diametral = self.radial_clearance, self.diametral_clearance
-        for name, value in (("radial_clearance", radial), ("diametral_clearance", diametral)):
-            if value is not None and not math.isfinite(value):
-                raise ModelError(f"{name} must be finite, got {value!r}", where)
-        if radial is None:
-            radial = 0.0 if diametral is None else 0.5 * diametral
-        elif diametral is not None and not math.isclose(2.0 * radial, diametral,
-                                                        rel_tol=1e-9, abs_tol=1e-15):
-            raise ModelError(f"diametral_clearance {diametral} m must equal 2 x "
-                             f"radial_clearance {radial} m (give one of them)", where)
-        if abs(radial) >= 0.5 * self.roller_diameter:
-            raise ModelError(f"radial clearance {radial} m exceeds the roller radius: check "
-                             "the units (metres)", where)
-        object.__setattr__(self, "radial_clearance", float(radial))
+        object.__setattr__(self, "radial_clearance", resolve_clearance(self, where))
 
     def _resolve_kn(self, where: str) -> None:
-        if self.Kn is None:
-            if abs(self.exponent - LINE_EXPONENT) > 1e-12:
-                raise ModelError("Kn must be given when exponent is not 10/9 (the ISO/TS 16281 "
-                                 "default is a 10/9 law)", where)
-            object.__setattr__(self, "Kn", iso_roller_constant(self.effective_length))
-        elif not (math.isfinite(self.Kn) and self.Kn > 0.0):
-            raise ModelError(f"Kn must be positive and finite, got {self.Kn!r}", where)
+        object.__setattr__(self, "Kn", resolve_kn(self, where))
 
     @property
     def kn(self) -> float:
@@ -220,23 +199,7 @@ class RollerBearing:
         return float(self.radial_clearance)  # type: ignore[arg-type]
 
     def _check_options(self, where: str) -> None:
-        if self.model not in ROLLER_MODELS:
-            raise TypeError(f"{where}: unknown model {self.model!r}; valid: {ROLLER_MODELS}")
-        if self.cage not in CAGE_LAWS:
-            raise TypeError(f"{where}: unknown cage {self.cage!r}; valid: {CAGE_LAWS}")
-        if not isinstance(self.profile, StraightProfile | CircularCrown | LogarithmicProfile):
-            raise TypeError(f"{where}: profile must be a StraightProfile, CircularCrown or "
-                            f"LogarithmicProfile, got {type(self.profile).__name__}")
-        self.profile.validate(self.effective_length, where)
-        if self.model == "tilt_integral" and not self.profile.is_straight:
-            raise ModelError("the tilt-integral model (seed 000 eqs 6-11) needs a straight "
-                             "profile; use model='slices' for crowned or logarithmic rollers",
-                             where)
-        if isinstance(self.n_slices, bool) or not isinstance(self.n_slices, int | np.integer) \
-                or self.n_slices < 1:
-            raise ModelError(f"n_slices must be an integer >= 1, got {self.n_slices!r}", where)
-        if not math.isfinite(self.psi0):
-            raise ModelError(f"psi0 must be finite, got {self.psi0!r}", where)
+        check_options(self, where)
 
     # ----------------------------------------------------------------- kinematics
     @property
