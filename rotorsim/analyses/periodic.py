@@ -108,6 +108,7 @@ def periodic(
     checkpoint_every: int = 25,
     resume: str | os.PathLike[str] | None = None,
     progress: bool = False,
+    fold_map: bool = False,
 ) -> PeriodicResult:
     """Branch of periodic responses from ``start`` to ``stop`` (module docstring).
 
@@ -170,6 +171,10 @@ def periodic(
         Nodes whose DOFs are kept (default all); the nonlinear DOFs are always kept.
     checkpoint, checkpoint_every, resume, progress
         As in :func:`~rotorsim.solvers.continuation.continue_branch`.
+    fold_map : bool
+        Continue every fold of the branch in the forcing amplitude (a jump map,
+        :mod:`~.periodic_folds`): ``options["fold_map"]`` lists, per fold, the fold
+        parameter against the forcing fraction from 1 down to the cusp.
 
     Returns
     -------
@@ -220,8 +225,18 @@ def periodic(
         residual, stability, modes=stability_modes, omega_max=float(np.max(branch.lam)),
         tol=stability_tol)
     options = _describe(locals())
-    return _result(system, rp, recovery, plan, branch, sm, bifurcations, frequency,
-                   options, stats, clock)
+    result = _result(system, rp, recovery, plan, branch, sm, bifurcations, frequency,
+                     options, stats, clock)
+    if fold_map and result.bifurcations:
+        from rotorsim.analyses.periodic_folds import fold_curves
+
+        fun = continuation_function(residual, "omega")
+        folds = [e for e in detect_bifurcations(fun, branch, options=BifurcationOptions(
+            kinds=("fold",))) if e.located]
+        to_parameter = (lambda v: v) if frequency else (lambda v: v / plan.order)
+        result = dataclasses.replace(result, options={
+            **result.options, "fold_map": fold_curves(residual, branch, folds, to_parameter)})
+    return result
 
 
 def _system(model: Any, nonlinear: Sequence[NonlinearElement]) -> RotorSystem:

@@ -150,3 +150,25 @@ def test_varying_compliance_response_agrees_with_the_transient():
                                             rel=5e-3)
     assert np.mean(tr.displacement(DISK, "uy")[tr.t > 98 * T]) == pytest.approx(
         res.amplitude(DISK, "uy", "mean")[0], rel=1e-4)
+
+
+def test_fold_map_matches_the_folds_of_a_branch_at_reduced_unbalance():
+    """Folds continued in the forcing amplitude (extended system, seed 002 3.5.2.2) against
+    the folds of an independent branch computed with 95 % of the unbalance."""
+    mapped = periodic(jeffcott(), start=1190.0, stop=1310.0, unbalance=UNBALANCE, harmonics=6,
+                      tol=1e-9, max_step=0.1, stability=None, fold_map=True)
+    curves = mapped.options["fold_map"]
+    assert len(curves) == 2
+    predicted = []
+    for c in curves:
+        f, p = np.array(c["forcing"]), np.array(c["parameter"])
+        assert f[0] == 1.0 and f.min() < 0.95
+        assert p[0] == pytest.approx(
+            min((b.parameter for b in mapped.events("fold")), key=lambda v: abs(v - p[0])),
+            rel=1e-9)
+        predicted.append(float(np.interp(0.95, f[::-1], p[::-1])))
+    reduced = [(n, 0.95 * me, a) for n, me, a in UNBALANCE]
+    direct = periodic(jeffcott(), start=1190.0, stop=1330.0, unbalance=reduced, harmonics=6,
+                      tol=1e-9, max_step=0.1, stability=None)
+    folds = sorted(b.parameter for b in direct.events("fold"))
+    np.testing.assert_allclose(sorted(predicted), folds, rtol=1e-4)

@@ -1,0 +1,52 @@
+"""Jump maps: the folds of a periodic branch continued in the forcing amplitude.
+
+A fold (limit point) of an unbalance or housing-excitation branch is where the response
+jumps in a run-up or run-down. Continued in a second parameter, the folds trace the
+boundary of the region where two stable responses coexist. rotorsim's rotor HB problem
+scales its periodic forcing by ``1 - p`` (gravity is not scaled), so tracking a fold in
+``p`` with the extended system of seed 002 section 3.5.2.2
+(:func:`~rotorsim.harmonic_balance.fold_tracking.track_folds`) gives the fold speed
+against the forcing fraction ``1 - p``: the two folds of a hardening resonance approach as
+the forcing drops and meet at a cusp, below which the response no longer jumps.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Sequence
+from typing import Any
+
+import numpy as np
+
+from rotorsim.errors import ConvergenceError, ModelError
+from rotorsim.harmonic_balance.fold_tracking import track_folds
+from rotorsim.solvers.continuation import Branch, Continuation
+
+
+def fold_curves(residual: Any, branch: Branch, events: Sequence[Any],
+                to_parameter: Callable[[Any], Any], max_points: int = 200
+                ) -> list[dict[str, Any]]:
+    """Each located fold of ``events`` continued in the forcing fraction, from 1 down
+    towards 0: ``{"forcing": [...], "parameter": [...], "status": ..., "reason": ...}``
+    (JSON-able; ``parameter`` in the branch's parameter units)."""
+
+    def two_parameter(x: Any, lam: float, mu: float) -> tuple[Any, Any, Any, Any]:
+        ev = residual.evaluate(x, lam, mu, jacobian=True, d_omega=True, d_param=True)
+        return ev.r, ev.jacobian, ev.d_omega, ev.d_param
+
+    options = Continuation(initial_step=0.02, max_step=0.05, lam_min=0.0, lam_max=0.995,
+                           max_points=max_points, direction=1)
+    curves = []
+    for event in events:
+        if getattr(event, "kind", "") != "fold" or not getattr(event, "located", False):
+            continue
+        try:
+            curve = track_folds(two_parameter, event, 0.0, options, x_scale=branch.x_scale,
+                                r_scale=branch.r_scale, lam_scale=branch.lam_scale)
+        except (ConvergenceError, ModelError) as exc:
+            curves.append({"forcing": [1.0], "parameter": [float(to_parameter(event.lam))],
+                           "status": "FAILED", "reason": str(exc)})
+            continue
+        curves.append({"forcing": (1.0 - np.asarray(curve.mu)).tolist(),
+                       "parameter": np.asarray(to_parameter(np.asarray(curve.lam))).tolist(),
+                       "status": curve.branch.status.name, "reason": curve.branch.reason})
+    return curves
