@@ -17,6 +17,7 @@ import argparse
 import json
 import os
 import platform
+import subprocess
 import sys
 from pathlib import Path
 from typing import Any
@@ -26,6 +27,17 @@ os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 import bench_scaling
 import bench_vs_ross
+
+HERE = Path(__file__).resolve().parent
+NONLINEAR = (
+    ("bench_bearings.py", [], []),
+    ("bench_flexible_ring.py", [], ["--repeat", "1"]),
+    ("bench_transient.py", [], ["--quick"]),
+    ("bench_harmonic_balance.py", [], ["--repeat", "1"]),
+    ("bench_periodic.py", [], ["--points", "30", "--subset", "1"]),
+)
+"""The nonlinear benchmarks (issues 4-7), run as scripts after the linear ones: (script,
+full arguments, --quick arguments)."""
 
 
 def machine() -> dict[str, Any]:
@@ -120,6 +132,10 @@ def main(argv: list[str] | None = None) -> dict[str, Any]:
     print("\n".join(agreement_lines(vs)))
     if args.profile:
         print(bench_vs_ross.profile_rotorsim())
+    for script, full, quick in NONLINEAR:
+        print(f"\n== {script} ==", flush=True)
+        subprocess.run([sys.executable, str(HERE / script), *(quick if args.quick else full)],
+                       check=True)
     report = {"machine": info, "vs_ross": vs, "scaling": sc}
     if args.json:
         args.json.write_text(json.dumps(report, indent=1))
