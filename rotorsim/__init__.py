@@ -38,6 +38,7 @@ from rotorsim.analyses.linearized_rotor import (
 from rotorsim.analyses.modal import modal
 from rotorsim.analyses.periodic import periodic
 from rotorsim.analyses.periodic_excitation import HarmonicBase
+from rotorsim.analyses.periodic_parameter import periodic_parameter
 from rotorsim.analyses.speed_profile import ConstantSpeed, LinearSpeed, SpeedFunction
 from rotorsim.analyses.static import static
 from rotorsim.analyses.sweep import (
@@ -157,6 +158,7 @@ __all__ = [
     "load_sweep",
     "modal",
     "periodic",
+    "periodic_parameter",
     "plot",
     "run_analysis",
     "save",

@@ -56,7 +56,25 @@ def responsive_node(result: Any) -> int:
     return int(result.dofs[best] // 6)
 
 
+def _at(result: Any, point: int) -> str:
+    """``"1234.5 rad/s"`` (speed, frequency) or ``"<name> = value"`` (model parameter)."""
+    value = float(result.parameter[point])
+    if result.parameter_name in ("speed", "frequency"):
+        return f"{value:.5g} rad/s"
+    return f"{result.parameter_name} = {value:.5g}"
+
+
+def _parameter_factor(result: Any, units: str) -> float:
+    """Display factor of the parameter: speed units for speed and frequency branches, 1 for
+    a model parameter (shown in its own units)."""
+    if result.parameter_name not in ("speed", "frequency"):
+        return 1.0
+    return float(speed_factor(units))
+
+
 def _parameter_label(result: Any, units: str) -> str:
+    if result.parameter_name not in ("speed", "frequency"):
+        return str(result.parameter_name)  # a model parameter (rs.periodic_parameter)
     name = "spin speed" if result.parameter_name == "speed" else "excitation frequency"
     return f"{name} [{units}]"
 
@@ -73,7 +91,7 @@ def frequency_response_figure(result: Any, ax: Any = None, *, node: int | None =
                               label: str | None = None, color: str | None = None) -> Any:
     """Amplitude of ``(node, dof)`` against the parameter: stable solid, unstable dashed
     (all solid without a stability analysis), bifurcations marked."""
-    f, scale = speed_factor(units), _scale(amplitude_units)
+    f, scale = _parameter_factor(result, units), _scale(amplitude_units)
     fig, ax = _axes(ax, figsize=(8, 5))
     node = responsive_node(result) if node is None else node
     p = result.parameter * f
@@ -115,7 +133,7 @@ def _mark_events(ax: Any, result: Any, j: int, measure: str, f: float, scale: fl
 
 def multiplier_figure(result: Any, ax: Any = None, *, units: str = "rad/s") -> Any:
     """``max |mu|`` against the parameter with the stability limit ``1 + tol``."""
-    f = speed_factor(units)
+    f = _parameter_factor(result, units)
     fig, ax = _axes(ax, figsize=(8, 4))
     if not result.has_stability:
         ax.text(0.5, 0.5, "no stability analysis", ha="center", va="center",
@@ -140,7 +158,7 @@ def harmonics_figure(result: Any, ax: Any = None, *, node: int | None = None,
                      log: bool = True) -> Any:
     """``|X_h|`` of ``(node, dof)`` for each harmonic ``h`` against the parameter (harmonic
     0 is the mean, drawn as ``|mean|``); unstable points dimmed."""
-    f, scale = speed_factor(units), _scale(amplitude_units)
+    f, scale = _parameter_factor(result, units), _scale(amplitude_units)
     fig, ax = _axes(ax, figsize=(8, 5))
     node = responsive_node(result) if node is None else node
     hs = range(1, min(result.harmonics, 6) + 1) if harmonics is None else harmonics
@@ -177,7 +195,7 @@ def periodic_orbit_figure(result: Any, ax: Any = None, *, point: int | None = No
     ax.set_ylabel(f"uy [{amplitude_units}]")
     state = "" if not result.has_stability else (
         ", stable" if result.stable[point] else ", unstable")
-    ax.set_title(f"orbit of node {node} at {result.parameter[point]:.5g} rad/s{state}")
+    ax.set_title(f"orbit of node {node} at {_at(result, point)}{state}")
     ax.grid(alpha=0.3)
     ax.legend(fontsize=8)
     return fig
@@ -201,7 +219,7 @@ def harmonic_content_figure(result: Any, ax: Any = None, *, point: int | None = 
     ax.set_xticks(h)
     ax.set_xlabel("harmonic h of the fundamental")
     ax.set_ylabel(f"|X_h| [{amplitude_units}]")
-    ax.set_title(f"harmonic content at {result.parameter[point]:.5g} rad/s "
+    ax.set_title(f"harmonic content at {_at(result, point)} "
                  f"(omega = {result.fundamental[point]:.5g} rad/s)")
     ax.grid(alpha=0.3, axis="y")
     ax.legend(fontsize=8)

@@ -172,3 +172,31 @@ def test_fold_map_matches_the_folds_of_a_branch_at_reduced_unbalance():
                       tol=1e-9, max_step=0.1, stability=None)
     folds = sorted(b.parameter for b in direct.events("fold"))
     np.testing.assert_allclose(sorted(predicted), folds, rtol=1e-4)
+
+
+def test_clearance_branch_matches_speed_branches_at_fixed_clearances():
+    """rs.periodic_parameter: continuation in the bearing clearance at 1250 rad/s (inside
+    the hysteresis of the 10 um branch) against independent rs.periodic solutions at fixed
+    clearances 9 and 8 um; the clearance branch turns at a fold (coexistence ends)."""
+    from test_periodic import ball
+
+    from rotorsim.analyses.periodic_parameter import periodic_parameter
+    from rotorsim.elements.rolling.element import RollingBearing
+
+    def vary(c):
+        return [RollingBearing(ball("fixed", clearance=c), n=n, tag=f"B{n}") for n in (0, 2)]
+
+    W, base = 1250.0, jeffcott().linear_part()
+    res = periodic_parameter(base, vary, speed=W, start=10e-6, stop=2e-6, unbalance=UNBALANCE,
+                             harmonics=6, name="diametral clearance [m]", max_points=80)
+    folds = res.events("fold")
+    assert len(folds) == 1 and 6e-6 < folds[0].parameter < 9e-6
+    leg = slice(0, folds[0].index + 1)
+    p, a = res.parameter[leg], res.amplitude(DISK, "uy", "peak_to_peak")[leg]
+    for c in (9e-6, 8e-6):
+        direct = periodic(base.with_nonlinear(vary(c)), start=W, stop=W + 0.5,
+                          unbalance=UNBALANCE, harmonics=6, max_points=2, stability=None,
+                          bifurcations=False)
+        # linear interpolation between branch points: 1e-3
+        assert np.interp(c, p[::-1], a[::-1]) == pytest.approx(
+            direct.amplitude(DISK, "uy", "peak_to_peak")[0], rel=1e-3)
