@@ -46,6 +46,7 @@ from numpy.typing import ArrayLike
 from rotorsim.analyses.periodic_branch import Stepping, trace_branch
 from rotorsim.analyses.periodic_events import floquet_events
 from rotorsim.analyses.periodic_excitation import ExcitationPlan, HarmonicBase, plan_excitation
+from rotorsim.analyses.periodic_folds import ParameterMap
 from rotorsim.analyses.periodic_output import (
     Recovery,
     bifurcation_records,
@@ -108,7 +109,7 @@ def periodic(
     checkpoint_every: int = 25,
     resume: str | os.PathLike[str] | None = None,
     progress: bool = False,
-    fold_map: bool = False,
+    fold_map: bool | ParameterMap = False,
 ) -> PeriodicResult:
     """Branch of periodic responses from ``start`` to ``stop`` (module docstring).
 
@@ -171,10 +172,12 @@ def periodic(
         Nodes whose DOFs are kept (default all); the nonlinear DOFs are always kept.
     checkpoint, checkpoint_every, resume, progress
         As in :func:`~rotorsim.solvers.continuation.continue_branch`.
-    fold_map : bool
-        Continue every fold of the branch in the forcing amplitude (a jump map,
-        :mod:`~.periodic_folds`): ``options["fold_map"]`` lists, per fold, the fold
-        parameter against the forcing fraction from 1 down to the cusp.
+    fold_map : bool or ParameterMap
+        Continue every fold of the branch in a second parameter (a jump map,
+        :mod:`~.periodic_folds`): ``True`` in the forcing amplitude
+        (``options["fold_map"]`` lists, per fold, the fold parameter against the forcing
+        fraction from 1 down to the cusp); a :class:`~.periodic_folds.ParameterMap` in a
+        model parameter of the nonlinear elements (e.g. the clearance; key ``"mu"``).
 
     Returns
     -------
@@ -227,16 +230,34 @@ def periodic(
     options = _describe(locals())
     result = _result(system, rp, recovery, plan, branch, sm, bifurcations, frequency,
                      options, stats, clock)
-    if fold_map and result.bifurcations:
-        from rotorsim.analyses.periodic_folds import fold_curves
-
-        fun = continuation_function(residual, "omega")
-        folds = [e for e in detect_bifurcations(fun, branch, options=BifurcationOptions(
-            kinds=("fold",))) if e.located]
-        to_parameter = (lambda v: v) if frequency else (lambda v: v / plan.order)
-        result = dataclasses.replace(result, options={
-            **result.options, "fold_map": fold_curves(residual, branch, folds, to_parameter)})
+    if fold_map is not False and result.bifurcations:
+        result = _fold_map(result, residual, rp, system, branch, plan, frequency, fold_map,
+                           harmonics, samples)
     return result
+
+
+def _fold_map(result: PeriodicResult, residual: Any, rp: RotorPeriodicProblem,
+              system: RotorSystem, branch: Branch, plan: ExcitationPlan, frequency: bool,
+              fold_map: bool | ParameterMap, harmonics: int, samples: int | None
+              ) -> PeriodicResult:
+    from rotorsim.analyses.periodic_folds import fold_curves
+
+    fun = continuation_function(residual, "omega")
+    folds = [e for e in detect_bifurcations(fun, branch, options=BifurcationOptions(
+        kinds=("fold",))) if e.located]
+    to_parameter = (lambda v: v) if frequency else (lambda v: v / plan.order)
+    if isinstance(fold_map, ParameterMap):
+        from rotorsim.analyses.periodic_parameter import parametric_residual
+
+        varied = parametric_residual(rp, system, fold_map.vary, harmonics, samples,
+                                     abs(fold_map.stop - fold_map.start))
+        curves = fold_curves(varied, branch, folds, to_parameter,
+                             mu_range=(fold_map.start, fold_map.stop),
+                             value=lambda mu: np.asarray(mu), key="mu", max_step=0.5)
+        entry: Any = {"name": fold_map.name, "curves": curves}
+    else:
+        entry = fold_curves(residual, branch, folds, to_parameter)
+    return dataclasses.replace(result, options={**result.options, "fold_map": entry})
 
 
 def _system(model: Any, nonlinear: Sequence[NonlinearElement]) -> RotorSystem:

@@ -13,6 +13,7 @@ the forcing drops and meet at a cusp, below which the response no longer jumps.
 from __future__ import annotations
 
 from collections.abc import Callable, Sequence
+from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
@@ -22,31 +23,57 @@ from rotorsim.harmonic_balance.fold_tracking import track_folds
 from rotorsim.solvers.continuation import Branch, Continuation
 
 
+@dataclass(frozen=True)
+class ParameterMap:
+    """Fold tracking in a model parameter ``mu`` of the nonlinear elements: ``vary(mu)``
+    returns them (same nodes), ``start`` must reproduce the model's own elements, and the
+    folds are continued from ``start`` towards ``stop``."""
+
+    vary: Callable[[float], Sequence[Any]]
+    start: float
+    stop: float
+    name: str = "parameter"
+
+    def __post_init__(self) -> None:
+        if not callable(self.vary) or not np.isfinite(self.start) \
+                or not np.isfinite(self.stop) or self.start == self.stop:
+            raise ModelError("give a callable vary(mu) and a range start != stop",
+                             "ParameterMap")
+
+
 def fold_curves(residual: Any, branch: Branch, events: Sequence[Any],
-                to_parameter: Callable[[Any], Any], max_points: int = 200
-                ) -> list[dict[str, Any]]:
-    """Each located fold of ``events`` continued in the forcing fraction, from 1 down
-    towards 0: ``{"forcing": [...], "parameter": [...], "status": ..., "reason": ...}``
-    (JSON-able; ``parameter`` in the branch's parameter units)."""
+                to_parameter: Callable[[Any], Any], max_points: int = 200,
+                mu_range: tuple[float, float] = (0.0, 0.995),
+                value: Callable[[Any], Any] = lambda mu: 1.0 - np.asarray(mu),
+                key: str = "forcing", max_step: float = 0.05) -> list[dict[str, Any]]:
+    """Each located fold of ``events`` continued in the HB parameter ``mu`` of ``residual``
+    over ``mu_range``: ``{key: value(mu), "parameter": [...], "status", "reason"}``
+    (JSON-able; ``parameter`` in the branch's parameter units). By default ``mu`` is the
+    forcing reduction of the rotor problem and ``key = "forcing"`` its fraction ``1 - mu``."""
 
     def two_parameter(x: Any, lam: float, mu: float) -> tuple[Any, Any, Any, Any]:
         ev = residual.evaluate(x, lam, mu, jacobian=True, d_omega=True, d_param=True)
         return ev.r, ev.jacobian, ev.d_omega, ev.d_param
 
-    options = Continuation(initial_step=0.02, max_step=0.05, lam_min=0.0, lam_max=0.995,
-                           max_points=max_points, direction=1)
+    lo, hi = min(mu_range), max(mu_range)
+    direction = 1 if mu_range[1] > mu_range[0] else -1
+    span = hi - lo
+    options = Continuation(initial_step=0.02, max_step=max_step, lam_min=lo, lam_max=hi,
+                           max_points=max_points, direction=direction, lam_scale=span)
     curves = []
     for event in events:
         if getattr(event, "kind", "") != "fold" or not getattr(event, "located", False):
             continue
         try:
-            curve = track_folds(two_parameter, event, 0.0, options, x_scale=branch.x_scale,
-                                r_scale=branch.r_scale, lam_scale=branch.lam_scale)
+            curve = track_folds(two_parameter, event, float(mu_range[0]), options,
+                                x_scale=branch.x_scale, r_scale=branch.r_scale,
+                                lam_scale=branch.lam_scale)
         except (ConvergenceError, ModelError) as exc:
-            curves.append({"forcing": [1.0], "parameter": [float(to_parameter(event.lam))],
+            curves.append({key: np.atleast_1d(value(mu_range[0])).tolist(),
+                           "parameter": [float(to_parameter(event.lam))],
                            "status": "FAILED", "reason": str(exc)})
             continue
-        curves.append({"forcing": (1.0 - np.asarray(curve.mu)).tolist(),
+        curves.append({key: np.asarray(value(np.asarray(curve.mu))).tolist(),
                        "parameter": np.asarray(to_parameter(np.asarray(curve.lam))).tolist(),
                        "status": curve.branch.status.name, "reason": curve.branch.reason})
     return curves

@@ -127,16 +127,8 @@ def periodic_parameter(
     X0[0] = rp.static[rp.active]
     x0 = first_point(standard, omega, standard.restrict(X0),
                      unknown_scales(system, rp, standard), tol, stats)
-    template = rp.problem.force
-    if not isinstance(template, RotorForce):
-        raise ModelError("the rotor has no nonlinear DOFs to vary", WHERE)
-    force = _ParametricForce(template, vary, system.dof_map.full_to_free,
-                             system.dof_map.n_nodes, system.nonlinear.dofs)
-    loads_at_full = rp.loads
-    problem = dataclasses.replace(rp.problem, force=force,
-                                  excitation=lambda w, p: loads_at_full(w, 0.0),
-                                  param_scale=abs(float(stop) - float(start)))
-    residual = make_residual(problem, harmonics, samples=samples, condense=True)
+    residual = parametric_residual(rp, system, vary, harmonics, samples,
+                                   abs(float(stop) - float(start)))
     fun = continuation_function(residual, "param", omega=omega, stats=stats)
     stepping = Stepping(step, max_step, max_points, tol, None)
     options = stepping.options(float(start), float(stop),
@@ -162,6 +154,23 @@ def periodic_parameter(
                  "unbalance": [[float(v) for v in u] for u in unbalance]},
         stats={**branch.stats, "wall_time": time.perf_counter() - clock},
         status=branch.status, reason=branch.reason, summary=dict(system.summary))
+
+
+def parametric_residual(rp: Any, system: Any, vary: Callable[[float], Sequence[Any]],
+                        harmonics: int, samples: int | None, scale: float) -> Any:
+    """The HB residual of ``rp`` with the full forcing and the nonlinear elements of
+    ``vary(p)`` for the HB parameter ``p`` (``d/dp`` by central differences relative to
+    ``scale``)."""
+    template = rp.problem.force
+    if not isinstance(template, RotorForce) or system.nonlinear is None:
+        raise ModelError("the rotor has no nonlinear DOFs to vary", WHERE)
+    force = _ParametricForce(template, vary, system.dof_map.full_to_free,
+                             system.dof_map.n_nodes, system.nonlinear.dofs)
+    loads_at_full = rp.loads
+    problem = dataclasses.replace(rp.problem, force=force,
+                                  excitation=lambda w, p: loads_at_full(w, 0.0),
+                                  param_scale=float(scale))
+    return make_residual(problem, harmonics, samples=samples, condense=True)
 
 
 class _ParametricForce:

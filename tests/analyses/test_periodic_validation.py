@@ -200,3 +200,35 @@ def test_clearance_branch_matches_speed_branches_at_fixed_clearances():
         # linear interpolation between branch points: 1e-3
         assert np.interp(c, p[::-1], a[::-1]) == pytest.approx(
             direct.amplitude(DISK, "uy", "peak_to_peak")[0], rel=1e-3)
+
+
+def test_folds_tracked_in_the_clearance_match_a_branch_at_that_clearance():
+    """A clearance-speed jump map (fold_map=ParameterMap): the folds of the 10 um branch
+    continued in the clearance; where a curve reaches 9 um its speed matches the fold of an
+    independent speed branch computed with 9 um bearings."""
+    from test_periodic import ball
+
+    from rotorsim.analyses.periodic_folds import ParameterMap
+    from rotorsim.elements.rolling.element import RollingBearing
+
+    def vary(c):
+        return [RollingBearing(ball("fixed", clearance=c), n=n, tag=f"B{n}") for n in (0, 2)]
+
+    mapped = periodic(jeffcott(), start=1190.0, stop=1310.0, unbalance=UNBALANCE, harmonics=6,
+                      tol=1e-9, max_step=0.1, stability=None,
+                      fold_map=ParameterMap(vary, 10e-6, 8.5e-6, "diametral clearance"))
+    curves = mapped.options["fold_map"]["curves"]
+    assert len(curves) == 2
+    starts = sorted(c["parameter"][0] for c in curves)
+    np.testing.assert_allclose(starts, sorted(f.parameter for f in mapped.events("fold")),
+                               rtol=1e-9)
+    direct = periodic(jeffcott().linear_part().with_nonlinear(vary(9e-6)), start=1150.0,
+                      stop=1310.0, unbalance=UNBALANCE, harmonics=6, tol=1e-9, max_step=0.1,
+                      stability=None)
+    folds = [f.parameter for f in direct.events("fold")]
+    reached = [c for c in curves if min(c["mu"]) <= 9e-6]
+    assert reached  # the upper fold's curve crosses 9 um (the lower one moves slowly)
+    for c in reached:
+        mu, p = np.array(c["mu"]), np.array(c["parameter"])
+        speed = float(np.interp(9e-6, mu[::-1], p[::-1]))
+        assert min(abs(speed - f) for f in folds) < 1e-4 * speed
