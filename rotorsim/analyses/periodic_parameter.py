@@ -9,9 +9,8 @@ the speed ``W`` (same unknowns, condensation and forcing), with the force callba
 to the elements of ``mu`` (an assembly per value, cached) and the continuation parameter
 ``mu`` (``d R / d mu`` by central differences). The first point comes from ``rs.periodic``'s
 start (Newton from the static solution, or a forcing homotopy) at ``mu = start``; folds and
-branch points in ``mu`` are detected and located. Floquet stability is not computed on such
-a branch (``stability_method = "none"``): run ``rs.periodic`` over speed at a value of
-``mu`` for it.
+branch points in ``mu`` are detected and located, and Floquet multipliers are computed at
+every point as in ``rs.periodic`` (the parameter reaches the force callback).
 """
 
 from __future__ import annotations
@@ -33,11 +32,11 @@ from rotorsim.analyses.periodic_output import (
     kept_dofs,
 )
 from rotorsim.analyses.periodic_problem import RotorForce, build_problem
-from rotorsim.analyses.periodic_stability import DEFAULT_TOL
+from rotorsim.analyses.periodic_stability import DEFAULT_TOL, stability_model
 from rotorsim.assembly.loads import STANDARD_GRAVITY
 from rotorsim.assembly.nonlinear import NonlinearAssembly
 from rotorsim.assembly.system import assemble
-from rotorsim.errors import ModelError
+from rotorsim.errors import ConvergenceError, ModelError
 from rotorsim.harmonic_balance.bifurcation import BifurcationOptions, detect_bifurcations
 from rotorsim.harmonic_balance.residual import continuation_function, make_residual
 from rotorsim.model.rotor import Rotor
@@ -68,6 +67,7 @@ def periodic_parameter(
     tol: float = 1e-10,
     nodes: Sequence[int] | None = None,
     bifurcations: bool = True,
+    stability: str | None = "auto",
     progress: bool = False,
 ) -> PeriodicResult:
     """Branch of periodic responses over the model parameter ``mu`` (module docstring).
@@ -86,6 +86,9 @@ def periodic_parameter(
         Name of ``mu`` (``result.parameter_name``), e.g. ``"radial clearance [m]"``.
     harmonics, samples, unbalance, gravity, direction, loads, nodes, bifurcations, progress
         As in :func:`rotorsim.periodic`.
+    stability : {"auto", "hill", "hsu", "variational"} or None
+        Floquet multipliers at every point (as in :func:`rotorsim.periodic`, with the
+        parameter passed to the force); None skips them.
     step, max_step, max_points, tol
         Continuation in ``mu``: steps in the scaled parameter (range 1), point budget and
         corrector tolerance.
@@ -139,12 +142,13 @@ def periodic_parameter(
     recovery = Recovery(_AtOmega(residual, omega),  # type: ignore[arg-type]
                         *kept_dofs(system, rp, nodes))
     lam = branch.lam.astype(float)
+    multipliers, method = _multipliers(residual, branch, omega, stability)
     return PeriodicResult(
         parameter=lam, parameter_name=name, speed=np.full(lam.shape, float(speed)),
         fundamental=np.full(lam.shape, omega), order=plan.order,
         harmonics=residual.harmonics, samples=residual.samples, dofs=recovery.dofs,
-        **branch_arrays(recovery, branch), multipliers=np.zeros((lam.size, 0), dtype=complex),
-        stability_method="none", stability_tol=DEFAULT_TOL,
+        **branch_arrays(recovery, branch), multipliers=multipliers,
+        stability_method=method, stability_tol=DEFAULT_TOL,
         bifurcations=bifurcation_records(events, recovery, lambda v: v, None),
         iterations=branch.iterations.astype(np.int64), residuals=branch.residuals,
         approximation=plan.approximation, held_dofs=system.dof_map.free[rp.held],
@@ -171,6 +175,24 @@ def parametric_residual(rp: Any, system: Any, vary: Callable[[float], Sequence[A
                                   excitation=lambda w, p: loads_at_full(w, 0.0),
                                   param_scale=float(scale))
     return make_residual(problem, harmonics, samples=samples, condense=True)
+
+
+def _multipliers(residual: Any, branch: Any, omega: float, stability: str | None
+                 ) -> tuple[Any, str]:
+    """Floquet multipliers (P, 2 n_s) of every branch point (NaN where Floquet failed or
+    Hill's selection returned fewer) and the method used."""
+    if stability is None:
+        return np.zeros((len(branch), 0), dtype=complex), "none"
+    sm = stability_model(residual, stability, modes="auto", omega_max=omega,
+                         tol=DEFAULT_TOL)
+    out = np.full((len(branch), sm.size), np.nan + 0j)
+    for i, (x, mu) in enumerate(zip(branch.x, branch.lam, strict=True)):
+        try:
+            values = np.asarray(sm.floquet(x, omega, float(mu)).multipliers)
+        except (ModelError, ConvergenceError, np.linalg.LinAlgError):
+            continue
+        out[i, : min(values.size, sm.size)] = values[: sm.size]
+    return out, sm.method
 
 
 class _ParametricForce:

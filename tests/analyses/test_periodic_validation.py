@@ -174,7 +174,7 @@ def test_fold_map_matches_the_folds_of_a_branch_at_reduced_unbalance():
     np.testing.assert_allclose(sorted(predicted), folds, rtol=1e-4)
 
 
-def test_clearance_branch_matches_speed_branches_at_fixed_clearances():
+def test_clearance_branch_matches_speed_branches_at_fixed_clearances(hb):
     """rs.periodic_parameter: continuation in the bearing clearance at 1250 rad/s (inside
     the hysteresis of the 10 um branch) against independent rs.periodic solutions at fixed
     clearances 9 and 8 um; the clearance branch turns at a fold (coexistence ends)."""
@@ -200,6 +200,16 @@ def test_clearance_branch_matches_speed_branches_at_fixed_clearances():
         # linear interpolation between branch points: 1e-3
         assert np.interp(c, p[::-1], a[::-1]) == pytest.approx(
             direct.amplitude(DISK, "uy", "peak_to_peak")[0], rel=1e-3)
+    # stability: the lower leg is stable; back at 10 um after the fold the branch is the
+    # unstable middle response of the 10 um speed branch at 1250 rad/s
+    assert res.stable[: folds[0].index].all() and not res.stable[-1]
+    assert res.parameter[-1] == pytest.approx(10e-6)
+    _, middle, _ = segments(hb)
+    speeds = hb.speed[middle]
+    amp = hb.amplitude(DISK, "uy", "peak_to_peak")[middle]
+    order = np.argsort(speeds)
+    assert res.amplitude(DISK, "uy", "peak_to_peak")[-1] == pytest.approx(
+        np.interp(W, speeds[order], amp[order]), rel=2e-3)
 
 
 def test_folds_tracked_in_the_clearance_match_a_branch_at_that_clearance():
