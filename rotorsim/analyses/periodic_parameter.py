@@ -16,6 +16,7 @@ every point as in ``rs.periodic`` (the parameter reaches the force callback).
 from __future__ import annotations
 
 import dataclasses
+import os
 import time
 from collections.abc import Callable, Sequence
 from typing import Any
@@ -68,6 +69,9 @@ def periodic_parameter(
     nodes: Sequence[int] | None = None,
     bifurcations: bool = True,
     stability: str | None = "auto",
+    checkpoint: str | os.PathLike[str] | None = None,
+    checkpoint_every: int = 25,
+    resume: str | os.PathLike[str] | None = None,
     progress: bool = False,
 ) -> PeriodicResult:
     """Branch of periodic responses over the model parameter ``mu`` (module docstring).
@@ -89,6 +93,9 @@ def periodic_parameter(
     stability : {"auto", "hill", "hsu", "variational"} or None
         Floquet multipliers at every point (as in :func:`rotorsim.periodic`, with the
         parameter passed to the force); None skips them.
+    checkpoint, checkpoint_every, resume
+        As in :func:`~rotorsim.solvers.continuation.continue_branch` (the first point is
+        recomputed identically on resume).
     step, max_step, max_points, tol
         Continuation in ``mu``: steps in the scaled parameter (range 1), point budget and
         corrector tolerance.
@@ -136,7 +143,9 @@ def periodic_parameter(
     stepping = Stepping(step, max_step, max_points, tol, None)
     options = stepping.options(float(start), float(stop),
                                unknown_scales(system, rp, residual, x0))
-    branch = continue_branch(fun, x0, float(start), options, progress=progress)
+    branch = continue_branch(fun, x0, float(start), options, checkpoint=checkpoint,
+                             checkpoint_every=checkpoint_every, resume=resume,
+                             progress=progress)
     events = list(detect_bifurcations(fun, branch, options=BifurcationOptions(
         kinds=("fold", "branch_point")))) if bifurcations and len(branch) > 1 else []
     recovery = Recovery(_AtOmega(residual, omega),  # type: ignore[arg-type]

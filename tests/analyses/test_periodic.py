@@ -326,3 +326,19 @@ def test_figures_draw_the_branch_its_stability_and_a_point(branch, tmp_path):
                    harmonics_figure(branch, node=1, dof="ux")):
         assert figure.axes and figure.axes[0].lines
         plt.close(figure)
+
+
+def test_parameter_branch_resumes_from_its_checkpoint(tmp_path):
+    from rotorsim.analyses.periodic_parameter import periodic_parameter
+
+    def vary(c):
+        return [RollingBearing(ball("fixed", clearance=c), n=n, tag=f"B{n}") for n in (0, 2)]
+
+    kw = dict(speed=1250.0, start=10e-6, stop=8e-6, unbalance=UNBALANCE, harmonics=4,
+              max_points=12, stability=None)
+    path = tmp_path / "clearance.h5"
+    full = periodic_parameter(jeffcott().linear_part(), vary, checkpoint=path,
+                              checkpoint_every=4, **kw)
+    again = periodic_parameter(jeffcott().linear_part(), vary, resume=path, **kw)
+    np.testing.assert_array_equal(again.parameter, full.parameter)
+    np.testing.assert_array_equal(again.coefficients, full.coefficients)
