@@ -40,6 +40,7 @@ from rotorsim.assembly.system import assemble
 from rotorsim.errors import ConvergenceError, ModelError
 from rotorsim.harmonic_balance.bifurcation import BifurcationOptions, detect_bifurcations
 from rotorsim.harmonic_balance.residual import continuation_function, make_residual
+from rotorsim.harmonic_balance.solve import solve_point
 from rotorsim.model.rotor import Rotor
 from rotorsim.results.periodic import PeriodicResult
 from rotorsim.solvers.continuation import continue_branch
@@ -50,7 +51,7 @@ WHERE = "periodic_parameter"
 
 def periodic_parameter(
     rotor: Rotor,
-    vary: Callable[[float], Sequence[Any]],
+    vary: Callable[[float], Sequence[Any]] | str,
     *,
     speed: float,
     start: float,
@@ -80,8 +81,10 @@ def periodic_parameter(
     ----------
     rotor : Rotor
         The rotor with its linear bearings (its own nonlinear elements are replaced).
-    vary : callable
-        ``vary(mu) -> nonlinear elements`` (same nodes and kinds for every ``mu``).
+    vary : callable or "forcing"
+        ``vary(mu) -> nonlinear elements`` (same nodes and kinds for every ``mu``), or
+        ``"forcing"``: ``mu`` is the fraction of the periodic forcing (unbalance, housing
+        excitation; gravity is not scaled) and the rotor keeps its own elements.
     speed : float
         Fixed spin speed [rad/s].
     start, stop : float
@@ -114,13 +117,16 @@ def periodic_parameter(
         When the first point does not converge.
     """
     clock = time.perf_counter()
-    if not isinstance(rotor, Rotor) or not callable(vary):
-        raise ModelError("needs a Rotor and a callable vary(mu) -> nonlinear elements", WHERE)
+    forcing = isinstance(vary, str) and vary == "forcing"
+    if not isinstance(rotor, Rotor) or not (forcing or callable(vary)):
+        raise ModelError("needs a Rotor and vary: a callable vary(mu) -> nonlinear elements "
+                         "or 'forcing'", WHERE)
     if not (np.isfinite(speed) and speed > 0 and np.isfinite(start) and np.isfinite(stop)
             and start != stop):
         raise ModelError(f"need a positive speed and a range start != stop, got {speed!r}, "
                          f"{start!r}, {stop!r}", WHERE)
-    base_rotor = rotor.with_nonlinear(tuple(vary(float(start))))
+    base_rotor = rotor if forcing else rotor.with_nonlinear(
+        tuple(vary(float(start))))  # type: ignore[operator]
     system = assemble(base_rotor)
     if system.nonlinear is None:
         raise ModelError("vary(mu) returned no nonlinear elements", WHERE)
@@ -137,20 +143,27 @@ def periodic_parameter(
     X0[0] = rp.static[rp.active]
     x0 = first_point(standard, omega, standard.restrict(X0),
                      unknown_scales(system, rp, standard), tol, stats)
-    residual = parametric_residual(rp, system, vary, harmonics, samples,
-                                   abs(float(stop) - float(start)))
+    # the HB parameter: mu itself, or p = 1 - mu (the rotor problem scales its forcing by 1 - p)
+    to_p = (lambda mu: 1.0 - mu) if forcing else (lambda mu: mu)
+    if forcing:
+        residual = standard
+        if float(start) != 1.0:
+            x0 = solve_point(standard, omega, x0, param=to_p(float(start)), tol=tol).x
+    else:
+        residual = parametric_residual(rp, system, vary, harmonics,  # type: ignore[arg-type]
+                                       samples, abs(float(stop) - float(start)))
     fun = continuation_function(residual, "param", omega=omega, stats=stats)
     stepping = Stepping(step, max_step, max_points, tol, None)
-    options = stepping.options(float(start), float(stop),
+    options = stepping.options(to_p(float(start)), to_p(float(stop)),
                                unknown_scales(system, rp, residual, x0))
-    branch = continue_branch(fun, x0, float(start), options, checkpoint=checkpoint,
+    branch = continue_branch(fun, x0, to_p(float(start)), options, checkpoint=checkpoint,
                              checkpoint_every=checkpoint_every, resume=resume,
                              progress=progress)
     events = list(detect_bifurcations(fun, branch, options=BifurcationOptions(
         kinds=("fold", "branch_point")))) if bifurcations and len(branch) > 1 else []
     recovery = Recovery(_AtOmega(residual, omega),  # type: ignore[arg-type]
                         *kept_dofs(system, rp, nodes))
-    lam = branch.lam.astype(float)
+    lam = np.asarray(to_p(branch.lam.astype(float)), dtype=float)
     multipliers, method = _multipliers(residual, branch, omega, stability)
     return PeriodicResult(
         parameter=lam, parameter_name=name, speed=np.full(lam.shape, float(speed)),
@@ -158,7 +171,7 @@ def periodic_parameter(
         harmonics=residual.harmonics, samples=residual.samples, dofs=recovery.dofs,
         **branch_arrays(recovery, branch), multipliers=multipliers,
         stability_method=method, stability_tol=DEFAULT_TOL,
-        bifurcations=bifurcation_records(events, recovery, lambda v: v, None),
+        bifurcations=bifurcation_records(events, recovery, to_p, None),
         iterations=branch.iterations.astype(np.int64), residuals=branch.residuals,
         approximation=plan.approximation, held_dofs=system.dof_map.free[rp.held],
         dof_map=system.dof_map, nodes_pos=np.asarray(system.nodes_pos, dtype=float),
@@ -242,4 +255,4 @@ class _AtOmega:
         return self.residual.aft
 
     def expand(self, x: Any, lam: float) -> Any:
-        return self.residual.expand(x, self.omega)
+        return self.residual.expand(x, self.omega, lam)

@@ -242,3 +242,22 @@ def test_folds_tracked_in_the_clearance_match_a_branch_at_that_clearance():
         mu, p = np.array(c["mu"]), np.array(c["parameter"])
         speed = float(np.interp(9e-6, mu[::-1], p[::-1]))
         assert min(abs(speed - f) for f in folds) < 1e-4 * speed
+
+
+def test_forcing_branch_matches_speed_branches_at_reduced_unbalance():
+    """rs.periodic_parameter(rotor, "forcing"): the load (unbalance) amplitude as the
+    continuation parameter at 1250 rad/s, against rs.periodic with 90 % and 60 % of it."""
+    from rotorsim.analyses.periodic_parameter import periodic_parameter
+
+    W = 1250.0
+    res = periodic_parameter(jeffcott(), "forcing", speed=W, start=1.0, stop=0.3,
+                             unbalance=UNBALANCE, harmonics=6, name="forcing fraction",
+                             max_points=80)
+    assert res.parameter[0] == pytest.approx(1.0) and res.parameter[-1] == pytest.approx(0.3)
+    a = res.amplitude(DISK, "uy", "peak_to_peak")
+    for frac in (0.9, 0.6):
+        reduced = [(n, frac * me, ph) for n, me, ph in UNBALANCE]
+        direct = periodic(jeffcott(), start=W, stop=W + 0.5, unbalance=reduced, harmonics=6,
+                          max_points=2, stability=None, bifurcations=False)
+        assert np.interp(frac, res.parameter[::-1], a[::-1]) == pytest.approx(
+            direct.amplitude(DISK, "uy", "peak_to_peak")[0], rel=1e-3)
