@@ -81,7 +81,8 @@ def first_order(t_end: float):
     rotor, bearings = model()
     system = assemble(rotor, bearings)
     from rotorsim.analyses.speed_profile import ConstantSpeed
-    from rotorsim.analyses.transient import _initial, _problem
+    from rotorsim.analyses.transient import _problem
+    from rotorsim.analyses.transient_start import initial_state
 
     profile = ConstantSpeed(SPEED).bind(0.0, t_end)
     problem, loads = _problem(system, profile, 0.0, UNBALANCE, 9.80665, (0, -1, 0), (),
@@ -109,7 +110,7 @@ def first_order(t_end: float):
         J[n:, n:] = -Minv @ (D + ct.toarray())
         return J
 
-    q0, _ = _initial(system, "static", loads.constant, profile, 0.0)
+    q0, _ = initial_state(system, "static", loads.constant, profile, 0.0)
     return rhs, jac, np.concatenate([q0, np.zeros(n)]), system.dofs_of(10, ("uy",))[0]
 
 

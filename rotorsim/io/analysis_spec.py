@@ -27,7 +27,6 @@ from rotorsim.errors import ModelError
 
 if TYPE_CHECKING:
     from rotorsim.io.model_file import Model
-    from rotorsim.model.rotor import Rotor
 
 FAST_POINTS = 7
 """Grid size used by ``run_analysis(..., fast=True)``."""
@@ -310,7 +309,9 @@ def run_analysis(model: Model, name: str, *, fast: bool = False,
         raise ModelError(f"no analysis {name!r}; the model has {sorted(model.analyses)}",
                          model.name)
     spec = model.analyses[name]
-    runner = _RUNNERS[spec.type]
+    from rotorsim.io.analysis_runners import RUNNERS
+
+    runner = RUNNERS[spec.type]
     if spec.type in ("transient", "periodic"):
         return runner(model.rotor.with_nonlinear(model.rolling_bearings), model, spec, fast,
                       progress)
@@ -322,103 +323,3 @@ def run_analysis(model: Model, name: str, *, fast: bool = False,
                                                                   fast, progress)
     return dataclasses.replace(result, options={**result.options,
                                                 "rolling_bearings": linear.describe()})
-
-
-def _grid(grid: Grid, fast: bool) -> FloatArray:
-    return (grid.shrunk(FAST_POINTS) if fast else grid).array()
-
-
-def _modal(rotor: Rotor, model: Model, spec: Any, fast: bool, progress: bool) -> Any:
-    from rotorsim.analyses.modal import modal
-
-    return modal(rotor, speed=spec.speed, num_modes=spec.num_modes)
-
-
-def _campbell(rotor: Rotor, model: Model, spec: Any, fast: bool, progress: bool) -> Any:
-    from rotorsim.analyses.campbell import campbell
-
-    return campbell(rotor, _grid(spec.speeds, fast), num_modes=spec.num_modes,
-                    progress=progress)
-
-
-def _critical_speeds(rotor: Rotor, model: Model, spec: Any, fast: bool, progress: bool) -> Any:
-    from rotorsim.analyses.critical_speeds import critical_speeds
-
-    return critical_speeds(rotor, harmonic=spec.harmonic, num_modes=spec.num_modes,
-                           whirl=spec.whirl)
-
-
-def _critical_speed_map(rotor: Rotor, model: Model, spec: Any, fast: bool,
-                        progress: bool) -> Any:
-    from rotorsim.analyses.critical_speed_map import critical_speed_map
-
-    speeds = None if spec.speeds is None else _grid(spec.speeds, fast)
-    return critical_speed_map(rotor, stiffness=_grid(spec.stiffness, fast),
-                              num_modes=spec.num_modes, harmonic=spec.harmonic,
-                              bearings=spec.bearings, gyroscopic=spec.gyroscopic,
-                              speeds=speeds)
-
-
-def _unbalance(rotor: Rotor, model: Model, spec: Any, fast: bool, progress: bool) -> Any:
-    from rotorsim.analyses.frequency_response import unbalance_response
-
-    unbalance = model.loads.unbalance if spec.unbalance is None else spec.unbalance
-    return unbalance_response(rotor, _grid(spec.speeds, fast), list(unbalance),
-                              progress=progress)
-
-
-def _frequency_response(rotor: Rotor, model: Model, spec: Any, fast: bool,
-                        progress: bool) -> Any:
-    from rotorsim.analyses.frequency_response import frequency_response
-
-    return frequency_response(rotor, _grid(spec.frequencies, fast), list(spec.inputs),
-                              speed=spec.speed, progress=progress)
-
-
-def _static(rotor: Rotor, model: Model, spec: Any, fast: bool, progress: bool) -> Any:
-    from rotorsim.analyses.static import static
-
-    loads = model.loads
-    return static(rotor, gravity=loads.gravity, direction=loads.gravity_direction,
-                  loads=list(loads.point_loads), speed=spec.speed)
-
-
-def _transient(rotor: Rotor, model: Model, spec: Any, fast: bool, progress: bool) -> Any:
-    from rotorsim.analyses.speed_profile import LinearSpeed
-    from rotorsim.analyses.transient import transient
-
-    t_end = spec.t_end / 10.0 if fast else spec.t_end
-    speed: Any = spec.speed
-    if spec.speed_stop is not None:
-        ramp = spec.t_end if spec.ramp_time is None else spec.ramp_time
-        speed = LinearSpeed(spec.speed, spec.speed_stop, 0.0, ramp)
-    unbalance = model.loads.unbalance if spec.unbalance is None else spec.unbalance
-    loads = model.loads
-    return transient(rotor, t_end, spec.dt, speed=speed, unbalance=list(unbalance),
-                     gravity=loads.gravity, direction=loads.gravity_direction,
-                     loads=list(loads.point_loads), method=spec.method, initial=spec.initial,
-                     nodes=spec.nodes, every=spec.every, progress=progress)
-
-
-def _periodic(rotor: Rotor, model: Model, spec: Any, fast: bool, progress: bool) -> Any:
-    from rotorsim.analyses.periodic import periodic
-
-    unbalance = model.loads.unbalance if spec.unbalance is None else spec.unbalance
-    loads = model.loads
-    harmonics = min(spec.harmonics, 4) if fast else spec.harmonics
-    max_points = min(spec.max_points, 10) if fast else spec.max_points
-    return periodic(rotor, start=spec.start, stop=spec.stop, harmonics=harmonics,
-                    samples=None if fast else spec.samples, unbalance=list(unbalance),
-                    gravity=loads.gravity, direction=loads.gravity_direction,
-                    loads=list(loads.point_loads), varying_compliance=spec.varying_compliance,
-                    max_points=max_points, max_step=spec.max_step,
-                    stability=None if spec.stability == "none" else spec.stability,
-                    nodes=spec.nodes, progress=progress)
-
-
-_RUNNERS = {
-    "modal": _modal, "campbell": _campbell, "critical_speeds": _critical_speeds,
-    "critical_speed_map": _critical_speed_map, "unbalance": _unbalance,
-    "frequency_response": _frequency_response, "static": _static, "transient": _transient,
-    "periodic": _periodic,
-}
