@@ -28,7 +28,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from rotorsim.solvers.continuation_state import ContinuationCounters, ContinuationState
-from rotorsim.time_integration.checkpoint import CheckpointError
+from rotorsim.time_integration.checkpoint import CheckpointError, compare_config, read_header
 
 FORMAT = "rotorsim-continuation-checkpoint"
 FORMAT_VERSION = 1
@@ -107,9 +107,9 @@ def load_continuation_checkpoint(
         raise FileNotFoundError(f"no such checkpoint: {source}")
     try:
         with h5py.File(source, "r") as f:
-            stored = _header(f)
+            stored = read_header(f, FORMAT, FORMAT_VERSION)
             if config is not None:
-                _compare(stored, json.loads(json.dumps(config, sort_keys=True)))
+                compare_config(stored, json.loads(json.dumps(config, sort_keys=True)))
             state = _read_state(f["state"])
             branch = {name: f["branch"][name][()] for name in f["branch"]}
     except CheckpointError as exc:
@@ -137,26 +137,3 @@ def _read_state(group: Any) -> ContinuationState:
     if values["tangent"].shape != (m + 1,) or values["x_scale"].shape != (m,):
         raise CheckpointError(f"state arrays have inconsistent shapes for m = {m}")
     return ContinuationState(**values)
-
-
-def _header(f: Any) -> dict[str, Any]:
-    fmt = f.attrs.get("format")
-    fmt = fmt.decode() if isinstance(fmt, bytes) else fmt
-    if fmt != FORMAT:
-        raise CheckpointError(f"not a continuation checkpoint (format {fmt!r})")
-    version = f.attrs.get("format_version")
-    if version is None or int(version) != FORMAT_VERSION:
-        raise CheckpointError(f"format_version {version!r} is not supported; this rotorsim "
-                              f"reads version {FORMAT_VERSION}")
-    stored = json.loads(f.attrs["config"])
-    if not isinstance(stored, dict):
-        raise CheckpointError("config attribute is not a JSON object")
-    return stored
-
-
-def _compare(stored: dict[str, Any], current: dict[str, Any]) -> None:
-    differ = sorted(k for k in set(stored) | set(current) if stored.get(k) != current.get(k))
-    if differ:
-        details = "; ".join(f"{k}: checkpoint {json.dumps(stored.get(k))[:80]}, this run "
-                            f"{json.dumps(current.get(k))[:80]}" for k in differ)
-        raise CheckpointError(f"written by a different run ({details})")

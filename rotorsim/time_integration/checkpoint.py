@@ -134,9 +134,9 @@ def load_checkpoint(path: str | os.PathLike[str], *, config: Mapping[str, Any] |
         raise CheckpointError(f"not a readable HDF5 file ({exc})", str(source)) from exc
     try:
         with handle as f:
-            stored = _check_header(f)
+            stored = read_header(f)
             if config is not None:
-                _compare(stored, json.loads(json.dumps(config, sort_keys=True)))
+                compare_config(stored, json.loads(json.dumps(config, sort_keys=True)))
             state = _read_state(f["state"], int(stored.get("n", len(f["state"]["q"]))))
             output: dict[str, FloatArray] = {}
             f["output"].visititems(lambda name, obj: output.__setitem__(name, obj[()])
@@ -193,23 +193,27 @@ def _read_state(group: Any, n: int) -> State:
     return State(**values)
 
 
-def _check_header(f: Any) -> dict[str, Any]:
+def read_header(f: Any, fmt_expected: str = FORMAT,
+                version_expected: int = FORMAT_VERSION) -> dict[str, Any]:
+    """The stored run configuration of an open checkpoint file, after checking its format
+    name and version (shared by the time-integration and continuation checkpoints)."""
     fmt = f.attrs.get("format")
     fmt = fmt.decode() if isinstance(fmt, bytes) else fmt
-    if fmt != FORMAT:
-        raise CheckpointError(f"not a rotorsim checkpoint (format {fmt!r}, expected {FORMAT!r})")
+    if fmt != fmt_expected:
+        raise CheckpointError(f"not a {fmt_expected} file (format {fmt!r})")
     version = f.attrs.get("format_version")
     version = version.item() if hasattr(version, "item") else version  # numpy scalar
-    if version is None or int(version) != FORMAT_VERSION:
+    if version is None or int(version) != version_expected:
         raise CheckpointError(f"format_version {version!r} is not supported; this rotorsim "
-                              f"reads version {FORMAT_VERSION}")
+                              f"reads version {version_expected}")
     stored = json.loads(f.attrs["config"])
     if not isinstance(stored, dict):
         raise CheckpointError("config attribute is not a JSON object")
     return stored
 
 
-def _compare(stored: dict[str, Any], current: dict[str, Any]) -> None:
+def compare_config(stored: dict[str, Any], current: dict[str, Any]) -> None:
+    """Refuse a checkpoint written by another run (the differing keys in the message)."""
     differ = sorted(k for k in set(stored) | set(current) if stored.get(k) != current.get(k))
     if differ:
         details = "; ".join(f"{k}: checkpoint {_short(stored.get(k))}, this run "
