@@ -21,29 +21,14 @@ from typing import Any
 import matplotlib.pyplot as plt
 import numpy as np
 
-from rotorsim.plotting.units import speed_factor
+from rotorsim.plotting.units import amplitude_scale, figure_axes, speed_factor
 
-AMPLITUDE_UNITS = {"m": 1.0, "mm": 1e3, "um": 1e6, "nm": 1e9}
 EVENT_STYLE = {
     "fold": {"marker": "o", "color": "tab:red", "label": "fold"},
     "branch_point": {"marker": "s", "color": "tab:purple", "label": "branch point"},
     "period_doubling": {"marker": "D", "color": "tab:orange", "label": "period doubling"},
     "neimark_sacker": {"marker": "^", "color": "tab:green", "label": "Neimark-Sacker"},
 }
-
-
-def _axes(ax: Any, **kw: Any) -> tuple[Any, Any]:
-    if ax is not None:
-        return ax.figure, ax
-    return plt.subplots(**kw)
-
-
-def _scale(units: str) -> float:
-    try:
-        return AMPLITUDE_UNITS[units]
-    except KeyError:
-        raise TypeError(f"unknown amplitude units {units!r}; use one of "
-                        f"{list(AMPLITUDE_UNITS)}") from None
 
 
 def responsive_node(result: Any) -> int:
@@ -91,8 +76,8 @@ def frequency_response_figure(result: Any, ax: Any = None, *, node: int | None =
                               label: str | None = None, color: str | None = None) -> Any:
     """Amplitude of ``(node, dof)`` against the parameter: stable solid, unstable dashed
     (all solid without a stability analysis), bifurcations marked."""
-    f, scale = _parameter_factor(result, units), _scale(amplitude_units)
-    fig, ax = _axes(ax, figsize=(8, 5))
+    f, scale = _parameter_factor(result, units), amplitude_scale(amplitude_units)
+    fig, ax = figure_axes(ax, figsize=(8, 5))
     node = responsive_node(result) if node is None else node
     p = result.parameter * f
     a = result.amplitude(node, dof, measure) * scale
@@ -134,7 +119,7 @@ def _mark_events(ax: Any, result: Any, j: int, measure: str, f: float, scale: fl
 def multiplier_figure(result: Any, ax: Any = None, *, units: str = "rad/s") -> Any:
     """``max |mu|`` against the parameter with the stability limit ``1 + tol``."""
     f = _parameter_factor(result, units)
-    fig, ax = _axes(ax, figsize=(8, 4))
+    fig, ax = figure_axes(ax, figsize=(8, 4))
     if not result.has_stability:
         ax.text(0.5, 0.5, "no stability analysis", ha="center", va="center",
                 transform=ax.transAxes)
@@ -158,8 +143,8 @@ def harmonics_figure(result: Any, ax: Any = None, *, node: int | None = None,
                      log: bool = True) -> Any:
     """``|X_h|`` of ``(node, dof)`` for each harmonic ``h`` against the parameter (harmonic
     0 is the mean, drawn as ``|mean|``); unstable points dimmed."""
-    f, scale = _parameter_factor(result, units), _scale(amplitude_units)
-    fig, ax = _axes(ax, figsize=(8, 5))
+    f, scale = _parameter_factor(result, units), amplitude_scale(amplitude_units)
+    fig, ax = figure_axes(ax, figsize=(8, 5))
     node = responsive_node(result) if node is None else node
     hs = range(1, min(result.harmonics, 6) + 1) if harmonics is None else harmonics
     p = result.parameter * f
@@ -183,8 +168,8 @@ def periodic_orbit_figure(result: Any, ax: Any = None, *, point: int | None = No
                           node: int | None = None, amplitude_units: str = "um") -> Any:
     """Orbit ``(ux, uy)`` of ``node`` over one period at ``point`` (default: the largest
     response)."""
-    scale = _scale(amplitude_units)
-    fig, ax = _axes(ax, figsize=(5.5, 5.5))
+    scale = amplitude_scale(amplitude_units)
+    fig, ax = figure_axes(ax, figsize=(5.5, 5.5))
     node = responsive_node(result) if node is None else node
     point = _largest(result, node) if point is None else point
     x, y = result.orbit(point, node, 512)
@@ -205,8 +190,8 @@ def harmonic_content_figure(result: Any, ax: Any = None, *, point: int | None = 
                             node: int | None = None, dofs: Sequence[str] = ("ux", "uy"),
                             amplitude_units: str = "um", log: bool = True) -> Any:
     """Bar chart of ``|X_h|``, ``h = 0..H``, of ``dofs`` of ``node`` at ``point``."""
-    scale = _scale(amplitude_units)
-    fig, ax = _axes(ax, figsize=(7, 4))
+    scale = amplitude_scale(amplitude_units)
+    fig, ax = figure_axes(ax, figsize=(7, 4))
     node = responsive_node(result) if node is None else node
     point = _largest(result, node) if point is None else point
     h = np.arange(result.harmonics + 1)

@@ -18,25 +18,10 @@ import numpy as np
 from matplotlib.colors import LogNorm
 
 from rotorsim.errors import ModelError
-from rotorsim.plotting.units import speed_factor
+from rotorsim.plotting.units import amplitude_scale, figure_axes, speed_factor
 
-AMPLITUDE_UNITS = {"m": 1.0, "mm": 1e3, "um": 1e6}
 _ROTATIONS = ("rx", "ry", "rz")
 _VC_COLORS = ("tab:red", "tab:purple", "tab:brown", "tab:olive")
-
-
-def _axes(ax: Any, **kw: Any) -> tuple[Any, Any]:
-    if ax is not None:
-        return ax.figure, ax
-    return plt.subplots(**kw)
-
-
-def _scale(units: str) -> float:
-    try:
-        return AMPLITUDE_UNITS[units]
-    except KeyError:
-        raise TypeError(f"unknown amplitude units {units!r}; use one of "
-                        f"{list(AMPLITUDE_UNITS)}") from None
 
 
 def _is_transient(result: Any) -> bool:
@@ -93,8 +78,8 @@ def time_history_figure(result: Any, ax: Any = None, *,
                         show_speed: bool | None = None) -> Any:
     """Time history of ``dofs`` (``(node, "ux")`` pairs; default ux, uy of the most
     responsive node), rotations in mrad, with the speed on a twin axis when it varies."""
-    scale, f = _scale(amplitude_units), speed_factor(speed_units)
-    fig, ax = _axes(ax, figsize=(8, 4))
+    scale, f = amplitude_scale(amplitude_units), speed_factor(speed_units)
+    fig, ax = figure_axes(ax, figsize=(8, 4))
     if dofs is None:
         node = most_responsive_node(result, t_min)
         dofs = [(node, d) for d in ("ux", "uy") if _kept(result, node, d)]
@@ -127,8 +112,8 @@ def _kept(result: Any, node: int, dof: str) -> bool:
 def orbit_figure(result: Any, ax: Any = None, *, node: int | None = None,
                  t_min: float | None = None, amplitude_units: str = "um") -> Any:
     """Orbit ``(ux, uy)`` of ``node`` (default: the most responsive) for ``t >= t_min``."""
-    scale = _scale(amplitude_units)
-    fig, ax = _axes(ax, figsize=(5.5, 5.5))
+    scale = amplitude_scale(amplitude_units)
+    fig, ax = figure_axes(ax, figsize=(5.5, 5.5))
     node = most_responsive_node(result, t_min) if node is None else node
     x, y = result.orbit(node, t_min)
     ax.plot(x * scale, y * scale, lw=0.7, color="tab:blue", label="orbit")
@@ -149,7 +134,7 @@ def bearing_loads_figure(result: Any, ax: Any = None, *, bearings: Sequence[int]
                          t_min: float | None = None, magnitude: bool = True) -> Any:
     """Fx, Fy (solid, dashed) and radial load ``|F| = hypot(Fx, Fy)`` (dotted) that each
     nonlinear bearing's inner ring carries, against time."""
-    fig, ax = _axes(ax, figsize=(8, 4))
+    fig, ax = figure_axes(ax, figsize=(8, 4))
     loads = result.bearing_loads
     if loads.shape[1] == 0:
         ax.text(0.5, 0.5, "no nonlinear bearings", ha="center", va="center",
@@ -190,8 +175,8 @@ def spectrum_figure(result: Any, ax: Any = None, *, node: int | None = None, dof
     (``(bearing tag, Z kappa)`` pairs). ``t_min`` defaults to the second half of a constant-speed
     record (:func:`steady_t_min`).
     """
-    f, sf, scale = speed_factor(units), speed_factor(speed_units), _scale(amplitude_units)
-    fig, ax = _axes(ax, figsize=(8, 4.5))
+    f, sf, scale = speed_factor(units), speed_factor(speed_units), amplitude_scale(amplitude_units)
+    fig, ax = figure_axes(ax, figsize=(8, 4.5))
     if _is_transient(result):
         t_min = steady_t_min(result) if t_min is None else t_min
         node = most_responsive_node(result, t_min) if node is None else node
@@ -251,8 +236,8 @@ def waterfall_figure(result: Any, ax: Any = None, *, node: int | None = None, do
     ``result`` may be a ``Waterfall`` (pass ``vc_orders`` as ``(bearing tag, Z kappa)``).
     ``segment`` [s] defaults to 1/16 of the record.
     """
-    f, sf, scale = speed_factor(units), speed_factor(speed_units), _scale(amplitude_units)
-    fig, ax = _axes(ax, figsize=(8, 5.5))
+    f, sf, scale = speed_factor(units), speed_factor(speed_units), amplitude_scale(amplitude_units)
+    fig, ax = figure_axes(ax, figsize=(8, 5.5))
     title = "waterfall"
     if _is_transient(result):
         node = most_responsive_node(result) if node is None else node
@@ -289,8 +274,8 @@ def order_track_figure(result: Any, ax: Any = None, *, node: int | None = None,
                        amplitude_units: str = "um") -> Any:
     """Amplitude of shaft orders against speed: by default 1X, 2X and the varying-compliance
     order ``Z kappa`` of each rolling bearing. ``result`` may be an ``OrderTrack``."""
-    sf, scale = speed_factor(speed_units), _scale(amplitude_units)
-    fig, ax = _axes(ax, figsize=(8, 4.5))
+    sf, scale = speed_factor(speed_units), amplitude_scale(amplitude_units)
+    fig, ax = figure_axes(ax, figsize=(8, 4.5))
     names: dict[float, str] = {}
     title = "order track"
     if _is_transient(result):
