@@ -74,6 +74,16 @@ class DofMap:
             raise ModelError(f"DOF {dof!r} of node {node} is fixed", "DofMap")
         return i
 
+    def column(self, kept: NDArray, node: int, dof: str | int, where: str) -> int:
+        """Position of ``(node, dof)`` among the kept DOF indices ``kept`` (of a result);
+        a :class:`ModelError` naming ``where`` and the kept nodes when it was not kept."""
+        hit = np.flatnonzero(np.asarray(kept) == self.index(node, dof))
+        if hit.size == 0:
+            nodes = sorted({int(i) // DOFS_PER_NODE for i in kept})
+            raise ModelError(f"DOF {dof} of node {node} was not kept; kept nodes: {nodes} "
+                             "(choose them with the 'nodes' option)", where)
+        return int(hit[0])
+
     def expand(self, values: NDArray) -> NDArray:
         """Place free-DOF values (first axis ``n_free``) into all DOFs, zeros where fixed."""
         values = np.asarray(values)

@@ -176,13 +176,7 @@ class PeriodicResult:
         ModelError
             When that DOF was not kept (or was held).
         """
-        index = self.dof_map.index(node, dof)
-        hit = np.flatnonzero(self.dofs == index)
-        if hit.size == 0:
-            kept = sorted({int(i) // 6 for i in self.dofs})
-            raise ModelError(f"DOF {dof} of node {node} was not kept; kept nodes: {kept} "
-                             "(choose them with the 'nodes' option)", "PeriodicResult")
-        return int(hit[0])
+        return self.dof_map.column(self.dofs, node, dof, "PeriodicResult")
 
     def amplitude(self, node: int, dof: str = "uy", measure: str = "max") -> FloatArray:
         """Amplitude measure of one DOF at every point (P,) [m, rad].

@@ -99,13 +99,7 @@ class TransientResult:
         ModelError
             When that DOF was not kept (the message lists the kept nodes).
         """
-        index = self.dof_map.index(node, dof)
-        hit = np.flatnonzero(self.dofs == index)
-        if hit.size == 0:
-            kept = sorted({int(i) // 6 for i in self.dofs})
-            raise ModelError(f"DOF {dof} of node {node} was not kept; kept nodes: {kept} "
-                             "(choose them with the 'nodes' option)", "TransientResult")
-        return int(hit[0])
+        return self.dof_map.column(self.dofs, node, dof, "TransientResult")
 
     def displacement(self, node: int, dof: str = "uy") -> FloatArray:
         """Time history of one DOF [m, rad]."""
