@@ -66,7 +66,13 @@ from rotorsim.elements.rolling.flexible_ring_element import FlexibleRingBearingE
 from rotorsim.elements.rolling.flexible_rings import FlexibleRingRollerBearing
 from rotorsim.elements.rolling.large_rotation import LargeRotationBearing
 from rotorsim.elements.shaft import ShaftElement, cowper_shear_coefficient
-from rotorsim.errors import ConvergenceError, ModelError, RotorsimError, Status
+from rotorsim.errors import (
+    ConvergenceError,
+    InconsistentModelError,
+    ModelError,
+    RotorsimError,
+    Status,
+)
 from rotorsim.io.hdf5 import ResultsFileError, load, save
 from rotorsim.io.model_file import Model, load_model, run_analysis, save_model
 from rotorsim.io.sweep_store import load_sweep
@@ -113,6 +119,7 @@ __all__ = [
     "FrequencyResponseResult",
     "Grid",
     "HarmonicBase",
+    "InconsistentModelError",
     "LargeRotationBearing",
     "LinearSpeed",
     "LinearizationPoint",

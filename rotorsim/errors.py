@@ -29,6 +29,12 @@ class ModelError(RotorsimError, ValueError):
         super().__init__(f"{where}: {message}" if where else message)
 
 
+class InconsistentModelError(ModelError):
+    """A model that changed in a way the analysis cannot follow, e.g. a varied parameter
+    whose rotor has other nodes or nonlinear DOFs. Solvers never retry it with a smaller
+    step: it propagates at once."""
+
+
 class ConvergenceError(RotorsimError, RuntimeError):
     """A single solve failed to converge.
 

@@ -247,10 +247,10 @@ def _fold_map(result: PeriodicResult, residual: Any, rp: RotorPeriodicProblem,
         kinds=("fold",))) if e.located]
     to_parameter = (lambda v: v) if frequency else (lambda v: v / plan.order)
     if isinstance(fold_map, ParameterMap):
-        from rotorsim.analyses.periodic_parameter import parametric_residual
+        from rotorsim.analyses.periodic_variation import parametric_residual
 
         varied = parametric_residual(rp, system, fold_map.vary, harmonics, samples,
-                                     abs(fold_map.stop - fold_map.start))
+                                     abs(fold_map.stop - fold_map.start), fold_map.start)
         curves = fold_curves(varied, branch, folds, to_parameter,
                              mu_range=(fold_map.start, fold_map.stop),
                              value=lambda mu: np.asarray(mu), key="mu", max_step=0.5)

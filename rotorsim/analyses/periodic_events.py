@@ -28,11 +28,10 @@ of cycles).
 from __future__ import annotations
 
 from collections.abc import Callable
-from typing import Any
+from typing import Any, Protocol
 
 import numpy as np
 
-from rotorsim.analyses.periodic_stability import StabilityModel
 from rotorsim.elements.base import FloatArray
 from rotorsim.harmonic_balance.bifurcation import BifurcationEvent
 from rotorsim.solvers.continuation import Branch
@@ -42,6 +41,18 @@ from rotorsim.solvers.continuation_locate import Segment, illinois
 IMAG_TOL = 1e-6
 """``|Im mu| <= IMAG_TOL max(|mu|, 1)`` counts as real."""
 KINDS = ("period_doubling", "neimark_sacker")
+
+
+class FloquetModel(Protocol):
+    """Multipliers at a point ``(x, lam)`` of a branch (``lam`` its continuation
+    parameter) and the stability tolerance on ``|mu| - 1``: a
+    :class:`~rotorsim.analyses.periodic_stability.StabilityModel` or the stability of a
+    parameter branch."""
+
+    @property
+    def tol(self) -> float: ...
+
+    def floquet(self, x: FloatArray, lam: float) -> Any: ...
 
 
 def unstable_counts(mu: Any, tol: float) -> tuple[int, int]:
@@ -70,7 +81,7 @@ def kth_modulus(mu: Any, kind: str, k: int) -> float:
     return float(chosen[k - 1]) if chosen.size >= k else 0.0
 
 
-def floquet_events(residual: Callable[..., Any], branch: Branch, model: StabilityModel,
+def floquet_events(residual: Callable[..., Any], branch: Branch, model: FloquetModel,
                    multipliers: np.ndarray, *, tol: float = 1e-8,
                    max_iter: int = 40) -> list[BifurcationEvent]:
     """Located period doublings and Neimark-Sacker points between the points of ``branch``.
@@ -80,7 +91,7 @@ def floquet_events(residual: Callable[..., Any], branch: Branch, model: Stabilit
     residual : callable
         The continuation callback that produced ``branch``.
     branch : Branch
-    model : StabilityModel
+    model : FloquetModel
         Computes the multipliers at intermediate points.
     multipliers : complex array (P, r)
         Multipliers at the branch points (NaN rows are skipped).
@@ -107,7 +118,7 @@ def floquet_events(residual: Callable[..., Any], branch: Branch, model: Stabilit
 
 
 def _locate(system: ScaledSystem, corrector: CorrectorOptions, points: FloatArray,
-            model: StabilityModel, kind: str, k: int, i: int, j: int, tol: float,
+            model: FloquetModel, kind: str, k: int, i: int, j: int, tol: float,
             max_iter: int) -> BifurcationEvent | None:
     def test(y: FloatArray, ev: Any, tan: Any, border: Any) -> tuple[float, Any]:
         x, lam = system.from_y(y)

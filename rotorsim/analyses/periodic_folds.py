@@ -25,11 +25,12 @@ from rotorsim.solvers.continuation import Branch, Continuation
 
 @dataclass(frozen=True)
 class ParameterMap:
-    """Fold tracking in a model parameter ``mu`` of the nonlinear elements: ``vary(mu)``
-    returns them (same nodes), ``start`` must reproduce the model's own elements, and the
-    folds are continued from ``start`` towards ``stop``."""
+    """Fold tracking in a model parameter ``mu``: ``vary(mu)`` returns the nonlinear
+    elements (same nodes) or the whole rotor (same nodes, constraints and nonlinear DOFs;
+    any parameter of the linear part), ``start`` must reproduce the model, and the folds are
+    continued from ``start`` towards ``stop``."""
 
-    vary: Callable[[float], Sequence[Any]]
+    vary: Callable[[float], Any]
     start: float
     stop: float
     name: str = "parameter"

@@ -16,6 +16,7 @@ from typing import Any
 
 import numpy as np
 
+from rotorsim.analyses.periodic_events import FloquetModel
 from rotorsim.analyses.periodic_problem import RotorPeriodicProblem
 from rotorsim.analyses.periodic_stability import StabilityModel
 from rotorsim.assembly.system import RotorSystem
@@ -117,7 +118,7 @@ def floquet_arrays(model: StabilityModel | None, branch: Branch) -> tuple[np.nda
 
 
 def bifurcation_records(events: Sequence[BifurcationEvent], recovery: Recovery,
-                        to_parameter: Any, model: StabilityModel | None
+                        to_parameter: Any, model: FloquetModel | None
                         ) -> tuple[PeriodicBifurcation, ...]:
     """Result records of located events, with the amplitudes and the critical multiplier
     at each event (NaN without a stability model)."""

@@ -1,21 +1,27 @@
-"""Periodic branches over a model parameter of the nonlinear elements (clearance, preload,
-contact law, ...) at a fixed speed.
+"""Periodic branches over a model parameter at a fixed speed: a parameter of the nonlinear
+elements (clearance, preload, contact law), of the linear part (a damper coefficient, a
+bearing stiffness, a disk), a static point load, or the forcing amplitude.
 
 ``periodic_parameter(rotor, vary, speed=W, start=a, stop=b)`` continues the periodic
-response of :func:`rotorsim.periodic` in a scalar ``mu`` that changes the nonlinear elements:
-``vary(mu)`` returns them (same nodes and kinds) for each value, e.g. the rolling bearings
-with a radial clearance ``mu``. The harmonic-balance problem is that of ``rs.periodic`` at
-the speed ``W`` (same unknowns, condensation and forcing), with the force callback switched
-to the elements of ``mu`` (an assembly per value, cached) and the continuation parameter
-``mu`` (``d R / d mu`` by central differences). The first point comes from ``rs.periodic``'s
-start (Newton from the static solution, or a forcing homotopy) at ``mu = start``; folds and
-branch points in ``mu`` are detected and located, and Floquet multipliers are computed at
-every point as in ``rs.periodic`` (the parameter reaches the force callback).
+response of :func:`rotorsim.periodic` in a scalar ``mu``:
+
+* ``vary(mu)`` returns the nonlinear elements (same nodes and kinds) or a whole
+  :class:`~rotorsim.model.rotor.Rotor` (same nodes, constraints and nonlinear DOFs) for each
+  value; the harmonic-balance residual at ``mu`` is built as described in
+  :mod:`~rotorsim.analyses.periodic_variation` (``d R / d mu`` by central differences);
+* ``vary="loads"``: ``mu`` multiplies the static point loads ``loads`` (gravity stays);
+* ``vary="forcing"``: ``mu`` is the fraction of the periodic forcing (unbalance, housing
+  excitation).
+
+The HB problem is that of ``rs.periodic`` at the speed ``W`` (same unknowns, condensation
+and forcing). The first point comes from ``rs.periodic``'s start (Newton from the static
+solution, or a forcing homotopy) at ``mu = start``; folds and branch points in ``mu`` are
+detected and located, and Floquet multipliers are computed at every point as in
+``rs.periodic`` (on the rotor of each ``mu`` when the linear part varies).
 """
 
 from __future__ import annotations
 
-import dataclasses
 import os
 import time
 from collections.abc import Callable, Sequence
@@ -25,6 +31,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from rotorsim.analyses.periodic_branch import Stepping, first_point, unknown_scales
+from rotorsim.analyses.periodic_events import floquet_events
 from rotorsim.analyses.periodic_excitation import plan_excitation
 from rotorsim.analyses.periodic_output import (
     Recovery,
@@ -32,10 +39,14 @@ from rotorsim.analyses.periodic_output import (
     branch_arrays,
     kept_dofs,
 )
-from rotorsim.analyses.periodic_problem import RotorForce, build_problem
+from rotorsim.analyses.periodic_problem import build_problem
 from rotorsim.analyses.periodic_stability import DEFAULT_TOL, stability_model
+from rotorsim.analyses.periodic_variation import (
+    RotorFamilyResidual,
+    parametric_residual,
+    static_load_residual,
+)
 from rotorsim.assembly.loads import STANDARD_GRAVITY
-from rotorsim.assembly.nonlinear import NonlinearAssembly
 from rotorsim.assembly.system import assemble
 from rotorsim.errors import ConvergenceError, ModelError
 from rotorsim.harmonic_balance.bifurcation import BifurcationOptions, detect_bifurcations
@@ -51,7 +62,7 @@ WHERE = "periodic_parameter"
 
 def periodic_parameter(
     rotor: Rotor,
-    vary: Callable[[float], Sequence[Any]] | str,
+    vary: Callable[[float], Any] | str,
     *,
     speed: float,
     start: float,
@@ -80,11 +91,15 @@ def periodic_parameter(
     Parameters
     ----------
     rotor : Rotor
-        The rotor with its linear bearings (its own nonlinear elements are replaced).
-    vary : callable or "forcing"
-        ``vary(mu) -> nonlinear elements`` (same nodes and kinds for every ``mu``), or
-        ``"forcing"``: ``mu`` is the fraction of the periodic forcing (unbalance, housing
-        excitation; gravity is not scaled) and the rotor keeps its own elements.
+        The rotor (its nonlinear elements are replaced when ``vary`` returns elements, the
+        whole rotor when it returns a Rotor).
+    vary : callable, "loads" or "forcing"
+        ``vary(mu) -> nonlinear elements`` (same nodes and kinds for every ``mu``),
+        ``vary(mu) -> Rotor`` (any parameter of the linear or nonlinear part; same nodes,
+        constraints and nonlinear DOFs), ``"loads"``: ``mu`` multiplies the point loads
+        ``loads`` (e.g. ``loads=[(node, "uy", -1.0)]`` makes ``mu`` a downward force [N];
+        gravity is not scaled), or ``"forcing"``: ``mu`` is the fraction of the periodic
+        forcing (unbalance, housing excitation; gravity is not scaled).
     speed : float
         Fixed spin speed [rad/s].
     start, stop : float
@@ -112,31 +127,34 @@ def periodic_parameter(
     Raises
     ------
     ModelError
-        Bad input (a ``vary`` whose elements change nodes, a zero range, no forcing).
+        Bad input (a ``vary`` that changes nodes, constraints, nonlinear DOFs or
+        varying-compliance orders; a zero range; no forcing; ``"loads"`` without loads).
     ConvergenceError
         When the first point does not converge.
     """
     clock = time.perf_counter()
-    forcing = isinstance(vary, str) and vary == "forcing"
-    if not isinstance(rotor, Rotor) or not (forcing or callable(vary)):
+    mode = vary if isinstance(vary, str) else "model"
+    if not isinstance(rotor, Rotor) or mode not in ("model", "loads", "forcing") \
+            or not (mode != "model" or callable(vary)):
         raise ModelError("needs a Rotor and vary: a callable vary(mu) -> nonlinear elements "
-                         "or 'forcing'", WHERE)
+                         "or Rotor, 'loads' or 'forcing'", WHERE)
     if not (np.isfinite(speed) and speed > 0 and np.isfinite(start) and np.isfinite(stop)
             and start != stop):
         raise ModelError(f"need a positive speed and a range start != stop, got {speed!r}, "
                          f"{start!r}, {stop!r}", WHERE)
-    base_rotor = rotor if forcing else rotor.with_nonlinear(
-        tuple(vary(float(start))))  # type: ignore[operator]
+    first = vary(float(start)) if callable(vary) else rotor
+    base_rotor = first if isinstance(first, Rotor) else rotor.with_nonlinear(tuple(first))
     system = assemble(base_rotor)
     if system.nonlinear is None:
-        raise ModelError("vary(mu) returned no nonlinear elements", WHERE)
+        raise ModelError(f"the rotor at {name} = {start!r} has no nonlinear elements", WHERE)
     stats = Stats()
     plan = plan_excitation(system.nonlinear.elements, unbalance=bool(unbalance), base=None,
                            varying_compliance=None, fundamental=None,
                            frequency_parameter=False)
+    scaled = [(n, d, float(start) * v) for n, d, v in loads] if mode == "loads" else loads
     rp = build_problem(system, plan, speed0=float(speed), fixed_speed=None, phi0=0.0,
                        unbalance=list(unbalance), gravity=gravity, direction=direction,
-                       loads=list(loads), base=None, stats=stats)
+                       loads=list(scaled), base=None, stats=stats)
     omega = float(plan.order * speed)
     standard = make_residual(rp.problem, harmonics, samples=samples, condense=True)
     X0 = np.zeros((standard.aft.rows, rp.problem.n))
@@ -144,14 +162,19 @@ def periodic_parameter(
     x0 = first_point(standard, omega, standard.restrict(X0),
                      unknown_scales(system, rp, standard), tol, stats)
     # the HB parameter: mu itself, or p = 1 - mu (the rotor problem scales its forcing by 1 - p)
-    to_p = (lambda mu: 1.0 - mu) if forcing else (lambda mu: mu)
-    if forcing:
+    to_p = (lambda mu: 1.0 - mu) if mode == "forcing" else (lambda mu: mu)
+    span = abs(float(stop) - float(start))
+    residual: Any
+    if mode == "forcing":
         residual = standard
         if float(start) != 1.0:
             x0 = solve_point(standard, omega, x0, param=to_p(float(start)), tol=tol).x
+    elif mode == "loads":
+        residual = static_load_residual(rp, system, loads, float(start), harmonics, samples,
+                                        span)
     else:
         residual = parametric_residual(rp, system, vary, harmonics,  # type: ignore[arg-type]
-                                       samples, abs(float(stop) - float(start)))
+                                       samples, span, float(start))
     fun = continuation_function(residual, "param", omega=omega, stats=stats)
     stepping = Stepping(step, max_step, max_points, tol, None)
     options = stepping.options(to_p(float(start)), to_p(float(stop)),
@@ -159,88 +182,78 @@ def periodic_parameter(
     branch = continue_branch(fun, x0, to_p(float(start)), options, checkpoint=checkpoint,
                              checkpoint_every=checkpoint_every, resume=resume,
                              progress=progress)
-    events = list(detect_bifurcations(fun, branch, options=BifurcationOptions(
-        kinds=("fold", "branch_point")))) if bifurcations and len(branch) > 1 else []
     recovery = Recovery(_AtOmega(residual, omega),  # type: ignore[arg-type]
                         *kept_dofs(system, rp, nodes))
     lam = np.asarray(to_p(branch.lam.astype(float)), dtype=float)
-    multipliers, method = _multipliers(residual, branch, omega, stability)
+    floquet = ParameterStability(residual, omega, stability) if stability else None
+    multipliers = floquet.at_points(branch) if floquet is not None \
+        else np.zeros((len(branch), 0), dtype=complex)
+    events: list[Any] = []
+    if bifurcations and len(branch) > 1:
+        events = list(detect_bifurcations(fun, branch, options=BifurcationOptions(
+            kinds=("fold", "branch_point"))))
+        if floquet is not None:
+            events += floquet_events(fun, branch, floquet, multipliers)
     return PeriodicResult(
         parameter=lam, parameter_name=name, speed=np.full(lam.shape, float(speed)),
         fundamental=np.full(lam.shape, omega), order=plan.order,
         harmonics=residual.harmonics, samples=residual.samples, dofs=recovery.dofs,
         **branch_arrays(recovery, branch), multipliers=multipliers,
-        stability_method=method, stability_tol=DEFAULT_TOL,
-        bifurcations=bifurcation_records(events, recovery, to_p, None),
+        stability_method=floquet.method if floquet is not None else "none",
+        stability_tol=DEFAULT_TOL,
+        bifurcations=bifurcation_records(events, recovery, to_p, floquet),
         iterations=branch.iterations.astype(np.int64), residuals=branch.residuals,
         approximation=plan.approximation, held_dofs=system.dof_map.free[rp.held],
         dof_map=system.dof_map, nodes_pos=np.asarray(system.nodes_pos, dtype=float),
-        options={"parameter": name, "start": float(start), "stop": float(stop),
-                 "speed": float(speed), "harmonics": int(harmonics),
+        options={"parameter": name, "vary": mode, "start": float(start),
+                 "stop": float(stop), "speed": float(speed), "harmonics": int(harmonics),
                  "unbalance": [[float(v) for v in u] for u in unbalance]},
         stats={**branch.stats, "wall_time": time.perf_counter() - clock},
         status=branch.status, reason=branch.reason, summary=dict(system.summary))
 
 
-def parametric_residual(rp: Any, system: Any, vary: Callable[[float], Sequence[Any]],
-                        harmonics: int, samples: int | None, scale: float) -> Any:
-    """The HB residual of ``rp`` with the full forcing and the nonlinear elements of
-    ``vary(p)`` for the HB parameter ``p`` (``d/dp`` by central differences relative to
-    ``scale``)."""
-    template = rp.problem.force
-    if not isinstance(template, RotorForce) or system.nonlinear is None:
-        raise ModelError("the rotor has no nonlinear DOFs to vary", WHERE)
-    force = _ParametricForce(template, vary, system.dof_map.full_to_free,
-                             system.dof_map.n_nodes, system.nonlinear.dofs)
-    loads_at_full = rp.loads
-    problem = dataclasses.replace(rp.problem, force=force,
-                                  excitation=lambda w, p: loads_at_full(w, 0.0),
-                                  param_scale=float(scale))
-    return make_residual(problem, harmonics, samples=samples, condense=True)
+class ParameterStability:
+    """Floquet multipliers of the points ``(x, mu)`` of a parameter branch at the fixed
+    fundamental ``omega``: one stability model for a branch over the nonlinear elements, the
+    forcing or the loads (``mu`` reaches the force callback), one per value of ``mu`` when
+    the linear part varies (:class:`RotorFamilyResidual`). Quacks like
+    :class:`~rotorsim.analyses.periodic_stability.StabilityModel` for
+    :func:`~rotorsim.analyses.periodic_events.floquet_events` (``floquet(x, mu)``)."""
 
+    def __init__(self, residual: Any, omega: float, method: str) -> None:
+        self.residual, self.omega, self.tol = residual, float(omega), DEFAULT_TOL
+        self.requested = method
+        family = isinstance(residual, RotorFamilyResidual)
+        self.shared = None if family else self._model(residual)
+        self.method = self.shared.method if self.shared is not None else method
+        self.size = self.shared.size if self.shared is not None else 0
 
-def _multipliers(residual: Any, branch: Any, omega: float, stability: str | None
-                 ) -> tuple[Any, str]:
-    """Floquet multipliers (P, 2 n_s) of every branch point (NaN where Floquet failed or
-    Hill's selection returned fewer) and the method used."""
-    if stability is None:
-        return np.zeros((len(branch), 0), dtype=complex), "none"
-    sm = stability_model(residual, stability, modes="auto", omega_max=omega,
-                         tol=DEFAULT_TOL)
-    out = np.full((len(branch), sm.size), np.nan + 0j)
-    for i, (x, mu) in enumerate(zip(branch.x, branch.lam, strict=True)):
-        try:
-            values = np.asarray(sm.floquet(x, omega, float(mu)).multipliers)
-        except (ModelError, ConvergenceError, np.linalg.LinAlgError):
-            continue
-        out[i, : min(values.size, sm.size)] = values[: sm.size]
-    return out, sm.method
+    def _model(self, residual: Any) -> Any:
+        return stability_model(residual, self.requested, modes="auto",
+                               omega_max=self.omega, tol=DEFAULT_TOL)
 
+    def floquet(self, x: Any, mu: float) -> Any:
+        """Floquet result of the point ``x`` at ``mu``."""
+        if self.shared is not None:
+            return self.shared.floquet(x, self.omega, float(mu))
+        model = self._model(self.residual.at(float(mu)))
+        self.method, self.size = model.method, max(self.size, model.size)
+        return model.floquet(x, self.omega, 0.0)
 
-class _ParametricForce:
-    """The rotor force callback with the nonlinear elements of ``vary(p)`` (cached)."""
-
-    def __init__(self, template: RotorForce, vary: Callable[[float], Sequence[Any]],
-                 full_to_free: Any, n_nodes: int, dofs: Any) -> None:
-        self.template, self.vary = template, vary
-        self.full_to_free, self.n_nodes, self.dofs = full_to_free, n_nodes, dofs
-        self.cache: dict[float, RotorForce] = {}
-
-    def _at(self, p: float) -> RotorForce:
-        key = float(p)
-        if key not in self.cache:
-            if len(self.cache) > 64:
-                self.cache.clear()
-            assembly = NonlinearAssembly.build(tuple(self.vary(key)), self.full_to_free,
-                                               self.n_nodes)
-            if not np.array_equal(assembly.dofs, self.dofs):
-                raise ModelError(f"vary({key!r}) changed the nonlinear DOFs: keep the nodes",
-                                 WHERE)
-            self.cache[key] = dataclasses.replace(self.template, assembly=assembly)
-        return self.cache[key]
-
-    def __call__(self, q: Any, v: Any, tau: Any, omega: float, param: float) -> Any:
-        return self._at(param)(q, v, tau, omega, 0.0)
+    def at_points(self, branch: Any) -> Any:
+        """Multipliers (P, 2 n_s) of every branch point (NaN where Floquet failed or Hill's
+        selection returned fewer)."""
+        rows: list[Any] = []
+        for x, mu in zip(branch.x, branch.lam, strict=True):
+            try:
+                rows.append(np.asarray(self.floquet(x, float(mu)).multipliers))
+            except (ModelError, ConvergenceError, np.linalg.LinAlgError):
+                rows.append(None)
+        out = np.full((len(branch), self.size), np.nan + 0j)
+        for i, values in enumerate(rows):
+            if values is not None:
+                out[i, : min(values.size, self.size)] = values[: self.size]
+        return out
 
 
 class _AtOmega:

@@ -23,7 +23,8 @@ depends on ``W`` (EHL damping, centrifugal loading) makes ``force_uses_omega`` t
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+import functools
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from typing import Any
 
@@ -147,8 +148,13 @@ class RotorPeriodicProblem:
     held : int array
         Free DOFs held at zero (free rigid motions).
     static : array (n_free,)
-        Static equilibrium under the constant loads at the first speed [m, rad].
+        Static equilibrium under the constant loads at the first speed [m, rad] (zero when
+        built with given ``held`` DOFs).
     loads : PeriodicLoads
+    rebuild : callable
+        ``rebuild(system, **changes)``: the same problem (plan, loads, held DOFs, no static
+        solve) for another assembled system, e.g. the rotor at another value of a model
+        parameter; ``changes`` override keyword arguments of :func:`build_problem`.
     """
 
     problem: HBProblem
@@ -156,15 +162,18 @@ class RotorPeriodicProblem:
     held: IntArray
     static: FloatArray
     loads: PeriodicLoads
+    rebuild: Callable[..., RotorPeriodicProblem]
 
 
 def build_problem(system: RotorSystem, plan: ExcitationPlan, *, speed0: float,
                   fixed_speed: float | None, phi0: float,
                   unbalance: Sequence[tuple[int, float, float]], gravity: float | None,
                   direction: Any, loads: Sequence[tuple[int, str, float]],
-                  base: HarmonicBase | None, stats: Stats) -> RotorPeriodicProblem:
+                  base: HarmonicBase | None, stats: Stats,
+                  held: IntArray | None = None) -> RotorPeriodicProblem:
     """Assemble the periodic problem of ``system`` (module docstring) and its static start
-    at the speed ``speed0`` [rad/s] and shaft angle ``phi0`` [rad]."""
+    at the speed ``speed0`` [rad/s] and shaft angle ``phi0`` [rad]; with ``held`` given the
+    static solve is skipped (``static`` zero) and those free DOFs are held."""
     if system.variable_bearings and fixed_speed is None:
         tags = [b.label for _, b in system.variable_bearings]
         raise ModelError(f"speed-dependent linear bearings {tags} need a fixed speed: use "
@@ -176,7 +185,10 @@ def build_problem(system: RotorSystem, plan: ExcitationPlan, *, speed0: float,
         f_const += gravity_load(system, gravity, direction)
     for i, (node, dof, value) in enumerate(loads):
         f_const += nodal_load(system, int(node), str(dof), float(value), where=f"loads[{i}]")
-    static, held = static_start(system, mats.K, f_const, W, phi0, stats)
+    if held is None:
+        static, held = static_start(system, mats.K, f_const, W, phi0, stats)
+    else:
+        static = np.zeros(system.n_free)
     active = np.setdiff1d(np.arange(system.n_free), held).astype(np.int64)
     ix = np.ix_(active, active)
     mass_direction = None
@@ -193,7 +205,16 @@ def build_problem(system: RotorSystem, plan: ExcitationPlan, *, speed0: float,
         spin=0.0 if fixed_speed is None else fixed_speed,
         spin_ratio=1.0 / plan.order if fixed_speed is None else 0.0,
         force_uses_omega=uses_speed and fixed_speed is None)
-    return RotorPeriodicProblem(problem, active, held, static, periodic_loads)
+    recipe = functools.partial(_rebuild, dict(
+        plan=plan, speed0=speed0, fixed_speed=fixed_speed, phi0=phi0, unbalance=unbalance,
+        gravity=gravity, direction=direction, loads=loads, base=base, stats=stats, held=held))
+    return RotorPeriodicProblem(problem, active, held, static, periodic_loads, recipe)
+
+
+def _rebuild(settings: dict[str, Any], system: RotorSystem, **changes: Any
+             ) -> RotorPeriodicProblem:
+    """:func:`build_problem` of ``system`` with the settings of an earlier build."""
+    return build_problem(system, **{**settings, **changes})
 
 
 def _force(system: RotorSystem, active: IntArray, plan: ExcitationPlan, phi0: float,

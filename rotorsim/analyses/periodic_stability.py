@@ -75,7 +75,7 @@ class StabilityModel:
     method: str
     modes: int
     tol: float
-    _cache: dict[tuple[bytes, float], FloquetResult] = field(default_factory=dict,
+    _cache: dict[tuple[bytes, float, float], FloquetResult] = field(default_factory=dict,
                                                              init=False, repr=False)
 
     @property
@@ -85,7 +85,7 @@ class StabilityModel:
 
     def floquet(self, x: FloatArray, omega: float, param: float = 0.0) -> FloquetResult:
         """Floquet result at a branch point (memoised: bifurcation detection asks again)."""
-        key = (np.asarray(x, dtype=float).tobytes(), float(omega))
+        key = (np.asarray(x, dtype=float).tobytes(), float(omega), float(param))
         if key not in self._cache:
             y = self._unknowns(np.asarray(x, dtype=float), omega, param)
             methods: dict[str, Callable[..., FloquetResult]] = {

@@ -245,11 +245,15 @@ class CondensedResidual:
             A = getattr(pb, name)
             if A is None:
                 continue
-            As = sp.csr_matrix(A)
-            LL = As[L][:, L]
-            out[name] = {"LL": LL.tocsc() if sparse_ll else LL.toarray(),
-                         "LN": As[L][:, N].toarray(), "NL": As[N][:, L].toarray(),
-                         "NN": As[N][:, N].toarray()}
+            if sparse_ll:   # large: slice the sparse matrix, keep LL sparse
+                As = sp.csr_matrix(A)
+                rows_l, rows_n = As[L], As[N]
+                out[name] = {"LL": rows_l[:, L].tocsc(), "LN": rows_l[:, N].toarray(),
+                             "NL": rows_n[:, L].toarray(), "NN": rows_n[:, N].toarray()}
+            else:           # small: dense slicing is much cheaper than sparse indexing
+                D = A.toarray() if sp.issparse(A) else np.asarray(A)
+                out[name] = {"LL": D[np.ix_(L, L)], "LN": D[np.ix_(L, N)],
+                             "NL": D[np.ix_(N, L)], "NN": D[np.ix_(N, N)]}
         return out
 
     def _schur(self, R: FloatArray, fac: HarmonicFactors) -> FloatArray:

@@ -36,7 +36,7 @@ import numpy as np
 import scipy.sparse as sp
 from numpy.typing import ArrayLike, NDArray
 
-from rotorsim.errors import ConvergenceError, RotorsimError
+from rotorsim.errors import ConvergenceError, InconsistentModelError, RotorsimError
 from rotorsim.solvers.linear import Factorization, factorize
 from rotorsim.solvers.stats import Stats
 
@@ -50,7 +50,8 @@ ResidualCallback = Callable[[FloatArray, float], "tuple[ArrayLike, Matrix, Array
 EVALUATION_ERRORS: tuple[type[BaseException], ...] = (
     RotorsimError, ArithmeticError, ValueError, np.linalg.LinAlgError)
 """Exceptions of the residual callback that count as a failed evaluation (the step is cut)
-rather than a programming error (anything else propagates)."""
+rather than a programming error (anything else propagates, and so does an
+:class:`~rotorsim.errors.InconsistentModelError`)."""
 
 
 @dataclass(frozen=True, eq=False)
@@ -114,6 +115,8 @@ class ScaledSystem:
         try:
             r, jac, jlam = self.residual(x, lam)
         except EVALUATION_ERRORS as exc:
+            if isinstance(exc, InconsistentModelError):
+                raise
             raise ConvergenceError(f"residual evaluation failed at lam = {lam:.6g} "
                                    f"({type(exc).__name__}: {exc})", "continuation") from exc
         m = self.m
