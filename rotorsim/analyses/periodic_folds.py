@@ -46,11 +46,16 @@ def fold_curves(residual: Any, branch: Branch, events: Sequence[Any],
                 to_parameter: Callable[[Any], Any], max_points: int = 200,
                 mu_range: tuple[float, float] = (0.0, 0.995),
                 value: Callable[[Any], Any] = lambda mu: 1.0 - np.asarray(mu),
-                key: str = "forcing", max_step: float = 0.05) -> list[dict[str, Any]]:
+                key: str = "forcing", max_step: float = 0.05,
+                tol: float = 1e-8) -> list[dict[str, Any]]:
     """Each located fold of ``events`` continued in the HB parameter ``mu`` of ``residual``
     over ``mu_range``: ``{key: value(mu), "parameter": [...], "status", "reason"}``
     (JSON-able; ``parameter`` in the branch's parameter units). By default ``mu`` is the
-    forcing reduction of the rotor problem and ``key = "forcing"`` its fraction ``1 - mu``."""
+    forcing reduction of the rotor problem and ``key = "forcing"`` its fraction ``1 - mu``.
+    ``tol`` is the corrector tolerance of the extended system: its Jacobian carries a
+    difference quotient of the Jacobian along the null vector, which stalls Newton's
+    convergence near the round-off of the residual (1e-10 is too tight for a Hertz contact
+    with clearance)."""
 
     def two_parameter(x: Any, lam: float, mu: float) -> tuple[Any, Any, Any, Any]:
         ev = residual.evaluate(x, lam, mu, jacobian=True, d_omega=True, d_param=True)
@@ -60,7 +65,8 @@ def fold_curves(residual: Any, branch: Branch, events: Sequence[Any],
     direction = 1 if mu_range[1] > mu_range[0] else -1
     span = hi - lo
     options = Continuation(initial_step=0.02, max_step=max_step, lam_min=lo, lam_max=hi,
-                           max_points=max_points, direction=direction, lam_scale=span)
+                           max_points=max_points, direction=direction, lam_scale=span,
+                           tol=tol)
     curves = []
     for event in events:
         if getattr(event, "kind", "") != "fold" or not getattr(event, "located", False):

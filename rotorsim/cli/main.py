@@ -27,6 +27,8 @@ _SUBCOMMAND_HELP = {
     "static": "static deflection, bearing reactions and section forces",
     "transient": "time integration on the nonlinear bearings (run-up, orbits, bearing loads)",
     "periodic": "harmonic-balance branch over speed with Floquet stability and bifurcations",
+    "periodic-parameter": "harmonic-balance branch at a fixed speed over a model parameter "
+                          "(a key path such as bearings.B1.cxx, 'loads' or 'forcing')",
 }
 _BEARING_HELP = "load distribution and stiffness matrix of each rolling bearing"
 _SUBCOMMAND_TYPES = {
@@ -38,6 +40,7 @@ _SUBCOMMAND_TYPES = {
     "static": "static",
     "transient": "transient",
     "periodic": "periodic",
+    "periodic-parameter": "periodic_parameter",
 }
 
 
@@ -75,6 +78,13 @@ def build_parser() -> argparse.ArgumentParser:
         if kind == "periodic":
             p.add_argument("--start", help='first speed of the branch, e.g. "1000 rpm"')
             p.add_argument("--stop", help="last speed of the branch")
+        if kind == "periodic_parameter":
+            p.add_argument("--vary", help="key path of the parameter, e.g. "
+                           "rolling_bearings.DE.radial_clearance, or loads or forcing")
+            p.add_argument("--speed", help='the fixed spin speed, e.g. "3000 rpm"')
+            p.add_argument("--start", help='first value, e.g. "5 um" (numbers are SI)')
+            p.add_argument("--stop", help="last value")
+        if kind in ("periodic", "periodic_parameter"):
             p.add_argument("--harmonics", type=int, help="number of harmonics H")
             p.add_argument("--max-points", type=int, help="largest number of branch points")
             p.add_argument("--no-stability", action="store_true",
@@ -229,9 +239,10 @@ def _adhoc_job(model: Any, args: argparse.Namespace) -> tuple[str, Any]:
         changes["stability"] = "none"
     if getattr(args, "speed", None) is not None:
         changes["speed"] = to_si(args.speed, "speed", "--speed")
+    ranges = () if kind == "periodic_parameter" else (("start", "start", "speed"),
+                                                      ("stop", "stop", "speed"))
     for option, key, kind_of in (("t_end", "t_end", "time"), ("dt", "dt", "time"),
-                                 ("speed_stop", "speed_stop", "speed"),
-                                 ("start", "start", "speed"), ("stop", "stop", "speed")):
+                                 ("speed_stop", "speed_stop", "speed"), *ranges):
         if getattr(args, option, None) is not None:
             changes[key] = to_si(getattr(args, option), kind_of,
                                  f"--{option.replace('_', '-')}")
@@ -260,10 +271,29 @@ def _adhoc_job(model: Any, args: argparse.Namespace) -> tuple[str, Any]:
 
             raise ModelError("the model has no periodic analysis; give --start and --stop",
                              args.command)
-        spec = cls(**changes)
-    else:
-        spec = dataclasses.replace(spec, **changes)
+    if kind == "periodic_parameter":
+        changes.update(_parameter_changes(model, spec, args))
+    spec = cls(**changes) if spec is None else dataclasses.replace(spec, **changes)
     return name, spec
+
+
+def _parameter_changes(model: Any, spec: Any, args: argparse.Namespace) -> dict[str, Any]:
+    """``vary``, ``start`` and ``stop`` (SI) of ``rotorsim periodic-parameter``."""
+    from rotorsim.errors import ModelError
+    from rotorsim.io.model_parameter import parameter_range
+
+    given = {k: getattr(args, k) for k in ("vary", "start", "stop")
+             if getattr(args, k) is not None}
+    if spec is None and not {"vary", "start", "stop", "speed"} <= {*given, *(
+            ["speed"] if args.speed is not None else [])}:
+        raise ModelError("the model has no periodic_parameter analysis; give --vary, "
+                         "--speed, --start and --stop", args.command)
+    vary = str(given.get("vary", getattr(spec, "vary", "")))
+    if not given.keys() & {"vary", "start", "stop"}:
+        return {}
+    start, stop = parameter_range(model, vary, given.get("start", getattr(spec, "start", 0)),
+                                  given.get("stop", getattr(spec, "stop", 0)))
+    return {"vary": vary, "start": start, "stop": stop}
 
 
 def _count(text: str) -> int:

@@ -234,11 +234,17 @@ def transient_summary(result: Any, units: str = "rpm") -> str:
 
 def periodic_summary(result: Any, units: str = "rpm") -> str:
     """Points, status, stability and bifurcations of a harmonic-balance branch, and the
-    largest responses of the kept nodes."""
-    f = _factor(units)
+    largest responses of the kept nodes (over the speed, or over the model parameter of
+    ``rs.periodic_parameter``)."""
     p = result.parameter
-    head = (f"periodic branch: {len(p)} points, speed {result.speed[0] * f:.1f} -> "
-            f"{result.speed[-1] * f:.1f} {units}, H = {result.harmonics}, status "
+    if result.parameter_name in ("speed", "frequency"):
+        f, label = _factor(units), f"{result.parameter_name} [{units}]"
+        span = f"speed {result.speed[0] * f:.1f} -> {result.speed[-1] * f:.1f} {units}"
+    else:   # a model parameter at a fixed speed, in SI
+        f, label = 1.0, str(result.parameter_name)
+        span = (f"{label} {p[0]:.6g} -> {p[-1]:.6g} at "
+                f"{result.speed[0] * _factor(units):.1f} {units}")
+    head = (f"periodic branch: {len(p)} points, {span}, H = {result.harmonics}, status "
             f"{result.status.name}" + (f" ({result.reason})" if result.reason else ""))
     lines = [head]
     if result.approximation:
@@ -253,13 +259,13 @@ def periodic_summary(result: Any, units: str = "rpm") -> str:
         except Exception:  # a node without uy kept
             continue
         k = int(np.argmax(amp))
-        rows.append((node, f"{amp[k] * 1e6:.3f}", f"{result.speed[k] * f:.1f}"))
+        rows.append((node, f"{amp[k] * 1e6:.3f}", f"{p[k] * f:.6g}"))
     rows.sort(key=lambda r: -float(r[1]))
-    lines.append(table(rows[:6], ("node", "max uy p-p [um]", f"at [{units}]")))
+    lines.append(table(rows[:6], ("node", "max uy p-p [um]", f"at {label}")))
     if result.bifurcations:
-        lines.append(table([(b.kind, f"{b.parameter * f:.2f}", "yes" if b.located else "no")
+        lines.append(table([(b.kind, f"{b.parameter * f:.6g}", "yes" if b.located else "no")
                             for b in result.bifurcations],
-                           ("bifurcation", f"speed [{units}]", "located")))
+                           ("bifurcation", label, "located")))
     return "\n".join(lines)
 
 

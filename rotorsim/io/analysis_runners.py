@@ -106,9 +106,27 @@ def _periodic(rotor: Rotor, model: Model, spec: Any, fast: bool, progress: bool)
                     nodes=spec.nodes, progress=progress)
 
 
+def _periodic_parameter(rotor: Rotor, model: Model, spec: Any, fast: bool,
+                        progress: bool) -> Any:
+    from rotorsim.analyses.periodic_parameter import periodic_parameter
+
+    vary = spec.vary if spec.vary in ("loads", "forcing") else model.parameter(spec.vary)
+    unbalance = model.loads.unbalance if spec.unbalance is None else spec.unbalance
+    loads = model.loads
+    return periodic_parameter(
+        rotor, vary, speed=spec.speed, start=spec.start, stop=spec.stop, name=spec.vary,
+        harmonics=min(spec.harmonics, 4) if fast else spec.harmonics,
+        samples=None if fast else spec.samples, unbalance=list(unbalance),
+        gravity=loads.gravity, direction=loads.gravity_direction,
+        loads=list(loads.point_loads), max_points=min(spec.max_points, 10) if fast
+        else spec.max_points, max_step=spec.max_step,
+        stability=None if spec.stability == "none" else spec.stability, nodes=spec.nodes,
+        progress=progress)
+
+
 RUNNERS = {
     "modal": _modal, "campbell": _campbell, "critical_speeds": _critical_speeds,
     "critical_speed_map": _critical_speed_map, "unbalance": _unbalance,
     "frequency_response": _frequency_response, "static": _static, "transient": _transient,
-    "periodic": _periodic,
+    "periodic": _periodic, "periodic_parameter": _periodic_parameter,
 }

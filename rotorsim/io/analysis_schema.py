@@ -19,6 +19,7 @@ from rotorsim.io.schema_types import (
     Name,
     NodeIndex,
     PositiveRatio,
+    PositiveSpeed,
     PositiveTime,
     Speed,
     SpeedGrid,
@@ -145,6 +146,25 @@ class PeriodicTable(AnalysisTable):
     unbalance: Annotated[list[UnbalanceTable], Field(min_length=1)] | None = None
 
 
+class PeriodicParameterTable(AnalysisTable):
+    """A harmonic-balance branch at the fixed ``speed`` over a model parameter ``vary``:
+    a key path of the model file (``"rolling_bearings.DE.radial_clearance"``), ``"loads"``
+    (a factor on the point loads) or ``"forcing"`` (a factor on the unbalance), from
+    ``start`` to ``stop`` (numbers in SI, or strings with units)."""
+
+    type: Literal["periodic_parameter"]
+    vary: Annotated[str, Field(min_length=1)]
+    speed: PositiveSpeed
+    start: float | str
+    stop: float | str
+    harmonics: Annotated[int, Field(ge=1, le=200)] = 10
+    samples: Annotated[int, Field(ge=4)] | None = None
+    max_points: Annotated[int, Field(ge=2)] = 200
+    max_step: Annotated[float, Field(gt=0)] = 0.05
+    stability: Literal["auto", "hill", "hsu", "none"] = "auto"
+    unbalance: Annotated[list[UnbalanceTable], Field(min_length=1)] | None = None
+
+
 TABLES: dict[str, type[AnalysisTable]] = {
     "modal": ModalTable,
     "campbell": CampbellTable,
@@ -155,6 +175,7 @@ TABLES: dict[str, type[AnalysisTable]] = {
     "static": StaticTable,
     "transient": TransientTable,
     "periodic": PeriodicTable,
+    "periodic_parameter": PeriodicParameterTable,
 }
 """Analysis types of model files and their tables."""
 

@@ -260,10 +260,31 @@ class PeriodicSpec(AnalysisSpec):
     unbalance: Unbalance | None = None
 
 
+@dataclass(frozen=True, kw_only=True)
+class PeriodicParameterSpec(AnalysisSpec):
+    """Harmonic-balance branch at the fixed ``speed`` [rad/s] over the model parameter
+    ``vary`` from ``start`` to ``stop`` (SI): :func:`rotorsim.periodic_parameter` with
+    ``vary`` a key path of the model file
+    (:class:`~rotorsim.io.model_parameter.ModelParameter`), ``"loads"`` (a factor on the
+    model's point loads) or ``"forcing"`` (a factor on the unbalance)."""
+
+    type: ClassVar[str] = "periodic_parameter"
+    vary: str
+    speed: float
+    start: float
+    stop: float
+    harmonics: int = 10
+    samples: int | None = None
+    max_points: int = 200
+    max_step: float = 0.05
+    stability: str = "auto"
+    unbalance: Unbalance | None = None
+
+
 SPEC_TYPES: dict[str, type[AnalysisSpec]] = {
     cls.type: cls for cls in (ModalSpec, CampbellSpec, CriticalSpeedsSpec,
                               CriticalSpeedMapSpec, UnbalanceSpec, FrequencyResponseSpec,
-                              StaticSpec, TransientSpec, PeriodicSpec)
+                              StaticSpec, TransientSpec, PeriodicSpec, PeriodicParameterSpec)
 }
 """Analysis ``type`` names of model files and their spec classes."""
 
@@ -312,7 +333,7 @@ def run_analysis(model: Model, name: str, *, fast: bool = False,
     from rotorsim.io.analysis_runners import RUNNERS
 
     runner = RUNNERS[spec.type]
-    if spec.type in ("transient", "periodic"):
+    if spec.type in ("transient", "periodic", "periodic_parameter"):
         return runner(model.rotor.with_nonlinear(model.rolling_bearings), model, spec, fast,
                       progress)
     if not model.rolling_bearings:

@@ -313,7 +313,7 @@ def build_spec(table: Any, loc: tuple[str | int, ...], nodes: Nodes,
     for f in fields(cls):
         if f.name not in common and hasattr(table, f.name):
             options[f.name] = getattr(table, f.name)
-    if table.type in ("unbalance", "transient", "periodic"):
+    if table.type in ("unbalance", "transient", "periodic", "periodic_parameter"):
         options["unbalance"] = _analysis_unbalance(table, nodes, loads, where)
     elif table.type == "frequency_response":
         options["inputs"] = tuple((nodes.any_node(item, f"{where}.inputs[{i}]"), str(item.dof))

@@ -54,6 +54,8 @@ Examples
 
 from __future__ import annotations
 
+import copy
+import dataclasses
 import os
 import tempfile
 import tomllib
@@ -96,6 +98,8 @@ class Model:
     linearize : tuple of LinearizationPoint
         Where each rolling bearing is linearised for the linear analyses (default: all at
         their static loads).
+    data : mapping, optional
+        The parsed file the model was built from (:meth:`parameter` varies its values).
     """
 
     name: str
@@ -106,6 +110,7 @@ class Model:
     source: Path | None = None
     rolling_bearings: tuple[RollingBearing, ...] = ()
     linearize: tuple[LinearizationPoint, ...] = ()
+    data: Mapping[str, Any] | None = field(default=None, repr=False)
     _linearized: dict[float, LinearizedRotor] = field(default_factory=dict, init=False,
                                                        repr=False)
 
@@ -115,6 +120,24 @@ class Model:
         if self.linearize and len(self.linearize) != len(self.rolling_bearings):
             raise ModelError(f"{len(self.rolling_bearings)} rolling bearings but "
                              f"{len(self.linearize)} linearisation points", self.name)
+
+    def parameter(self, path: str) -> Any:
+        """``vary(value) -> Rotor`` with ``value`` [SI] at the key path ``path`` of the model
+        file (e.g. ``"bearings.B1.cxx"``, ``"rolling_bearings.DE.radial_clearance"``; a
+        path into ``rolling_bearings`` gives the rolling bearings only), for
+        :func:`rotorsim.periodic_parameter`; see :mod:`rotorsim.io.model_parameter`.
+
+        Raises
+        ------
+        ModelError
+            When the model was not read from a file or ``path`` names no value of it.
+        """
+        from rotorsim.io.model_parameter import ModelParameter
+
+        if self.data is None:
+            raise ModelError("the model was not built from a model file: vary the Rotor "
+                             "with a function instead", self.name)
+        return ModelParameter(self.data, path)
 
     def linearized(self, speed: float = 0.0) -> LinearizedRotor:
         """The rotor with its rolling bearings linearised (computed once per speed).
@@ -203,9 +226,28 @@ def model_from_dict(data: Mapping[str, Any], *, source: str | os.PathLike[str] |
     tags = tuple(rb.tag for rb in rolling)
     specs = {key: build.build_spec(t, loc, nodes, rotor, loads, tags)
              for key, loc, t in analyses}
-    return Model(name=name, rotor=rotor, loads=loads, analyses=specs,
-                 description=table.model.description, source=src, rolling_bearings=rolling,
-                 linearize=points)
+    model = Model(name=name, rotor=rotor, loads=loads, analyses=specs,
+                  description=table.model.description, source=src, rolling_bearings=rolling,
+                  linearize=points, data=copy.deepcopy(dict(data)))
+    return _parameter_ranges(model)
+
+
+def _parameter_ranges(model: Model) -> Model:
+    """``periodic_parameter`` analyses with their ``start`` and ``stop`` in SI (a key path
+    resolved and its range checked against the key's dimension)."""
+    from rotorsim.io.analysis_spec import PeriodicParameterSpec
+    from rotorsim.io.model_parameter import parameter_range
+
+    specs = dict(model.analyses)
+    for key, spec in specs.items():
+        if not isinstance(spec, PeriodicParameterSpec):
+            continue
+        try:
+            start, stop = parameter_range(model, spec.vary, spec.start, spec.stop)
+        except ModelError as err:
+            raise ModelError(str(err), f"analyses.{key}") from None
+        specs[key] = dataclasses.replace(spec, start=start, stop=stop)
+    return dataclasses.replace(model, analyses=specs)
 
 
 def save_model(model: Model | Rotor, path: str | os.PathLike[str]) -> Path:

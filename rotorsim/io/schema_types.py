@@ -216,6 +216,7 @@ PositiveTime = Annotated[float, PlainValidator(_quantity("time", "positive"))]
 UnbalanceMagnitude = Annotated[float, PlainValidator(_quantity("unbalance", "nonnegative"))]
 Angle = Annotated[float, PlainValidator(_quantity("angle"))]
 Speed = Annotated[float, PlainValidator(_quantity("speed", "nonnegative"))]
+PositiveSpeed = Annotated[float, PlainValidator(_quantity("speed", "positive"))]
 SignedLength = Annotated[float, PlainValidator(_quantity("length"))]
 LinearizationValue = Annotated[Any, PlainValidator(_linearize)]
 # constant or tabulated (over frequency) bearing coefficients

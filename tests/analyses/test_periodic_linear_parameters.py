@@ -88,6 +88,32 @@ def test_damping_branch_points_equal_the_response_at_that_damping(damping_branch
 
 
 @pytest.mark.validation
+def test_jump_map_in_the_damping_crosses_the_folds_of_the_damping_branch(damping_branch):
+    """fold_map=ParameterMap(vary -> Rotor): the upper fold of the 5000 N s/m speed branch
+    continued in the damper coefficient passes 1250 rad/s where the damping branch at
+    1250 rad/s folds (two independent continuations, in the speed and in the damping),
+    and at 4000 N s/m it matches the fold of a speed branch computed at 4000."""
+    from rotorsim.analyses.periodic_folds import ParameterMap
+
+    mapped = periodic(damped(5000.0), start=1190.0, stop=1310.0, unbalance=UNBALANCE,
+                      harmonics=6, tol=1e-9, max_step=0.1, stability=None,
+                      fold_map=ParameterMap(damped, 5000.0, 3000.0, "damper [N s/m]"))
+    curves = mapped.options["fold_map"]["curves"]
+    upper = max(curves, key=lambda c: c["parameter"][0])
+    assert upper["status"] == "OK" and upper["mu"][-1] == pytest.approx(3000.0)
+    mu, speed = np.array(upper["mu"]), np.array(upper["parameter"])
+    c_fold = min(f.parameter for f in damping_branch.events("fold")
+                 if 4000.0 < f.parameter < 5000.0)
+    crossing = float(np.interp(W, speed[::-1], mu[::-1]))   # the curve is monotonic here
+    assert np.all(np.diff(speed) < 0)
+    assert crossing == pytest.approx(c_fold, rel=1e-4)       # interpolation: 1.7e-6 seen
+    direct = periodic(damped(4000.0), start=1150.0, stop=1330.0, unbalance=UNBALANCE,
+                      harmonics=6, tol=1e-9, max_step=0.1, stability=None)
+    at_4000 = float(np.interp(4000.0, mu[::-1], speed[::-1]))
+    assert min(abs(at_4000 - f.parameter) for f in direct.events("fold")) < 1e-4 * W  # 1.7e-5
+
+
+@pytest.mark.validation
 def test_static_load_branch_equals_the_response_under_that_load():
     res = rs.periodic_parameter(jeffcott(), "loads", speed=W, start=0.0, stop=500.0,
                                 loads=[(DISK, "uy", -1.0)], unbalance=UNBALANCE,

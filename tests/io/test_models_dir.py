@@ -35,6 +35,7 @@ RESULT_TYPES = {
     "critical_speed_map": CriticalSpeedMapResult, "unbalance": FrequencyResponseResult,
     "frequency_response": FrequencyResponseResult, "static": StaticResult,
     "transient": TransientResult, "periodic": PeriodicResult,
+    "periodic_parameter": PeriodicResult,
 }
 FILES = sorted(p.stem for p in MODELS.glob("*.toml"))
 CASES = [(f, a) for f in FILES for a in load_model(MODELS / f"{f}.toml").analyses]
