@@ -28,6 +28,7 @@ rotorsim.errors.ModelError: shaft[2].odl: "50 kg" is a mass, expected a length
 
 from __future__ import annotations
 
+import json
 import math
 import re
 from collections.abc import Sequence
@@ -176,7 +177,8 @@ def _scale(magnitude: float, factor: float) -> float:
 
 
 def _show(value: Any) -> str:
-    text = f'"{value}"' if isinstance(value, str) else repr(value)
+    """Short one-line text of a user value for messages (control characters escaped)."""
+    text = json.dumps(value, ensure_ascii=False) if isinstance(value, str) else repr(value)
     return text if len(text) <= 60 else text[:57] + "..."
 
 

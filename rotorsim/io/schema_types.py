@@ -19,7 +19,7 @@ from pydantic_core import PydanticCustomError
 from rotorsim.elements.base import DOF_NAMES
 from rotorsim.errors import ModelError
 from rotorsim.io.analysis_spec import Grid
-from rotorsim.units import DIMENSIONS, UnitParseError, convert
+from rotorsim.units import DIMENSIONS, UnitParseError, _show, convert
 
 ERROR_TYPE = "rotorsim"
 MAX_ELEMENTS = 10_000
@@ -32,9 +32,8 @@ def fail(reason: str, subpath: str = "") -> PydanticCustomError:
 
 
 def show(value: Any) -> str:
-    """Short text of a user value for messages."""
-    text = f'"{value}"' if isinstance(value, str) else repr(value)
-    return text if len(text) <= 60 else text[:57] + "..."
+    """Short one-line text of a user value for messages (control characters escaped)."""
+    return _show(value)
 
 
 def fmt(number: float, dimension: str) -> str:

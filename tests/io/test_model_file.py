@@ -399,3 +399,10 @@ def test_full_bearing_matrices_round_trip(tmp_path):
     np.testing.assert_array_equal(back.bearing_elements[0].stiffness_matrix, K5)
     a, b = rs.assemble(rotor).matrices(0.0), rs.assemble(back).matrices(0.0)
     assert (a.K != b.K).nnz == 0 and (a.C != b.C).nnz == 0
+
+
+def test_messages_stay_on_one_line_with_control_characters_in_values():
+    """A value with a newline is shown escaped (found by the property test)."""
+    with pytest.raises(ModelError) as err:
+        model_from_dict({"model": "\n"})
+    assert "\n" not in str(err.value) and '"\\n"' in str(err.value)
