@@ -121,8 +121,8 @@ def periodic_parameter(
     Returns
     -------
     PeriodicResult
-        ``parameter`` the values of ``mu``; ``speed`` and ``fundamental`` constant; no
-        multipliers.
+        ``parameter`` the values of ``mu``; ``speed`` and ``fundamental`` constant;
+        Floquet multipliers unless ``stability=None``.
 
     Raises
     ------
@@ -142,6 +142,8 @@ def periodic_parameter(
             and start != stop):
         raise ModelError(f"need a positive speed and a range start != stop, got {speed!r}, "
                          f"{start!r}, {stop!r}", WHERE)
+    if mode == "loads" and not any(float(v) for _, _, v in loads):
+        raise ModelError("vary='loads' needs nonzero point loads (node, dof, value)", WHERE)
     first = vary(float(start)) if callable(vary) else rotor
     base_rotor = first if isinstance(first, Rotor) else rotor.with_nonlinear(tuple(first))
     system = assemble(base_rotor)
