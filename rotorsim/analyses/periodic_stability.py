@@ -32,6 +32,7 @@ import numpy as np
 import scipy.linalg as sl
 import scipy.sparse as sp
 
+from rotorsim.assembly.reduction import fixed_interface_modes
 from rotorsim.elements.base import FloatArray
 from rotorsim.errors import ConvergenceError, ModelError
 from rotorsim.harmonic_balance.floquet import FloquetResult, hill
@@ -200,11 +201,10 @@ def _fixed_interface_modes(K_LL: Any, M_LL: Any, modes: int,
                            cutoff: float | None) -> tuple[FloatArray, FloatArray]:
     """Eigenvalues ``w^2`` and mass-normalised modes of ``K_LL phi = w^2 M_LL phi``."""
     n = K_LL.shape[0]
-    Kd, Md = as_dense(K_LL), as_dense(M_LL)
     if cutoff is not None:
-        w2, phi = sl.eigh(Kd, Md, subset_by_value=(-np.inf, cutoff**2))
-    elif modes == 0:
-        return np.zeros(0), np.zeros((n, 0))
-    else:
-        w2, phi = sl.eigh(Kd, Md, subset_by_index=(0, min(modes, n) - 1))
+        w2, phi = sl.eigh(as_dense(K_LL), as_dense(M_LL),
+                          subset_by_value=(-np.inf, cutoff**2))
+    else:  # a pair of equal frequencies is kept whole (the basis must not depend on LAPACK)
+        w, phi = fixed_interface_modes(K_LL, M_LL, min(modes, n))
+        w2 = w**2
     return np.asarray(w2), np.asarray(phi)

@@ -50,12 +50,13 @@ def reduce_problem(system: RotorSystem, problem: SecondOrderProblem, loads: Tran
                              damping=reduced["damping"], restoring=restoring,
                              load=lambda t: T.T @ loads(t), gyroscopic=reduced["gyroscopic"],
                              speed=problem.speed)
-    report = {"fixed_interface_modes": int(n_modes), "size": basis.size,
+    report = {"fixed_interface_modes": int(basis.frequencies.size),
+              "requested_modes": int(n_modes), "size": basis.size,
               "full_size": system.n_free, "static_vectors": basis.n_static,
               "max_relative_error": check["max_relative_error"],
               "check_frequencies_full": np.asarray(check["full"]).tolist(),
               "check_frequencies_reduced": np.asarray(check["reduced"]).tolist(),
-              "highest_mode": float(basis.frequencies[-1]) if n_modes else 0.0}
+              "highest_mode": float(basis.frequencies[-1]) if basis.frequencies.size else 0.0}
     return new, basis, report
 
 

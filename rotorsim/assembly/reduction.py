@@ -88,7 +88,8 @@ def craig_bampton(system: RotorSystem, boundary: ArrayLike, n_modes: int, *,
     boundary : sequence of int
         Free DOFs kept physical (the nonlinear elements' DOFs, ``system.nonlinear.dofs``).
     n_modes : int
-        Number of fixed-interface normal modes (>= 0).
+        Number of fixed-interface normal modes (>= 0); raised to keep the last cluster of
+        equal frequencies whole (:func:`fixed_interface_modes`).
     static_loads : sequence of arrays (n_free,)
         Load shapes whose interior static response is added to the basis.
     speed : float
@@ -119,7 +120,7 @@ def craig_bampton(system: RotorSystem, boundary: ArrayLike, n_modes: int, *,
                          "part of the rotor moves freely when the bearing DOFs are held; "
                          "add DOFs of that part to the boundary", "craig_bampton") from None
     psi = -np.asarray(lu.solve(K[inner][:, b].toarray())).reshape(inner.size, b.size)
-    freqs, phi = _fixed_interface_modes(K_ii, M_ii, int(n_modes))
+    freqs, phi = fixed_interface_modes(K_ii, M_ii, int(n_modes))
     extra = [np.asarray(lu.solve(np.asarray(f, dtype=float)[inner])).reshape(-1)
              for f in static_loads]
     statics = _independent(extra, phi, M_ii)
@@ -129,19 +130,52 @@ def craig_bampton(system: RotorSystem, boundary: ArrayLike, n_modes: int, *,
     return ReducedBasis(T, b, freqs, int(statics.shape[1]))
 
 
-def _fixed_interface_modes(K_ii: sp.csr_matrix, M_ii: sp.csr_matrix, k: int
-                           ) -> tuple[FloatArray, FloatArray]:
-    """Lowest ``k`` modes of ``K_ii phi = w^2 M_ii phi``, mass-normalised."""
+CLUSTER_RTOL = 1e-6
+"""Modes whose natural frequencies differ by less than this (relative) form one cluster."""
+
+
+def fixed_interface_modes(K_ii: sp.spmatrix, M_ii: sp.spmatrix, k: int
+                          ) -> tuple[FloatArray, FloatArray]:
+    """Lowest ``k`` modes of ``K_ii phi = w^2 M_ii phi``, mass-normalised, with the last
+    cluster of (near-)equal frequencies kept whole.
+
+    An axisymmetric rotor has pairs of modes of equal frequency (x and y bending). Cutting
+    inside such a pair would keep an arbitrary direction of its eigenspace, which differs
+    between LAPACK builds and makes the reduced model depend on the machine. The count is
+    therefore raised until the next mode is more than :data:`CLUSTER_RTOL` above the last
+    one kept (or all modes are kept).
+
+    Returns
+    -------
+    frequencies : array (m,)
+        Natural frequencies [rad/s], ascending, ``m >= k``.
+    modes : array (n_i, m)
+        Mass-normalised mode shapes.
+    """
+    n = K_ii.shape[0]
     if k == 0:
-        return np.zeros(0), np.zeros((K_ii.shape[0], 0))
+        return np.zeros(0), np.zeros((n, 0))
+    want = min(k + 2, n)
+    while True:
+        lam, vec = _lowest_modes(K_ii, M_ii, want)
+        w = np.sqrt(np.maximum(lam, 0.0))
+        last = w[k - 1]
+        keep = k + int(np.count_nonzero(w[k:] <= last * (1.0 + CLUSTER_RTOL) + 1e-12))
+        if keep < want or want == n:
+            return w[:keep], vec[:, :keep]
+        want = min(2 * want, n)
+
+
+def _lowest_modes(K_ii: sp.spmatrix, M_ii: sp.spmatrix, k: int
+                  ) -> tuple[FloatArray, FloatArray]:
+    """Lowest ``k`` eigenpairs ``(w^2, phi)``, ascending (dense LAPACK or shift-invert)."""
     if K_ii.shape[0] <= DENSE_EIGEN or k >= K_ii.shape[0] - 1:
-        lam, vec = sl.eigh(K_ii.toarray(), M_ii.toarray(), subset_by_index=(0, k - 1))
-    else:
-        lam, vec = spl.eigsh(K_ii.tocsc(), k=k, M=M_ii.tocsc(), sigma=0.0, which="LM",
-                             v0=np.ones(K_ii.shape[0]))
-        order = np.argsort(lam)
-        lam, vec = lam[order], vec[:, order]
-    return np.sqrt(np.maximum(lam, 0.0)), vec
+        return sl.eigh(sp.csr_matrix(K_ii).toarray(), sp.csr_matrix(M_ii).toarray(),
+                       subset_by_index=(0, k - 1))
+    lam, vec = spl.eigsh(sp.csc_matrix(K_ii), k=k, M=sp.csc_matrix(M_ii), sigma=0.0,
+                         which="LM", v0=np.ones(K_ii.shape[0]))
+    order = np.argsort(lam)
+    return lam[order], vec[:, order]
 
 
 def _independent(vectors: list[FloatArray], phi: FloatArray, M: sp.csr_matrix) -> FloatArray:

@@ -267,16 +267,27 @@ def _polar_minima(bearing: BallBearing, n_theta: int = 720) -> np.ndarray:
     return np.degrees(theta[lower])
 
 
+def _circular_mismatch(found_deg: np.ndarray, expected_deg: np.ndarray) -> float:
+    """Largest angular distance [deg], modulo 360, between each expected angle and the nearest
+    found one, and back (so a missing or an extra angle shows up as a large mismatch)."""
+    diff = np.abs(np.asarray(found_deg)[:, None] - np.asarray(expected_deg)[None, :]) % 360.0
+    dist = np.minimum(diff, 360.0 - diff)
+    return float(max(dist.min(axis=0).max(), dist.min(axis=1).max()))
+
+
 @pytest.mark.parametrize(("n_balls", "offset"), [(8, 22.5), (6, 0.0)])
 def test_global_search_finds_every_minimum_of_a_non_convex_case(n_balls, offset):
     bearing = _motor_bearing(n_balls)
     res = bearing_equilibrium(bearing, np.zeros(5), method="global", load_stiffness=PULL)
     angles = np.degrees([math.atan2(m.displacement[1], m.displacement[0])
-                         for m in res.minima]) % 360
+                         for m in res.minima])
     assert len(res.minima) == n_balls  # one per ball pitch
-    expected = np.sort((offset + 360 / n_balls * np.arange(n_balls)) % 360)
-    assert np.allclose(np.sort(angles), expected, atol=1e-6)
-    assert np.allclose(np.sort(_polar_minima(bearing)), expected, atol=0.5)  # grid 0.5 deg
+    expected = offset + 360 / n_balls * np.arange(n_balls)
+    # Angles are compared modulo 360 deg: a minimum at 0 deg may come out as 359.9999999
+    # on one BLAS kernel and 1e-9 on another. 1e-6 deg: the minimiser's stationarity
+    # tolerance resolves the direction to ~1e-9 rad.
+    assert _circular_mismatch(angles, expected) < 1e-6
+    assert _circular_mismatch(_polar_minima(bearing), expected) < 0.5  # grid 0.5 deg
     energies = np.array([m.energy for m in res.minima])
     assert np.ptp(energies) <= 1e-9 * np.abs(energies).max()  # symmetric copies
     for m in res.minima:
