@@ -87,7 +87,9 @@ def integrate(problem: SecondOrderProblem, stepper: TimeStepper, t_span: Sequenc
     dt : float
         Step size (first trial step for an adaptive stepper) [s].
     output : OutputSpec, optional
-        What to keep (default: every step, all unknowns).
+        What to keep (default: every step, all unknowns). The run always ends at ``t_end``
+        (the last step is shortened when ``dt`` does not divide the span) and, with
+        ``every``, the final state is always kept.
     a0 : array-like (n,), optional
         Initial acceleration (default: solved from the equation of motion).
     checkpoint : path, optional
@@ -161,7 +163,8 @@ def integrate(problem: SecondOrderProblem, stepper: TimeStepper, t_span: Sequenc
     finally:
         if bar is not None:
             bar.close()
-    if checkpoint is not None and state.step % checkpoint_every != 0:
+    added = recorder.finish(state)
+    if checkpoint is not None and (added or state.step % checkpoint_every != 0):
         save_checkpoint(checkpoint, state, config=config, output=recorder.snapshot())
     t, q, v = recorder.arrays()
     return IntegrationResult(t, q, v, recorder.dofs, recorder.reduced, state,
