@@ -171,13 +171,14 @@ def _dispatch(args: argparse.Namespace) -> int:
 
 
 def _info(model: Any) -> str:
-    from rotorsim.cli.summaries import table
+    from rotorsim.cli.summaries import preload_rows, table
 
     s = model.rotor.summary()
     rows = [(k, f"{v:.4g}" if isinstance(v, float) else v) for k, v in s.items()]
     if model.rolling_bearings:
         tags = [rb.tag or str(i) for i, rb in enumerate(model.rolling_bearings)]
         rows.append(("rolling_bearings", ", ".join(tags)))
+        rows.extend(preload_rows(model.rolling_bearings))
     rows.append(("analyses", ", ".join(model.analyses) or "-"))
     head = f"model '{model.name}'" + (f": {model.description}" if model.description else "")
     return head + "\n" + table(rows, ("quantity", "value"))

@@ -188,6 +188,19 @@ def stiffness_variation_summary(result: Any) -> str:
     return head + "\n" + table(rows, ("coefficient", "mean", "peak-to-peak", "% of mean"))
 
 
+def preload_rows(rolling_bearings: Sequence[Any]) -> list[tuple[str, str]]:
+    """``("preload <tag>", text)`` for each rolling bearing mounted with interference
+    (negative clearance), for the model summary."""
+    rows = []
+    for i, element in enumerate(rolling_bearings):
+        radial = float(getattr(getattr(element, "bearing", None), "clearance", 0.0) or 0.0)
+        if radial < 0.0:
+            rows.append((f"preload {element.tag or i}",
+                         f"radial interference {-radial * 1e6:.4g} um (diametral clearance "
+                         f"{2e6 * radial:.4g} um)"))
+    return rows
+
+
 def linearization_summary(linear: Any) -> str:
     """Loads and direct stiffness of rolling bearings linearised in a rotor."""
     kinds = {p.kind for p in linear.points}

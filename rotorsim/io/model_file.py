@@ -218,6 +218,7 @@ def model_from_dict(data: Mapping[str, Any], *, source: str | os.PathLike[str] |
     table = validate_model(dict(data) if isinstance(data, Mapping) else data)
     rolling_tables = validate_rolling_bearings(table.rolling_bearings)
     analyses = validate_analyses(table.analyses)
+    build.check_unique_tags(table, rolling_tables)
     src = None if source is None else Path(source)
     name = table.model.name or (src.stem if src is not None else "rotor")
     rotor, nodes = build.build_rotor(table, name)
