@@ -51,6 +51,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from rotorsim.errors import ModelError
+from rotorsim.io.output_folder import prepare_folder
 from rotorsim.model.rotor import Rotor
 from rotorsim.results.critical_speeds import CriticalSpeeds
 from rotorsim.results.frequency_response import FrequencyResponseResult
@@ -97,7 +98,7 @@ def export_vtk(
         ``CriticalSpeeds`` needs mode shapes (exact analysis) and ``rotor``.
     path : path-like
         ``*.pvd`` for a time series (one VTU per mode/frequency/time sample), ``*.vtu`` for
-        one file.
+        one file; missing folders are created.
     rotor : Rotor, optional
         The analysed model: adds the ``radius`` point data and supplies node positions
         and the number of shaft nodes (else taken from ``result.summary``).
@@ -130,9 +131,8 @@ def export_vtk(
     suffix = target.suffix.lower()
     if suffix not in (".pvd", ".vtu"):
         raise ModelError(f"file must end in .pvd or .vtu, got {target.name!r}", _WHERE)
-    if not target.parent.is_dir():
-        raise FileNotFoundError(f"folder of {target} does not exist")
     geometry = _geometry(result, rotor)
+    prepare_folder(target, _WHERE)
     times = None
     if isinstance(result, TransientResult):
         steps, prefix, times = _transient_steps(result, geometry, every)
