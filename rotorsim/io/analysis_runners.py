@@ -1,9 +1,11 @@
 """The function that runs each analysis type of a model file (used by
 :func:`rotorsim.io.analysis_spec.run_analysis`): ``runner(rotor, model, spec, fast,
-progress) -> result``; analyses are imported when they run."""
+progress) -> result``, with a last ``restart`` argument (checkpoint keywords) for
+transients and periodic branches; analyses are imported when they run."""
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
 from rotorsim.elements.base import FloatArray
@@ -73,7 +75,8 @@ def _static(rotor: Rotor, model: Model, spec: Any, fast: bool, progress: bool) -
                   loads=list(loads.point_loads), speed=spec.speed)
 
 
-def _transient(rotor: Rotor, model: Model, spec: Any, fast: bool, progress: bool) -> Any:
+def _transient(rotor: Rotor, model: Model, spec: Any, fast: bool, progress: bool,
+               restart: dict[str, Any]) -> Any:
     from rotorsim.analyses.speed_profile import LinearSpeed
     from rotorsim.analyses.transient import transient
 
@@ -87,10 +90,12 @@ def _transient(rotor: Rotor, model: Model, spec: Any, fast: bool, progress: bool
     return transient(rotor, t_end, spec.dt, speed=speed, unbalance=list(unbalance),
                      gravity=loads.gravity, direction=loads.gravity_direction,
                      loads=list(loads.point_loads), method=spec.method, initial=spec.initial,
-                     nodes=spec.nodes, every=spec.every, progress=progress)
+                     nodes=spec.nodes, every=spec.every, progress=progress,
+                     on_failure=spec.on_failure, **restart)
 
 
-def _periodic(rotor: Rotor, model: Model, spec: Any, fast: bool, progress: bool) -> Any:
+def _periodic(rotor: Rotor, model: Model, spec: Any, fast: bool, progress: bool,
+              restart: dict[str, Any]) -> Any:
     from rotorsim.analyses.periodic import periodic
 
     unbalance = model.loads.unbalance if spec.unbalance is None else spec.unbalance
@@ -103,11 +108,11 @@ def _periodic(rotor: Rotor, model: Model, spec: Any, fast: bool, progress: bool)
                     loads=list(loads.point_loads), varying_compliance=spec.varying_compliance,
                     max_points=max_points, max_step=spec.max_step,
                     stability=None if spec.stability == "none" else spec.stability,
-                    nodes=spec.nodes, progress=progress)
+                    nodes=spec.nodes, progress=progress, **restart)
 
 
 def _periodic_parameter(rotor: Rotor, model: Model, spec: Any, fast: bool,
-                        progress: bool) -> Any:
+                        progress: bool, restart: dict[str, Any]) -> Any:
     from rotorsim.analyses.periodic_parameter import periodic_parameter
 
     vary = spec.vary if spec.vary in ("loads", "forcing") else model.parameter(spec.vary)
@@ -121,10 +126,10 @@ def _periodic_parameter(rotor: Rotor, model: Model, spec: Any, fast: bool,
         loads=list(loads.point_loads), max_points=min(spec.max_points, 10) if fast
         else spec.max_points, max_step=spec.max_step,
         stability=None if spec.stability == "none" else spec.stability, nodes=spec.nodes,
-        progress=progress)
+        progress=progress, **restart)
 
 
-RUNNERS = {
+RUNNERS: dict[str, Callable[..., Any]] = {
     "modal": _modal, "campbell": _campbell, "critical_speeds": _critical_speeds,
     "critical_speed_map": _critical_speed_map, "unbalance": _unbalance,
     "frequency_response": _frequency_response, "static": _static, "transient": _transient,
