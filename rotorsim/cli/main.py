@@ -75,6 +75,9 @@ def _dispatch(args: argparse.Namespace) -> int:
         jobs = [(name, None) for name in names]
     else:
         jobs = [adhoc_job(model, args)]
+    from rotorsim.io.output_folder import prepare_folder
+
+    prepare_folder(args.out / model.name / "any", "--out")  # before any long work
     print(_info(model))
     if model.rolling_bearings:
         from rotorsim.cli.summaries import linearization_summary

@@ -5,6 +5,8 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Any
 
+from rotorsim.io.output_folder import prepare_folder
+
 MODE_FIGURES = 4
 """Number of mode-shape figures written for a modal analysis."""
 
@@ -19,7 +21,7 @@ def write_outputs(result: Any, folder: Path, name: str, *, units: str = "rpm",
     """
     from rotorsim.io.hdf5 import save
 
-    folder.mkdir(parents=True, exist_ok=True)
+    prepare_folder(folder / name, "--out")
     written = [save(result, folder / f"{name}.h5")]
     if plots:
         written += _figures(result, folder, name, units, figure_options or {})
@@ -68,7 +70,7 @@ def write_layout(rotor: Any, folder: Path) -> Path:
 
     from rotorsim.plotting import plot
 
-    folder.mkdir(parents=True, exist_ok=True)
+    prepare_folder(folder / "layout.png", "--out")
     fig = plot(rotor)
     path = folder / "layout.png"
     fig.savefig(path, dpi=110, bbox_inches="tight")

@@ -105,7 +105,8 @@ def export_vtk(
     input : int
         Input column of a :class:`FrequencyResponseResult`.
     every : int
-        Time-sample stride of a :class:`TransientResult` (one VTU per ``every`` samples).
+        Time-sample stride of a :class:`TransientResult` (one VTU per ``every`` samples,
+        and one for the final sample).
 
     Returns
     -------
@@ -242,11 +243,14 @@ def _harmonic_steps(shapes: NDArray[np.complex128], scalars: dict[str, FloatArra
 
 def _transient_steps(result: TransientResult, geometry: _Geometry, every: int
                      ) -> tuple[list[_Step], str, FloatArray]:
-    """One step per ``every``-th sample: kept DOFs in place, zeros elsewhere."""
+    """One step per ``every``-th sample and the last one: kept DOFs in place, zeros
+    elsewhere."""
     if not (isinstance(every, int) and every >= 1):
         raise ModelError(f"every must be a positive int, got {every!r}", _WHERE)
     n_nodes = geometry.points.shape[0]
     rows = np.arange(0, result.t.size, every)
+    if rows[-1] != result.t.size - 1:  # the final sample always: the series ends at t_end
+        rows = np.append(rows, result.t.size - 1)
     full = np.zeros((rows.size, 6 * n_nodes))
     full[:, result.dofs] = result.q[rows]
     nodes = full.reshape(rows.size, n_nodes, 6)

@@ -227,3 +227,12 @@ def test_checkpoint_options_are_checked(tmp_path, capsys):
     bad = model_file(tmp_path, ROLLING, RUN_UP.replace("= 40", "= 0"), name="bad")
     assert main(["info", bad]) == EXIT_BAD_INPUT
     assert "analyses.run_up.checkpoint_every" in capsys.readouterr().err
+
+
+def test_an_output_folder_blocked_by_a_file_is_bad_input_before_any_work(tmp_path, capsys):
+    (tmp_path / "friswell_5_9_1").write_text("a file where the results folder goes")
+    code = main(["run", str(MODELS / "friswell_5_9_1.toml"), "modes", "--out", str(tmp_path)])
+    assert code == EXIT_BAD_INPUT
+    captured = capsys.readouterr()
+    assert captured.err.startswith("rotorsim: error: --out: cannot create the folder")
+    assert "== modes" not in captured.out  # refused before running anything

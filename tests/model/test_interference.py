@@ -67,3 +67,14 @@ def test_info_reports_the_preload_of_each_preloaded_bearing(capsys, tmp_path):
         assert f"preload {tag}  radial interference 2 um (diametral clearance -4 um)" in out
     assert main(["info", str(MODELS / "rolling_ball.toml")]) == 0  # positive clearance
     assert "preload" not in capsys.readouterr().out
+
+
+def test_a_parameter_branch_into_absurd_interference_is_refused_at_load():
+    data = _model("rolling_ball")
+    data["analyses"] = {"clearance": {
+        "type": "periodic_parameter", "vary": "rolling_bearings.DE.diametral_clearance",
+        "speed": "3000 rpm", "start": 10e-6, "stop": -1e-3}}  # numbers: SI, not tried before
+    with pytest.raises(rs.ModelError, match=r"^analyses\.clearance: parameter: with "
+                       r"rolling_bearings\.DE\.diametral_clearance = -0\.001: .*radial "
+                       r"interference 500 um"):
+        model_from_dict(data)
