@@ -53,3 +53,25 @@ def test_rotor_transient_reaches_t_end_with_every():
     assert res.t.tolist() == [0.0, 1.0] and res.stats["steps"] == 4
     assert res.speed.shape == (2,) and res.q.shape == (2, 6)
     assert np.any(res.q[-1] != 0.0)  # the state at t_end, not a copy of the start
+
+
+def test_on_failure_stop_keeps_the_run_up_to_the_failed_step(tmp_path):
+    def load(t):
+        return np.array([np.nan if t > 1.01 else 0.0])
+
+    problem = SecondOrderProblem(mass=np.eye(1), stiffness=np.eye(1), load=load)
+    args = (problem, Newmark(), (0.0, 5.0), [1.0], [0.0])
+    with pytest.raises(rs.ConvergenceError, match="not finite"):
+        integrate(*args, dt=0.05)
+    path = tmp_path / "run.h5"
+    res = integrate(*args, dt=0.05, output=OutputSpec(every=7), on_failure="stop",
+                    checkpoint=path, checkpoint_every=100)
+    assert res.status == rs.Status.NOT_CONVERGED and "not finite" in res.message
+    assert res.state.step == 20 and res.t[-1] == res.state.t == pytest.approx(1.0)
+    assert np.array_equal(res.q[-1], res.state.q)  # the last accepted state is kept
+    assert res.t.size == 4  # 0, steps 7 and 14, and step 20
+    from rotorsim.time_integration.checkpoint import load_checkpoint
+
+    assert load_checkpoint(path)[0].step == 20
+    with pytest.raises(rs.ModelError, match="on_failure must be 'raise' or 'stop'"):
+        integrate(*args, dt=0.05, on_failure="record")
