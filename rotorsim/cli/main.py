@@ -188,9 +188,18 @@ def _run_one(model: Any, name: str, spec: Any, args: argparse.Namespace) -> str 
 
 def _with_restart(spec: Any, name: str, args: argparse.Namespace, folder: Path) -> Any:
     """The spec with ``--checkpoint``, ``--checkpoint-every`` and ``--resume`` applied
-    (transients and periodic branches only); says where the checkpoint is."""
+    (transients and periodic branches; ``--resume`` for sweeps, whose results file is their
+    store); says where the checkpoint is."""
     from rotorsim.io.analysis_spec import checkpoint_path
 
+    if spec.type == "sweep":  # its points go to <name>.h5 as they finish
+        if getattr(args, "resume", False):
+            spec = dataclasses.replace(spec, resume=True)
+        store = folder / f"{name}.h5"
+        if spec.resume:
+            print(f"resuming the sweep stored in {store}" if store.is_file() else
+                  f"no sweep store {store} yet: starting from the beginning")
+        return spec
     if spec.type not in RESTARTABLE:
         return spec
     every = getattr(args, "checkpoint_every", None)

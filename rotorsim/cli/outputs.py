@@ -22,7 +22,10 @@ def write_outputs(result: Any, folder: Path, name: str, *, units: str = "rpm",
     from rotorsim.io.hdf5 import save
 
     prepare_folder(folder / name, "--out")
-    written = [save(result, folder / f"{name}.h5")]
+    target = folder / f"{name}.h5"
+    stored = type(result).__name__ == "SweepResult" and result.options.get("store") == str(
+        target)  # a sweep wrote its points there as they finished
+    written = [target if stored else save(result, target)]
     if plots:
         written += _figures(result, folder, name, units, figure_options or {})
     return written

@@ -296,6 +296,24 @@ SUMMARIES: dict[str, Callable[..., str]] = {
 }
 
 
+def sweep_summary(result: Any, units: str = "rpm") -> str:
+    """Points evaluated, resumed and failed, and the range of each scalar output."""
+    s = result.stats
+    head = (f"sweep over {', '.join(result.names)}: {result.n_points} points "
+            f"({int(s.get('evaluated', 0))} evaluated, {int(s.get('resumed', 0))} resumed "
+            f"from the store, {int(s.get('failed', 0))} failed), "
+            f"{s.get('wall_time', 0.0):.2f} s")
+    rows = []
+    for name, values in result.outputs.items():
+        v = np.asarray(values, dtype=float)
+        if v.ndim == 1 and np.any(np.isfinite(v)):
+            rows.append((name, f"{np.nanmin(v):.4g}", f"{np.nanmax(v):.4g}"))
+    return head + ("\n" + table(rows, ("output", "min", "max")) if rows else "")
+
+
+SUMMARIES["SweepResult"] = sweep_summary
+
+
 def summarize(result: Any, **options: Any) -> str:
     """Text summary of any result type."""
     drawer = SUMMARIES.get(type(result).__name__)

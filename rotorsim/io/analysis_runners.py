@@ -6,7 +6,10 @@ transients and periodic branches; analyses are imported when they run."""
 from __future__ import annotations
 
 from collections.abc import Callable
+from pathlib import Path
 from typing import TYPE_CHECKING, Any
+
+import numpy as np
 
 from rotorsim.elements.base import FloatArray
 from rotorsim.io.analysis_spec import FAST_POINTS, Grid
@@ -129,9 +132,29 @@ def _periodic_parameter(rotor: Rotor, model: Model, spec: Any, fast: bool,
         progress=progress, **restart)
 
 
+def _sweep(rotor: Rotor, model: Model, spec: Any, fast: bool, progress: bool, *,
+           store: Path) -> Any:
+    from rotorsim.analyses.sweep import Grid as SweepGrid
+    from rotorsim.analyses.sweep import sweep
+    from rotorsim.analyses.sweep_functions import (
+        critical_speeds_eval,
+        min_log_dec,
+        set_bearing_stiffness,
+    )
+
+    speeds = np.zeros(1) if spec.speeds is None else _grid(spec.speeds, fast)
+    space = SweepGrid({"bearing_k": _grid(spec.stiffness, fast), "speed": speeds})
+    bearings = list(range(len(rotor.bearing_elements))) if spec.bearings is None else list(
+        spec.bearings)
+    evaluate = (min_log_dec("speed", spec.num_modes) if spec.evaluate == "min_log_dec"
+                else critical_speeds_eval(num_modes=spec.num_modes))
+    return sweep(rotor, space, set_bearing_stiffness(bearings), evaluate, store=store,
+                 resume=spec.resume, progress=progress)
+
+
 RUNNERS: dict[str, Callable[..., Any]] = {
     "modal": _modal, "campbell": _campbell, "critical_speeds": _critical_speeds,
     "critical_speed_map": _critical_speed_map, "unbalance": _unbalance,
     "frequency_response": _frequency_response, "static": _static, "transient": _transient,
-    "periodic": _periodic, "periodic_parameter": _periodic_parameter,
+    "periodic": _periodic, "periodic_parameter": _periodic_parameter, "sweep": _sweep,
 }

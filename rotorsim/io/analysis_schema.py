@@ -176,6 +176,21 @@ class PeriodicParameterTable(RestartableTable):
     unbalance: Annotated[list[UnbalanceTable], Field(min_length=1)] | None = None
 
 
+class SweepTable(AnalysisTable):
+    """A parameter study (``rs.sweep``): the lateral support stiffness of ``bearings``
+    (default all) over ``stiffness`` times the spin speeds ``speeds``, evaluating the least
+    log decrement or the critical speeds at every point. Points are written to the results
+    file as they finish; ``resume`` continues an interrupted study from it."""
+
+    type: Literal["sweep"]
+    stiffness: StiffnessGrid
+    speeds: SpeedGrid = None
+    bearings: Annotated[Any, PlainValidator(_bearing_refs)] = None
+    evaluate: Literal["min_log_dec", "critical_speeds"] = "min_log_dec"
+    num_modes: NumModes = 6
+    resume: bool = False
+
+
 TABLES: dict[str, type[AnalysisTable]] = {
     "modal": ModalTable,
     "campbell": CampbellTable,
@@ -187,6 +202,7 @@ TABLES: dict[str, type[AnalysisTable]] = {
     "transient": TransientTable,
     "periodic": PeriodicTable,
     "periodic_parameter": PeriodicParameterTable,
+    "sweep": SweepTable,
 }
 """Analysis types of model files and their tables."""
 

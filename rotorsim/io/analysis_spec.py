@@ -16,6 +16,7 @@ Examples
 from __future__ import annotations
 
 import dataclasses
+import functools
 import os
 from dataclasses import dataclass, fields
 from pathlib import Path
@@ -326,10 +327,28 @@ def restart_options(spec: RestartableSpec, path: Path) -> dict[str, Any]:
     return out
 
 
+@dataclass(frozen=True, kw_only=True)
+class SweepSpec(AnalysisSpec):
+    """Parameter study :func:`rotorsim.sweep`: support stiffness [N/m] of ``bearings``
+    (indices, default all) over ``stiffness`` times spin speeds [rad/s] over ``speeds``
+    (default 0), evaluating ``"min_log_dec"`` or ``"critical_speeds"`` with ``num_modes``.
+    Points go to the results file as they finish (the file is the checkpoint); ``resume``
+    continues from it."""
+
+    type: ClassVar[str] = "sweep"
+    stiffness: Grid
+    speeds: Grid | None = None
+    bearings: tuple[int, ...] | None = None
+    evaluate: str = "min_log_dec"
+    num_modes: int = 6
+    resume: bool = False
+
+
 SPEC_TYPES: dict[str, type[AnalysisSpec]] = {
     cls.type: cls for cls in (ModalSpec, CampbellSpec, CriticalSpeedsSpec,
                               CriticalSpeedMapSpec, UnbalanceSpec, FrequencyResponseSpec,
-                              StaticSpec, TransientSpec, PeriodicSpec, PeriodicParameterSpec)
+                              StaticSpec, TransientSpec, PeriodicSpec, PeriodicParameterSpec,
+                              SweepSpec)
 }
 """Analysis ``type`` names of model files and their spec classes."""
 
@@ -352,8 +371,9 @@ def run_analysis(model: Model, name: str, *, fast: bool = False, progress: bool 
         Show progress bars on sweeps that support them.
     checkpoint_dir : path, optional
         Folder of the checkpoint file ``<name>.checkpoint.h5`` of an analysis with
-        ``checkpoint`` or ``resume`` set (default ``results/<model name>``, where the
-        command line writes its results).
+        ``checkpoint`` or ``resume`` set, and of the store ``<name>.h5`` a ``sweep`` writes
+        point by point (default ``results/<model name>``, where the command line writes
+        its results).
 
     Returns
     -------
@@ -382,11 +402,12 @@ def run_analysis(model: Model, name: str, *, fast: bool = False, progress: bool 
     from rotorsim.io.analysis_runners import RUNNERS
 
     runner = RUNNERS[spec.type]
+    folder = Path("results") / model.name if checkpoint_dir is None else Path(checkpoint_dir)
     if isinstance(spec, RestartableSpec):
-        folder = Path("results") / model.name if checkpoint_dir is None else Path(
-            checkpoint_dir)
         return runner(model.rotor.with_nonlinear(model.rolling_bearings), model, spec, fast,
                       progress, restart_options(spec, checkpoint_path(folder, name)))
+    if isinstance(spec, SweepSpec):  # its store is the results file
+        runner = functools.partial(runner, store=folder / f"{name}.h5")
     if not model.rolling_bearings:
         return runner(model.rotor, model, spec, fast, progress)
     linear = model.linearized(float(getattr(spec, "speed", None) or 0.0)

@@ -341,7 +341,7 @@ def build_spec(table: Any, loc: tuple[str | int, ...], nodes: Nodes,
     elif table.type == "frequency_response":
         options["inputs"] = tuple((nodes.any_node(item, f"{where}.inputs[{i}]"), str(item.dof))
                                   for i, item in enumerate(table.inputs))
-    elif table.type == "critical_speed_map":
+    elif table.type in ("critical_speed_map", "sweep"):
         options["bearings"] = _bearing_indices(options["bearings"], rotor, rolling_tags,
                                                f"{where}.bearings")
     elif table.type == "campbell":
