@@ -226,6 +226,11 @@ def transient_summary(result: Any, units: str = "rpm") -> str:
             f"{result.speed[-1] * f:.1f} {units}, {s.get('iterations_per_step', 0):.2f} "
             f"Newton iterations/step, {int(s.get('factorizations', 0))} factorisations, "
             f"{s.get('wall_time', 0.0):.2f} s")
+    failure = (result.options or {}).get("failure")
+    if failure:
+        t_end = (result.options.get("t_span") or [0.0, result.t[-1]])[-1]
+        head += (f"\nSTOPPED SHORT of t_end = {t_end:.4g} s (status {result.status.name}): "
+                 f"{failure}")
     rows = []
     nodes = sorted({int(i) // 6 for i in result.dofs})
     for node in nodes:

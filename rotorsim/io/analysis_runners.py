@@ -133,7 +133,7 @@ def _periodic_parameter(rotor: Rotor, model: Model, spec: Any, fast: bool,
 
 
 def _sweep(rotor: Rotor, model: Model, spec: Any, fast: bool, progress: bool, *,
-           store: Path) -> Any:
+           store: Path | None) -> Any:
     from rotorsim.analyses.sweep import Grid as SweepGrid
     from rotorsim.analyses.sweep import sweep
     from rotorsim.analyses.sweep_functions import (

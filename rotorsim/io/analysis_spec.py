@@ -371,9 +371,10 @@ def run_analysis(model: Model, name: str, *, fast: bool = False, progress: bool 
         Show progress bars on sweeps that support them.
     checkpoint_dir : path, optional
         Folder of the checkpoint file ``<name>.checkpoint.h5`` of an analysis with
-        ``checkpoint`` or ``resume`` set, and of the store ``<name>.h5`` a ``sweep`` writes
-        point by point (default ``results/<model name>``, where the command line writes
-        its results).
+        ``checkpoint`` or ``resume`` set (default ``results/<model name>``, where the
+        command line writes its results), and of the store ``<name>.h5`` a ``sweep``
+        writes point by point (kept in memory when neither ``checkpoint_dir`` nor
+        ``resume`` is given).
 
     Returns
     -------
@@ -406,8 +407,9 @@ def run_analysis(model: Model, name: str, *, fast: bool = False, progress: bool 
     if isinstance(spec, RestartableSpec):
         return runner(model.rotor.with_nonlinear(model.rolling_bearings), model, spec, fast,
                       progress, restart_options(spec, checkpoint_path(folder, name)))
-    if isinstance(spec, SweepSpec):  # its store is the results file
-        runner = functools.partial(runner, store=folder / f"{name}.h5")
+    if isinstance(spec, SweepSpec):  # its store is the results file (in memory unless asked)
+        on_disk = checkpoint_dir is not None or spec.resume
+        runner = functools.partial(runner, store=folder / f"{name}.h5" if on_disk else None)
     if not model.rolling_bearings:
         return runner(model.rotor, model, spec, fast, progress)
     linear = model.linearized(float(getattr(spec, "speed", None) or 0.0)

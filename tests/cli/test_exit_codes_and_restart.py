@@ -69,7 +69,9 @@ def test_a_transient_that_fails_midway_writes_its_partial_result_and_exits_3(tmp
     model = model_file(tmp_path, ROLLING, FAILING)
     code = main(["run", model, "violent", "static", "--out", str(tmp_path), "--no-plots"])
     assert code == EXIT_INCOMPLETE
-    err = capsys.readouterr().err.strip().splitlines()
+    captured = capsys.readouterr()
+    assert "STOPPED SHORT of t_end = 0.02 s (status NOT_CONVERGED)" in captured.out
+    err = captured.err.strip().splitlines()
     assert len(err) == 1 and err[0].startswith("rotorsim: incomplete: violent: status "
                                                "NOT_CONVERGED: average_acceleration: Newton")
     assert err[0].endswith("(partial results written)")

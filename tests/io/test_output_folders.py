@@ -40,3 +40,26 @@ def test_sweep_store_and_checkpoint_create_folders(rotor, tmp_path):
     checkpoint = tmp_path / "runs" / "deep" / "run.h5"
     integrate(problem, Newmark(), (0.0, 1.0), [1.0], [0.0], dt=0.1, checkpoint=checkpoint)
     assert checkpoint.is_file()
+
+
+def test_a_model_file_sweep_runs_in_memory_or_into_its_store(tmp_path):
+    import tomllib
+    from pathlib import Path
+
+    from rotorsim.io.model_file import model_from_dict, run_analysis
+
+    with open(Path(__file__).resolve().parents[2] / "models" / "friswell_5_9_5.toml",
+              "rb") as stream:
+        data = tomllib.load(stream)
+    data["analyses"] = {"k": {"type": "sweep", "stiffness": [1e6, 1e7], "bearings": ["B1"],
+                              "evaluate": "critical_speeds", "num_modes": 2}}
+    model = model_from_dict(data)
+    in_memory = run_analysis(model, "k")
+    assert in_memory.options["store"] is None
+    assert in_memory.outputs["critical_speeds"].shape == (2, 2)
+    # the two stiffnesses give different first critical speeds (the sweep varied B1)
+    assert in_memory.outputs["critical_speeds"][0, 0] < in_memory.outputs["critical_speeds"][1, 0]
+    stored = run_analysis(model, "k", checkpoint_dir=tmp_path / "out")
+    assert (tmp_path / "out" / "k.h5").is_file()
+    np.testing.assert_array_equal(stored.outputs["critical_speeds"],
+                                  rs.load(tmp_path / "out" / "k.h5").outputs["critical_speeds"])
