@@ -80,6 +80,7 @@ def transient(
     progress: bool = False,
     reduction: int | None = None,
     rolling_elements: bool = False,
+    on_failure: str = "raise",
 ) -> TransientResult:
     """Integrate the rotor's equation of motion from 0 (or ``t0``) to ``t_end``.
 
@@ -136,6 +137,10 @@ def transient(
     rolling_elements : bool
         Also keep the load and contact angle of every rolling element of each bearing at
         every sample (``result.element_loads``, ``result.contact_angles``).
+    on_failure : {"raise", "stop"}
+        When a step fails: raise, or return the run up to the last accepted step with
+        ``status`` ``NOT_CONVERGED`` and the error in ``options["failure"]`` (what the
+        command line does: partial results are written and the exit code is 3).
 
     Returns
     -------
@@ -189,7 +194,7 @@ def transient(
                         dofs=kept if basis is None else None)
     run = integrate(problem, stepper, (t0, t_end), q0, v0, dt=dt, output=output,
                     checkpoint=checkpoint, checkpoint_every=checkpoint_every, resume=resume,
-                    progress=progress)
+                    progress=progress, on_failure=on_failure)
     if basis is not None:
         from rotorsim.analyses.transient_reduction import expand_run
 
@@ -200,6 +205,8 @@ def transient(
                "base": None if base is None else list(base.direction),
                "initial": initial if isinstance(initial, str) else "given", "every": every,
                "reduction": report}
+    if run.message:
+        options["failure"] = run.message
     result = _result(system, run, profile, kept, options)
     if rolling_elements and system.nonlinear is not None:
         from rotorsim.analyses.transient_output import rolling_element_histories

@@ -2,7 +2,8 @@
 
 Every analysis writes ``<out>/<model>/<analysis>.h5`` (see docs/results_format.md) and a
 PNG figure, and prints a summary. Bad input ends with one line on stderr and exit code 2
-(``--debug`` shows the traceback instead).
+(``--debug`` shows the traceback instead); a failed solve with exit code 1; an analysis
+that stopped short (status not OK) writes its partial results and ends with exit code 3.
 """
 
 from __future__ import annotations
@@ -15,113 +16,34 @@ from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
-EXIT_BAD_INPUT = 2
+from rotorsim.cli.adhoc import adhoc_job
+from rotorsim.cli.parser import RESTARTABLE, build_parser, parse
+
+EXIT_OK = 0
 EXIT_FAILED = 1
+EXIT_BAD_INPUT = 2
+EXIT_INCOMPLETE = 3
+EXIT_INTERRUPTED = 130
+"""Exit codes (also in ``rotorsim --help``): OK, a failed solve, bad input, an analysis
+that stopped short with its partial results written, and Ctrl-C (128 + SIGINT)."""
 
-_SUBCOMMAND_HELP = {
-    "modal": "modes at one speed",
-    "campbell": "Campbell diagram and its critical speeds",
-    "critical-speeds": "exact undamped critical speeds",
-    "map": "undamped critical-speed map against support stiffness",
-    "unbalance": "unbalance response",
-    "static": "static deflection, bearing reactions and section forces",
-    "transient": "time integration on the nonlinear bearings (run-up, orbits, bearing loads)",
-    "periodic": "harmonic-balance branch over speed with Floquet stability and bifurcations",
-    "periodic-parameter": "harmonic-balance branch at a fixed speed over a model parameter "
-                          "(a key path such as bearings.B1.cxx, 'loads' or 'forcing')",
-}
-_BEARING_HELP = "load distribution and stiffness matrix of each rolling bearing"
-_SUBCOMMAND_TYPES = {
-    "modal": "modal",
-    "campbell": "campbell",
-    "critical-speeds": "critical_speeds",
-    "map": "critical_speed_map",
-    "unbalance": "unbalance",
-    "static": "static",
-    "transient": "transient",
-    "periodic": "periodic",
-    "periodic-parameter": "periodic_parameter",
-}
-
-
-def build_parser() -> argparse.ArgumentParser:
-    """The argument parser of ``rotorsim`` (all subcommands)."""
-    parser = argparse.ArgumentParser(
-        prog="rotorsim", description="Rotordynamics with finite elements.")
-    parser.add_argument("--debug", action="store_true", help="show tracebacks on errors")
-    sub = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
-
-    info = sub.add_parser("info", help="summary table of a model file")
-    info.add_argument("model", type=Path)
-
-    run = sub.add_parser("run", help="run the analyses a model file names")
-    run.add_argument("model", type=Path)
-    run.add_argument("analyses", nargs="*", help="names of analyses (default: all)")
-    _add_output_options(run)
-
-    for name, kind in _SUBCOMMAND_TYPES.items():
-        p = sub.add_parser(name, help=_SUBCOMMAND_HELP[name])
-        p.add_argument("model", type=Path)
-        _add_output_options(p)
-        if kind in ("modal", "campbell", "critical_speeds", "critical_speed_map"):
-            p.add_argument("--num-modes", type=int, help="number of modes")
-        if kind == "modal":
-            p.add_argument("--speed", help='spin speed, e.g. "3000 rpm" (default 0)')
-        if kind in ("campbell", "unbalance"):
-            p.add_argument("--speeds", nargs=3, metavar=("START", "STOP", "NUM"),
-                           help='speed range, e.g. 0 "4500 rpm" 91 (numbers are rad/s)')
-        if kind == "transient":
-            p.add_argument("--t-end", help='duration, e.g. "0.5 s"')
-            p.add_argument("--dt", help='time step, e.g. "20 us"')
-            p.add_argument("--speed", help='spin speed (start of a ramp), e.g. "3000 rpm"')
-            p.add_argument("--speed-stop", help="end speed of a linear run-up/coast-down")
-        if kind == "periodic":
-            p.add_argument("--start", help='first speed of the branch, e.g. "1000 rpm"')
-            p.add_argument("--stop", help="last speed of the branch")
-        if kind == "periodic_parameter":
-            p.add_argument("--vary", help="key path of the parameter, e.g. "
-                           "rolling_bearings.DE.radial_clearance, or loads or forcing")
-            p.add_argument("--speed", help='the fixed spin speed, e.g. "3000 rpm"')
-            p.add_argument("--start", help='first value, e.g. "5 um" (numbers are SI)')
-            p.add_argument("--stop", help="last value")
-        if kind in ("periodic", "periodic_parameter"):
-            p.add_argument("--harmonics", type=int, help="number of harmonics H")
-            p.add_argument("--max-points", type=int, help="largest number of branch points")
-            p.add_argument("--no-stability", action="store_true",
-                           help="skip the Floquet stability analysis")
-        if kind == "critical_speed_map":
-            p.add_argument("--stiffness", nargs=3, metavar=("KMIN", "KMAX", "NUM"),
-                           help='support stiffness range, e.g. "0.1 MN/m" "1 GN/m" 40')
-
-    bearing = sub.add_parser("bearing", help=_BEARING_HELP)
-    bearing.add_argument("model", type=Path)
-    bearing.add_argument("--tag", help="only the rolling bearing with this tag (or index)")
-    bearing.add_argument("--out", type=Path, default=Path("results"),
-                         help="output folder (default: results)")
-    bearing.add_argument("--no-plots", action="store_true", help="do not write PNG figures")
-    bearing.add_argument("--fast", action="store_true",
-                         help="6 instead of 24 positions over one element pass (smoke runs)")
-    return parser
-
-
-def _add_output_options(p: argparse.ArgumentParser) -> None:
-    p.add_argument("--out", type=Path, default=Path("results"),
-                   help="output folder (default: results)")
-    p.add_argument("--units", choices=("rpm", "Hz", "rad/s"),
-                   help="units of speeds and frequencies in summaries and figures")
-    p.add_argument("--no-plots", action="store_true", help="do not write PNG figures")
-    p.add_argument("--no-progress", action="store_true",
-                   help="no progress bars (they are off anyway when stderr is not a terminal)")
-    p.add_argument("--fast", action="store_true", help="coarse grids (smoke runs)")
+__all__ = ["EXIT_BAD_INPUT", "EXIT_FAILED", "EXIT_INCOMPLETE", "EXIT_INTERRUPTED", "EXIT_OK",
+           "build_parser", "main"]
 
 
 def main(argv: Sequence[str] | None = None) -> int:
     """Entry point of the ``rotorsim`` command; returns the exit code."""
     from rotorsim.errors import ConvergenceError, RotorsimError
 
-    args = build_parser().parse_args(argv)
+    args = parse(argv)
     try:
         return _dispatch(args)
+    except KeyboardInterrupt:
+        if args.debug:
+            raise
+        print("rotorsim: interrupted (rerun with --resume to continue from the last "
+              "checkpoint, if one was written with --checkpoint)", file=sys.stderr)
+        return EXIT_INTERRUPTED
     except (RotorsimError, FileNotFoundError, IsADirectoryError) as exc:
         if args.debug:
             raise
@@ -152,7 +74,10 @@ def _dispatch(args: argparse.Namespace) -> int:
                              f"{', '.join(model.analyses)}", model.name)
         jobs = [(name, None) for name in names]
     else:
-        jobs = [_adhoc_job(model, args)]
+        jobs = [adhoc_job(model, args)]
+    from rotorsim.io.output_folder import prepare_folder
+
+    prepare_folder(args.out / model.name / "any", "--out")  # before any long work
     print(_info(model))
     if model.rolling_bearings:
         from rotorsim.cli.summaries import linearization_summary
@@ -163,21 +88,25 @@ def _dispatch(args: argparse.Namespace) -> int:
 
         print(f"layout drawing: {write_layout(_drawn_rotor(model), args.out / model.name)}")
     t0 = time.perf_counter()
-    for name, spec in jobs:
-        _run_one(model, name, spec, args)
+    incomplete = [(name, why) for name, spec in jobs
+                  if (why := _run_one(model, name, spec, args)) is not None]
     print(f"\n{len(jobs)} analyses in {time.perf_counter() - t0:.2f} s; results in "
           f"{args.out / model.name}/")
-    return 0
+    for name, why in incomplete:
+        print(f"rotorsim: incomplete: {name}: {why} (partial results written)",
+              file=sys.stderr)
+    return EXIT_INCOMPLETE if incomplete else EXIT_OK
 
 
 def _info(model: Any) -> str:
-    from rotorsim.cli.summaries import table
+    from rotorsim.cli.summaries import preload_rows, table
 
     s = model.rotor.summary()
     rows = [(k, f"{v:.4g}" if isinstance(v, float) else v) for k, v in s.items()]
     if model.rolling_bearings:
         tags = [rb.tag or str(i) for i, rb in enumerate(model.rolling_bearings)]
         rows.append(("rolling_bearings", ", ".join(tags)))
+        rows.extend(preload_rows(model.rolling_bearings))
     rows.append(("analyses", ", ".join(model.analyses) or "-"))
     head = f"model '{model.name}'" + (f": {model.description}" if model.description else "")
     return head + "\n" + table(rows, ("quantity", "value"))
@@ -219,108 +148,22 @@ def _bearing(model: Any, args: argparse.Namespace) -> int:
     return 0
 
 
-def _adhoc_job(model: Any, args: argparse.Namespace) -> tuple[str, Any]:
-    """The model's first analysis of the subcommand's type (or a default one) with the
-    command-line overrides applied."""
-    from rotorsim.io.analysis_spec import SPEC_TYPES, Grid
-    from rotorsim.units import to_si
-
-    kind = _SUBCOMMAND_TYPES[args.command]
-    name, spec = next(((n, s) for n, s in model.analyses.items() if s.type == kind),
-                      (kind, None))
-    cls = SPEC_TYPES[kind]
-    changes: dict[str, Any] = {}
-    if getattr(args, "num_modes", None) is not None:
-        changes["num_modes"] = args.num_modes
-    for option in ("harmonics", "max_points"):
-        if getattr(args, option, None) is not None:
-            changes[option] = _count(str(getattr(args, option)))
-    if getattr(args, "no_stability", False):
-        changes["stability"] = "none"
-    if getattr(args, "speed", None) is not None:
-        changes["speed"] = to_si(args.speed, "speed", "--speed")
-    ranges = () if kind == "periodic_parameter" else (("start", "start", "speed"),
-                                                      ("stop", "stop", "speed"))
-    for option, key, kind_of in (("t_end", "t_end", "time"), ("dt", "dt", "time"),
-                                 ("speed_stop", "speed_stop", "speed"), *ranges):
-        if getattr(args, option, None) is not None:
-            changes[key] = to_si(getattr(args, option), kind_of,
-                                 f"--{option.replace('_', '-')}")
-    if getattr(args, "speeds", None) is not None:
-        start, stop, num = args.speeds
-        changes["speeds"] = Grid(to_si(start, "speed", "--speeds START"),
-                                 to_si(stop, "speed", "--speeds STOP"), _count(num))
-    if getattr(args, "stiffness", None) is not None:
-        kmin, kmax, num = args.stiffness
-        changes["stiffness"] = Grid(to_si(kmin, "stiffness", "--stiffness KMIN"),
-                                    to_si(kmax, "stiffness", "--stiffness KMAX"),
-                                    _count(num), "log")
-    if spec is None:
-        if kind in ("campbell", "unbalance") and "speeds" not in changes:
-            from rotorsim.errors import ModelError
-
-            raise ModelError("the model has no such analysis; give --speeds START STOP NUM",
-                             args.command)
-        if kind == "transient" and not {"t_end", "dt"} <= set(changes):
-            from rotorsim.errors import ModelError
-
-            raise ModelError("the model has no transient analysis; give --t-end and --dt",
-                             args.command)
-        if kind == "periodic" and not {"start", "stop"} <= set(changes):
-            from rotorsim.errors import ModelError
-
-            raise ModelError("the model has no periodic analysis; give --start and --stop",
-                             args.command)
-    if kind == "periodic_parameter":
-        changes.update(_parameter_changes(model, spec, args))
-    spec = cls(**changes) if spec is None else dataclasses.replace(spec, **changes)
-    return name, spec
-
-
-def _parameter_changes(model: Any, spec: Any, args: argparse.Namespace) -> dict[str, Any]:
-    """``vary``, ``start`` and ``stop`` (SI) of ``rotorsim periodic-parameter``."""
-    from rotorsim.errors import ModelError
-    from rotorsim.io.model_parameter import parameter_range
-
-    given = {k: getattr(args, k) for k in ("vary", "start", "stop")
-             if getattr(args, k) is not None}
-    if spec is None and not {"vary", "start", "stop", "speed"} <= {*given, *(
-            ["speed"] if args.speed is not None else [])}:
-        raise ModelError("the model has no periodic_parameter analysis; give --vary, "
-                         "--speed, --start and --stop", args.command)
-    vary = str(given.get("vary", getattr(spec, "vary", "")))
-    if not given.keys() & {"vary", "start", "stop"}:
-        return {}
-    start, stop = parameter_range(model, vary, given.get("start", getattr(spec, "start", 0)),
-                                  given.get("stop", getattr(spec, "stop", 0)))
-    return {"vary": vary, "start": start, "stop": stop}
-
-
-def _count(text: str) -> int:
-    from rotorsim.errors import ModelError
-
-    try:
-        value = int(text)
-    except ValueError:
-        raise ModelError(f"NUM must be an integer, got {text!r}", "command line") from None
-    if value < 1:
-        raise ModelError(f"NUM must be >= 1, got {value}", "command line")
-    return value
-
-
-def _run_one(model: Any, name: str, spec: Any, args: argparse.Namespace) -> None:
+def _run_one(model: Any, name: str, spec: Any, args: argparse.Namespace) -> str | None:
+    """Run, summarise and write one analysis; why it is incomplete (None when OK)."""
+    from rotorsim.cli.completeness import incomplete_reason
     from rotorsim.cli.outputs import write_outputs
     from rotorsim.cli.summaries import summarize
     from rotorsim.io.analysis_spec import run_analysis
 
-    if spec is not None:
-        model = dataclasses.replace(model, analyses={**model.analyses, name: spec})
-    spec = model.analyses[name]
+    spec = _with_restart(model.analyses[name] if spec is None else spec, name, args,
+                         args.out / model.name)
+    model = dataclasses.replace(model, analyses={**model.analyses, name: spec})
     units = args.units or spec.units
     print(f"\n== {name} ({spec.type}) ==")
     t0 = time.perf_counter()
     progress = not args.no_progress and sys.stderr.isatty()
-    result = run_analysis(model, name, fast=args.fast, progress=progress)
+    result = run_analysis(model, name, fast=args.fast, progress=progress,
+                          checkpoint_dir=args.out / model.name)
     elapsed = time.perf_counter() - t0
     summary_options: dict[str, Any] = {"units": units} if spec.type != "static" else {}
     figure_options: dict[str, Any] = {}
@@ -340,6 +183,45 @@ def _run_one(model: Any, name: str, spec: Any, args: argparse.Namespace) -> None
     files = write_outputs(result, args.out / model.name, name, units=units,
                           plots=not args.no_plots, figure_options=figure_options)
     print(f"[{elapsed:.2f} s] wrote " + ", ".join(str(f) for f in files))
+    return incomplete_reason(result)
+
+
+def _with_restart(spec: Any, name: str, args: argparse.Namespace, folder: Path) -> Any:
+    """The spec with ``--checkpoint``, ``--checkpoint-every`` and ``--resume`` applied
+    (transients and periodic branches; ``--resume`` for sweeps, whose results file is their
+    store); says where the checkpoint is."""
+    from rotorsim.io.analysis_spec import checkpoint_path
+
+    if spec.type == "sweep":  # its points go to <name>.h5 as they finish
+        if getattr(args, "resume", False):
+            spec = dataclasses.replace(spec, resume=True)
+        store = folder / f"{name}.h5"
+        if spec.resume:
+            print(f"resuming the sweep stored in {store}" if store.is_file() else
+                  f"no sweep store {store} yet: starting from the beginning")
+        return spec
+    if spec.type not in RESTARTABLE:
+        return spec
+    every = getattr(args, "checkpoint_every", None)
+    if every is not None and every < 1:
+        from rotorsim.errors import ModelError
+
+        raise ModelError(f"must be >= 1, got {every}", "--checkpoint-every")
+    changes = {key: True for key in ("checkpoint", "resume") if getattr(args, key, False)}
+    if every is not None:
+        changes.update(checkpoint=True, checkpoint_every=every)
+    spec = dataclasses.replace(spec, **changes)
+    path = checkpoint_path(folder, name)
+    if spec.checkpoint or spec.resume:
+        from rotorsim.io.output_folder import prepare_folder
+
+        prepare_folder(path, "--checkpoint")
+    if spec.resume:
+        print(f"resuming from {path}" if path.is_file() else
+              f"no checkpoint {path} yet: starting from the beginning")
+    elif spec.checkpoint:
+        print(f"checkpoints in {path}")
+    return spec
 
 
 if __name__ == "__main__":

@@ -5,6 +5,8 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Any
 
+from rotorsim.io.output_folder import prepare_folder
+
 MODE_FIGURES = 4
 """Number of mode-shape figures written for a modal analysis."""
 
@@ -19,8 +21,11 @@ def write_outputs(result: Any, folder: Path, name: str, *, units: str = "rpm",
     """
     from rotorsim.io.hdf5 import save
 
-    folder.mkdir(parents=True, exist_ok=True)
-    written = [save(result, folder / f"{name}.h5")]
+    prepare_folder(folder / name, "--out")
+    target = folder / f"{name}.h5"
+    stored = type(result).__name__ == "SweepResult" and result.options.get("store") == str(
+        target)  # a sweep wrote its points there as they finished
+    written = [target if stored else save(result, target)]
     if plots:
         written += _figures(result, folder, name, units, figure_options or {})
     return written
@@ -68,7 +73,7 @@ def write_layout(rotor: Any, folder: Path) -> Path:
 
     from rotorsim.plotting import plot
 
-    folder.mkdir(parents=True, exist_ok=True)
+    prepare_folder(folder / "layout.png", "--out")
     fig = plot(rotor)
     path = folder / "layout.png"
     fig.savefig(path, dpi=110, bbox_inches="tight")

@@ -188,6 +188,19 @@ def stiffness_variation_summary(result: Any) -> str:
     return head + "\n" + table(rows, ("coefficient", "mean", "peak-to-peak", "% of mean"))
 
 
+def preload_rows(rolling_bearings: Sequence[Any]) -> list[tuple[str, str]]:
+    """``("preload <tag>", text)`` for each rolling bearing mounted with interference
+    (negative clearance), for the model summary."""
+    rows = []
+    for i, element in enumerate(rolling_bearings):
+        radial = float(getattr(getattr(element, "bearing", None), "clearance", 0.0) or 0.0)
+        if radial < 0.0:
+            rows.append((f"preload {element.tag or i}",
+                         f"radial interference {-radial * 1e6:.4g} um (diametral clearance "
+                         f"{2e6 * radial:.4g} um)"))
+    return rows
+
+
 def linearization_summary(linear: Any) -> str:
     """Loads and direct stiffness of rolling bearings linearised in a rotor."""
     kinds = {p.kind for p in linear.points}
@@ -213,6 +226,11 @@ def transient_summary(result: Any, units: str = "rpm") -> str:
             f"{result.speed[-1] * f:.1f} {units}, {s.get('iterations_per_step', 0):.2f} "
             f"Newton iterations/step, {int(s.get('factorizations', 0))} factorisations, "
             f"{s.get('wall_time', 0.0):.2f} s")
+    failure = (result.options or {}).get("failure")
+    if failure:
+        t_end = (result.options.get("t_span") or [0.0, result.t[-1]])[-1]
+        head += (f"\nSTOPPED SHORT of t_end = {t_end:.4g} s (status {result.status.name}): "
+                 f"{failure}")
     rows = []
     nodes = sorted({int(i) // 6 for i in result.dofs})
     for node in nodes:
@@ -281,6 +299,24 @@ SUMMARIES: dict[str, Callable[..., str]] = {
     "TransientResult": transient_summary,
     "PeriodicResult": periodic_summary,
 }
+
+
+def sweep_summary(result: Any, units: str = "rpm") -> str:
+    """Points evaluated, resumed and failed, and the range of each scalar output."""
+    s = result.stats
+    head = (f"sweep over {', '.join(result.names)}: {result.n_points} points "
+            f"({int(s.get('evaluated', 0))} evaluated, {int(s.get('resumed', 0))} resumed "
+            f"from the store, {int(s.get('failed', 0))} failed), "
+            f"{s.get('wall_time', 0.0):.2f} s")
+    rows = []
+    for name, values in result.outputs.items():
+        v = np.asarray(values, dtype=float)
+        if v.ndim == 1 and np.any(np.isfinite(v)):
+            rows.append((name, f"{np.nanmin(v):.4g}", f"{np.nanmax(v):.4g}"))
+    return head + ("\n" + table(rows, ("output", "min", "max")) if rows else "")
+
+
+SUMMARIES["SweepResult"] = sweep_summary
 
 
 def summarize(result: Any, **options: Any) -> str:

@@ -1,10 +1,15 @@
 """The function that runs each analysis type of a model file (used by
 :func:`rotorsim.io.analysis_spec.run_analysis`): ``runner(rotor, model, spec, fast,
-progress) -> result``; analyses are imported when they run."""
+progress) -> result``, with a last ``restart`` argument (checkpoint keywords) for
+transients and periodic branches; analyses are imported when they run."""
 
 from __future__ import annotations
 
+from collections.abc import Callable
+from pathlib import Path
 from typing import TYPE_CHECKING, Any
+
+import numpy as np
 
 from rotorsim.elements.base import FloatArray
 from rotorsim.io.analysis_spec import FAST_POINTS, Grid
@@ -73,7 +78,8 @@ def _static(rotor: Rotor, model: Model, spec: Any, fast: bool, progress: bool) -
                   loads=list(loads.point_loads), speed=spec.speed)
 
 
-def _transient(rotor: Rotor, model: Model, spec: Any, fast: bool, progress: bool) -> Any:
+def _transient(rotor: Rotor, model: Model, spec: Any, fast: bool, progress: bool,
+               restart: dict[str, Any]) -> Any:
     from rotorsim.analyses.speed_profile import LinearSpeed
     from rotorsim.analyses.transient import transient
 
@@ -87,10 +93,12 @@ def _transient(rotor: Rotor, model: Model, spec: Any, fast: bool, progress: bool
     return transient(rotor, t_end, spec.dt, speed=speed, unbalance=list(unbalance),
                      gravity=loads.gravity, direction=loads.gravity_direction,
                      loads=list(loads.point_loads), method=spec.method, initial=spec.initial,
-                     nodes=spec.nodes, every=spec.every, progress=progress)
+                     nodes=spec.nodes, every=spec.every, progress=progress,
+                     on_failure=spec.on_failure, **restart)
 
 
-def _periodic(rotor: Rotor, model: Model, spec: Any, fast: bool, progress: bool) -> Any:
+def _periodic(rotor: Rotor, model: Model, spec: Any, fast: bool, progress: bool,
+              restart: dict[str, Any]) -> Any:
     from rotorsim.analyses.periodic import periodic
 
     unbalance = model.loads.unbalance if spec.unbalance is None else spec.unbalance
@@ -103,11 +111,11 @@ def _periodic(rotor: Rotor, model: Model, spec: Any, fast: bool, progress: bool)
                     loads=list(loads.point_loads), varying_compliance=spec.varying_compliance,
                     max_points=max_points, max_step=spec.max_step,
                     stability=None if spec.stability == "none" else spec.stability,
-                    nodes=spec.nodes, progress=progress)
+                    nodes=spec.nodes, progress=progress, **restart)
 
 
 def _periodic_parameter(rotor: Rotor, model: Model, spec: Any, fast: bool,
-                        progress: bool) -> Any:
+                        progress: bool, restart: dict[str, Any]) -> Any:
     from rotorsim.analyses.periodic_parameter import periodic_parameter
 
     vary = spec.vary if spec.vary in ("loads", "forcing") else model.parameter(spec.vary)
@@ -121,12 +129,32 @@ def _periodic_parameter(rotor: Rotor, model: Model, spec: Any, fast: bool,
         loads=list(loads.point_loads), max_points=min(spec.max_points, 10) if fast
         else spec.max_points, max_step=spec.max_step,
         stability=None if spec.stability == "none" else spec.stability, nodes=spec.nodes,
-        progress=progress)
+        progress=progress, **restart)
 
 
-RUNNERS = {
+def _sweep(rotor: Rotor, model: Model, spec: Any, fast: bool, progress: bool, *,
+           store: Path | None) -> Any:
+    from rotorsim.analyses.sweep import Grid as SweepGrid
+    from rotorsim.analyses.sweep import sweep
+    from rotorsim.analyses.sweep_functions import (
+        critical_speeds_eval,
+        min_log_dec,
+        set_bearing_stiffness,
+    )
+
+    speeds = np.zeros(1) if spec.speeds is None else _grid(spec.speeds, fast)
+    space = SweepGrid({"bearing_k": _grid(spec.stiffness, fast), "speed": speeds})
+    bearings = list(range(len(rotor.bearing_elements))) if spec.bearings is None else list(
+        spec.bearings)
+    evaluate = (min_log_dec("speed", spec.num_modes) if spec.evaluate == "min_log_dec"
+                else critical_speeds_eval(num_modes=spec.num_modes))
+    return sweep(rotor, space, set_bearing_stiffness(bearings), evaluate, store=store,
+                 resume=spec.resume, progress=progress)
+
+
+RUNNERS: dict[str, Callable[..., Any]] = {
     "modal": _modal, "campbell": _campbell, "critical_speeds": _critical_speeds,
     "critical_speed_map": _critical_speed_map, "unbalance": _unbalance,
     "frequency_response": _frequency_response, "static": _static, "transient": _transient,
-    "periodic": _periodic, "periodic_parameter": _periodic_parameter,
+    "periodic": _periodic, "periodic_parameter": _periodic_parameter, "sweep": _sweep,
 }

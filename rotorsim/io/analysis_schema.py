@@ -114,7 +114,17 @@ class StaticTable(AnalysisTable):
     speed: Speed = 0.0
 
 
-class TransientTable(AnalysisTable):
+class RestartableTable(AnalysisTable):
+    """Checkpoint and resume of a long analysis (transient, periodic branch): ``checkpoint``
+    writes ``<analysis>.checkpoint.h5`` beside the results every ``checkpoint_every``
+    steps or points; ``resume`` continues from it when it exists."""
+
+    checkpoint: bool = False
+    checkpoint_every: Annotated[int, Field(ge=1)] | None = None
+    resume: bool = False
+
+
+class TransientTable(RestartableTable):
     """A run at constant speed (``speed``) or a linear run-up/coast-down from ``speed`` to
     ``speed_stop`` over ``ramp_time`` (default the whole run)."""
 
@@ -128,10 +138,11 @@ class TransientTable(AnalysisTable):
                     "generalized_alpha", "adams", "adaptive"] = "average_acceleration"
     every: Annotated[int, Field(ge=1)] = 1
     initial: Literal["static", "zero"] = "static"
+    on_failure: Literal["stop", "raise"] = "stop"
     unbalance: Annotated[list[UnbalanceTable], Field(min_length=1)] | None = None
 
 
-class PeriodicTable(AnalysisTable):
+class PeriodicTable(RestartableTable):
     """A harmonic-balance branch over the speed range ``start`` .. ``stop``."""
 
     type: Literal["periodic"]
@@ -146,7 +157,7 @@ class PeriodicTable(AnalysisTable):
     unbalance: Annotated[list[UnbalanceTable], Field(min_length=1)] | None = None
 
 
-class PeriodicParameterTable(AnalysisTable):
+class PeriodicParameterTable(RestartableTable):
     """A harmonic-balance branch at the fixed ``speed`` over a model parameter ``vary``:
     a key path of the model file (``"rolling_bearings.DE.radial_clearance"``), ``"loads"``
     (a factor on the point loads) or ``"forcing"`` (a factor on the unbalance), from
@@ -165,6 +176,21 @@ class PeriodicParameterTable(AnalysisTable):
     unbalance: Annotated[list[UnbalanceTable], Field(min_length=1)] | None = None
 
 
+class SweepTable(AnalysisTable):
+    """A parameter study (``rs.sweep``): the lateral support stiffness of ``bearings``
+    (default all) over ``stiffness`` times the spin speeds ``speeds``, evaluating the least
+    log decrement or the critical speeds at every point. Points are written to the results
+    file as they finish; ``resume`` continues an interrupted study from it."""
+
+    type: Literal["sweep"]
+    stiffness: StiffnessGrid
+    speeds: SpeedGrid = None
+    bearings: Annotated[Any, PlainValidator(_bearing_refs)] = None
+    evaluate: Literal["min_log_dec", "critical_speeds"] = "min_log_dec"
+    num_modes: NumModes = 6
+    resume: bool = False
+
+
 TABLES: dict[str, type[AnalysisTable]] = {
     "modal": ModalTable,
     "campbell": CampbellTable,
@@ -176,6 +202,7 @@ TABLES: dict[str, type[AnalysisTable]] = {
     "transient": TransientTable,
     "periodic": PeriodicTable,
     "periodic_parameter": PeriodicParameterTable,
+    "sweep": SweepTable,
 }
 """Analysis types of model files and their tables."""
 

@@ -16,7 +16,10 @@ Examples
 from __future__ import annotations
 
 import dataclasses
+import functools
+import os
 from dataclasses import dataclass, fields
+from pathlib import Path
 from typing import TYPE_CHECKING, Any, ClassVar, Literal
 
 import numpy as np
@@ -223,11 +226,35 @@ class StaticSpec(AnalysisSpec):
 
 
 @dataclass(frozen=True, kw_only=True)
-class TransientSpec(AnalysisSpec):
+class RestartableSpec(AnalysisSpec):
+    """Checkpoint options of a long analysis (a transient or a periodic branch).
+
+    Parameters
+    ----------
+    checkpoint : bool
+        Write a checkpoint file (``<out>/<model>/<analysis>.checkpoint.h5`` on the command
+        line) every ``checkpoint_every`` steps or branch points and at the end.
+    checkpoint_every : int, optional
+        Steps (transient, default 1000) or branch points (periodic, default 25) between
+        checkpoints.
+    resume : bool
+        Continue from that checkpoint when it exists (same model and options, else a
+        :class:`~rotorsim.time_integration.checkpoint.CheckpointError`); the result equals
+        that of an uninterrupted run.
+    """
+
+    checkpoint: bool = False
+    checkpoint_every: int | None = None
+    resume: bool = False
+
+
+@dataclass(frozen=True, kw_only=True)
+class TransientSpec(RestartableSpec):
     """Time integration: :func:`rotorsim.transient` over ``t_end`` [s] with step ``dt`` [s]
     at constant ``speed`` [rad/s], or a linear ramp to ``speed_stop`` over ``ramp_time``
     [s] (default ``t_end``); ``unbalance=None`` uses the model's ``[[loads.unbalance]]``;
-    rolling bearings act with their full nonlinear force."""
+    rolling bearings act with their full nonlinear force. ``on_failure="stop"`` (default)
+    keeps the run up to a failed step with status ``NOT_CONVERGED``; ``"raise"`` raises."""
 
     type: ClassVar[str] = "transient"
     t_end: float
@@ -238,11 +265,12 @@ class TransientSpec(AnalysisSpec):
     method: str = "average_acceleration"
     every: int = 1
     initial: str = "static"
+    on_failure: str = "stop"
     unbalance: Unbalance | None = None
 
 
 @dataclass(frozen=True, kw_only=True)
-class PeriodicSpec(AnalysisSpec):
+class PeriodicSpec(RestartableSpec):
     """Harmonic-balance branch over the speed range ``start`` .. ``stop`` [rad/s]:
     :func:`rotorsim.periodic` with ``harmonics`` harmonics, Floquet stability
     (``stability="none"`` skips it) and bifurcations; ``unbalance=None`` uses the model's
@@ -261,7 +289,7 @@ class PeriodicSpec(AnalysisSpec):
 
 
 @dataclass(frozen=True, kw_only=True)
-class PeriodicParameterSpec(AnalysisSpec):
+class PeriodicParameterSpec(RestartableSpec):
     """Harmonic-balance branch at the fixed ``speed`` [rad/s] over the model parameter
     ``vary`` from ``start`` to ``stop`` (SI): :func:`rotorsim.periodic_parameter` with
     ``vary`` a key path of the model file
@@ -281,16 +309,52 @@ class PeriodicParameterSpec(AnalysisSpec):
     unbalance: Unbalance | None = None
 
 
+def checkpoint_path(folder: str | os.PathLike[str], name: str) -> Path:
+    """Where the command line keeps the checkpoint of analysis ``name``."""
+    return Path(folder) / f"{name}.checkpoint.h5"
+
+
+def restart_options(spec: RestartableSpec, path: Path) -> dict[str, Any]:
+    """``checkpoint``, ``checkpoint_every`` and ``resume`` keywords of the analysis call:
+    resume only from a checkpoint that exists."""
+    out: dict[str, Any] = {}
+    if spec.checkpoint or spec.resume:
+        out["checkpoint"] = path
+        if spec.checkpoint_every is not None:
+            out["checkpoint_every"] = spec.checkpoint_every
+    if spec.resume and path.is_file():
+        out["resume"] = path
+    return out
+
+
+@dataclass(frozen=True, kw_only=True)
+class SweepSpec(AnalysisSpec):
+    """Parameter study :func:`rotorsim.sweep`: support stiffness [N/m] of ``bearings``
+    (indices, default all) over ``stiffness`` times spin speeds [rad/s] over ``speeds``
+    (default 0), evaluating ``"min_log_dec"`` or ``"critical_speeds"`` with ``num_modes``.
+    Points go to the results file as they finish (the file is the checkpoint); ``resume``
+    continues from it."""
+
+    type: ClassVar[str] = "sweep"
+    stiffness: Grid
+    speeds: Grid | None = None
+    bearings: tuple[int, ...] | None = None
+    evaluate: str = "min_log_dec"
+    num_modes: int = 6
+    resume: bool = False
+
+
 SPEC_TYPES: dict[str, type[AnalysisSpec]] = {
     cls.type: cls for cls in (ModalSpec, CampbellSpec, CriticalSpeedsSpec,
                               CriticalSpeedMapSpec, UnbalanceSpec, FrequencyResponseSpec,
-                              StaticSpec, TransientSpec, PeriodicSpec, PeriodicParameterSpec)
+                              StaticSpec, TransientSpec, PeriodicSpec, PeriodicParameterSpec,
+                              SweepSpec)
 }
 """Analysis ``type`` names of model files and their spec classes."""
 
 
-def run_analysis(model: Model, name: str, *, fast: bool = False,
-                 progress: bool = False) -> Any:
+def run_analysis(model: Model, name: str, *, fast: bool = False, progress: bool = False,
+                 checkpoint_dir: str | os.PathLike[str] | None = None) -> Any:
     """Run the analysis ``name`` of a loaded model.
 
     Parameters
@@ -305,6 +369,12 @@ def run_analysis(model: Model, name: str, *, fast: bool = False,
         smoke runs).
     progress : bool
         Show progress bars on sweeps that support them.
+    checkpoint_dir : path, optional
+        Folder of the checkpoint file ``<name>.checkpoint.h5`` of an analysis with
+        ``checkpoint`` or ``resume`` set (default ``results/<model name>``, where the
+        command line writes its results), and of the store ``<name>.h5`` a ``sweep``
+        writes point by point (kept in memory when neither ``checkpoint_dir`` nor
+        ``resume`` is given).
 
     Returns
     -------
@@ -333,9 +403,13 @@ def run_analysis(model: Model, name: str, *, fast: bool = False,
     from rotorsim.io.analysis_runners import RUNNERS
 
     runner = RUNNERS[spec.type]
-    if spec.type in ("transient", "periodic", "periodic_parameter"):
+    folder = Path("results") / model.name if checkpoint_dir is None else Path(checkpoint_dir)
+    if isinstance(spec, RestartableSpec):
         return runner(model.rotor.with_nonlinear(model.rolling_bearings), model, spec, fast,
-                      progress)
+                      progress, restart_options(spec, checkpoint_path(folder, name)))
+    if isinstance(spec, SweepSpec):  # its store is the results file (in memory unless asked)
+        on_disk = checkpoint_dir is not None or spec.resume
+        runner = functools.partial(runner, store=folder / f"{name}.h5" if on_disk else None)
     if not model.rolling_bearings:
         return runner(model.rotor, model, spec, fast, progress)
     linear = model.linearized(float(getattr(spec, "speed", None) or 0.0)

@@ -54,7 +54,8 @@ def save(result: object | Mapping[str, object], path: str | os.PathLike[str]) ->
         CampbellResult, CriticalSpeeds, CriticalSpeedMapResult, FrequencyResponseResult,
         StaticResult, ... A mapping is stored as ``/results/<name>`` groups.
     path : path-like
-        Target file (usually ``*.h5``); its folder must exist. Overwritten if present.
+        Target file (usually ``*.h5``); missing folders are created. Overwritten if
+        present.
 
     Returns
     -------
@@ -167,8 +168,9 @@ def _atomic_write(target: Path, write: Callable[[h5py.File], None]) -> None:
     """Run ``write`` on a new HDF5 file beside ``target`` and rename it onto ``target``."""
     import h5py
 
-    if not target.parent.is_dir():
-        raise FileNotFoundError(f"folder of {target} does not exist")
+    from rotorsim.io.output_folder import prepare_folder
+
+    prepare_folder(target, "save")
     temp = target.with_name(f".{target.name}.{uuid.uuid4().hex}.tmp")
     try:
         with h5py.File(temp, "x") as f:

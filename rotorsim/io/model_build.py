@@ -93,6 +93,29 @@ class Nodes:
         raise ModelError(f"{z:.6g} m is not a node position; nearest nodes: {listed}", where)
 
 
+def check_unique_tags(table: ModelTable, rolling: list[RollingTable]) -> None:
+    """Refuse a tag used twice among the disks, the point masses, or the bearings and
+    rolling bearings together (analyses select bearings by tag). Shaft segments may share
+    a tag (a tapered part written element by element)."""
+    groups: tuple[tuple[tuple[str, list[Any]], ...], ...] = (
+        (("disks", table.disks),),
+        (("point_masses", table.point_masses),),
+        (("bearings", table.bearings), ("rolling_bearings", rolling)),
+    )
+    for group in groups:
+        seen: dict[str, str] = {}
+        for section, items in group:
+            for i, item in enumerate(items):
+                if not item.tag:
+                    continue
+                here = f"{section}[{i}]"
+                if item.tag in seen:
+                    raise ModelError(f"duplicate tag {item.tag!r} (also {seen[item.tag]}.tag);"
+                                     " tags select elements, so each must be unique",
+                                     f"{here}.tag")
+                seen[item.tag] = here
+
+
 def build_materials(table: ModelTable) -> dict[str, Material]:
     out: dict[str, Material] = {}
     for i, mat in enumerate(table.materials):
@@ -318,7 +341,7 @@ def build_spec(table: Any, loc: tuple[str | int, ...], nodes: Nodes,
     elif table.type == "frequency_response":
         options["inputs"] = tuple((nodes.any_node(item, f"{where}.inputs[{i}]"), str(item.dof))
                                   for i, item in enumerate(table.inputs))
-    elif table.type == "critical_speed_map":
+    elif table.type in ("critical_speed_map", "sweep"):
         options["bearings"] = _bearing_indices(options["bearings"], rotor, rolling_tags,
                                                f"{where}.bearings")
     elif table.type == "campbell":

@@ -218,6 +218,7 @@ def model_from_dict(data: Mapping[str, Any], *, source: str | os.PathLike[str] |
     table = validate_model(dict(data) if isinstance(data, Mapping) else data)
     rolling_tables = validate_rolling_bearings(table.rolling_bearings)
     analyses = validate_analyses(table.analyses)
+    build.check_unique_tags(table, rolling_tables)
     src = None if source is None else Path(source)
     name = table.model.name or (src.stem if src is not None else "rotor")
     rotor, nodes = build.build_rotor(table, name)
@@ -264,7 +265,7 @@ def save_model(model: Model | Rotor, path: str | os.PathLike[str]) -> Path:
     model : Model or Rotor
         What to write; a bare Rotor gets default loads and no analyses.
     path : str or path-like
-        Output file.
+        Output file; missing folders are created.
 
     Returns
     -------
@@ -277,8 +278,11 @@ def save_model(model: Model | Rotor, path: str | os.PathLike[str]) -> Path:
         model = Model(name=model.tag, rotor=model)
     if not isinstance(model, Model):
         raise ModelError(f"expected a Model or Rotor, got {type(model).__name__}", "save_model")
+    from rotorsim.io.output_folder import prepare_folder
+
     path = Path(path)
     text = toml_text(model_to_dict(model))
+    prepare_folder(path, "save_model")
     handle, tmp = tempfile.mkstemp(dir=path.parent or ".", prefix=f".{path.name}.", suffix=".tmp")
     try:
         with os.fdopen(handle, "w", encoding="utf-8") as stream:

@@ -151,12 +151,12 @@ class ModelParameter:
         return m.rotor.with_nonlinear(m.rolling_bearings)
 
     def check(self, start: Any, stop: Any) -> tuple[float, float]:
-        """SI values of ``start`` and ``stop``; a string with units is first tried in the
-        model (the schema checks its dimension against the key)."""
+        """SI values of ``start`` and ``stop``, each first tried in the model: the schema
+        checks a string's dimension against the key, and both ends must give a valid model
+        (a clearance whose interference is absurd is refused here, not mid-branch)."""
         out = []
         for name, value in (("start", start), ("stop", stop)):
-            if isinstance(value, str):
-                self.model(value)
+            self.model(value)
             out.append(si_value(value, f"{WHERE}.{name}"))
         return out[0], out[1]
 

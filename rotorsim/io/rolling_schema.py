@@ -7,6 +7,7 @@ from typing import Annotated, Any, Literal
 
 from pydantic import Field, model_validator
 
+from rotorsim.elements.rolling.geometry import interference_problem
 from rotorsim.errors import ModelError
 from rotorsim.io.schema_types import (
     Angle,
@@ -95,6 +96,17 @@ class RollingTable(Located):
             object.__setattr__(self, "Kn", load_deflection_constant(self.Kn, exponent, ".Kn"))
         return self
 
+    def _check_interference(self, diameter: float, element: str) -> None:
+        """Refuse an absurd interference (negative clearance) on the key given."""
+        key = "radial_clearance" if self.radial_clearance is not None else "diametral_clearance"
+        value = getattr(self, key)
+        if value is None:
+            return
+        radial = value if key == "radial_clearance" else 0.5 * value
+        problem = interference_problem(radial, diameter, element)
+        if problem is not None:
+            raise fail(problem, f".{key}")
+
 
 class BallTable(RollingTable):
     type: Literal["ball"]
@@ -109,6 +121,7 @@ class BallTable(RollingTable):
     def _kn_source(self) -> "BallTable":
         if self.Kn is None and (self.f_i is None or self.f_o is None):
             raise fail("field required (or give f_i and f_o: Kn from Hertz theory)", ".Kn")
+        self._check_interference(self.ball_diameter, "ball")
         return self
 
 
@@ -120,6 +133,11 @@ class RollerTable(RollingTable):
     profile: ProfileTable | None = None
     model: Literal["tilt_integral", "slices"] = "tilt_integral"
     n_slices: Annotated[int, Field(ge=1, le=10_000)] = 20
+
+    @model_validator(mode="after")
+    def _interference(self) -> "RollerTable":
+        self._check_interference(self.roller_diameter, "roller")
+        return self
 
 
 ROLLING_TABLES: dict[str, type[RollingTable]] = {"ball": BallTable, "roller": RollerTable}

@@ -6,12 +6,14 @@ becomes one entry whose *kind* is listed in the group attr ``fields``, a JSON ob
 ``{field: kind}``: ``array`` (dataset with attrs ``numpy_dtype`` and ``units``; complex as
 h5py's native ``(r, i)`` compound, str as UTF-8 variable-length strings), ``str_tuple``
 (string dataset), ``group`` (nested dataclass, same layout), ``dofmap`` (subgroup with
-attr ``n_nodes`` and dataset ``fixed``), ``status`` (int attr), ``bool``/``int``/``float``/
+attr ``n_nodes``, dataset ``fixed`` and the string dataset ``dof_labels``, ``"node 8 uy"``
+for every global DOF), ``status`` (int attr), ``bool``/``int``/``float``/
 ``complex``/``str`` (Python scalar attr), ``numpy`` (numpy scalar attr, dtype kept),
 ``json`` (attr with the tagged JSON of :func:`to_jsonable`: ``options``, ``stats``,
 ``summary``, lists, other tuples) and ``none`` (nothing stored). Units of scalar attrs are
-in the group attr ``attr_units`` (JSON ``{field: units}``). ``docs/results_format.md``
-describes the layout in full.
+in the group attr ``attr_units`` (JSON ``{field: units}``). A result with an integer field
+``dofs`` (kept global DOFs) also gets a string dataset ``dof_labels`` aligned with it.
+``docs/results_format.md`` describes the layout in full.
 
 ``write_result``/``read_result`` work on any open h5py group, so a sweep can stream many
 results into one file; :mod:`rotorsim.io.hdf5` adds the file header and atomic writes.
@@ -28,11 +30,14 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from rotorsim.assembly.dof_map import DofMap
+from rotorsim.elements.base import DOF_NAMES, DOFS_PER_NODE
 from rotorsim.errors import ModelError, Status
 
 if TYPE_CHECKING:
     import h5py
 
+DOF_LABELS = "dof_labels"
+"""Name of the string datasets that label DOFs ``"node 8 uy"`` (not a result field)."""
 RESERVED_ATTRS = ("type", "fields", "attr_units")
 """Group attributes used by the layout itself; no result field may carry these names."""
 
@@ -119,6 +124,32 @@ def write_result(group: h5py.Group, result: object) -> None:
             attr_units[f.name] = units
     group.attrs["fields"] = json.dumps(kinds)
     group.attrs["attr_units"] = json.dumps(attr_units)
+    _write_kept_labels(group, result, kinds)
+
+
+def dof_labels(indices: Any) -> np.ndarray:
+    """``"node <n> <dof>"`` of each global DOF index (``6 * node + k``), for readers of the
+    files that do not use rotorsim.
+
+    Examples
+    --------
+    >>> dof_labels([0, 49]).tolist()
+    ['node 0 ux', 'node 8 uy']
+    """
+    idx = np.asarray(indices, dtype=np.int64).reshape(-1)
+    return np.array([f"node {i // DOFS_PER_NODE} {DOF_NAMES[i % DOFS_PER_NODE]}" for i in idx],
+                    dtype=object)
+
+
+def _write_kept_labels(group: h5py.Group, result: object, kinds: dict[str, str]) -> None:
+    """Dataset ``dof_labels`` beside an integer field ``dofs`` of kept global DOF indices
+    (the columns of ``q``, ``v`` of a transient, the rows of a periodic branch)."""
+    if kinds.get("dofs") != "array" or "dofmap" not in kinds.values() or \
+            DOF_LABELS in kinds:
+        return
+    dofs = np.asarray(result.dofs)  # type: ignore[attr-defined]
+    if dofs.ndim == 1 and dofs.dtype.kind in "iu":
+        _write_strings(group, DOF_LABELS, dof_labels(dofs))
 
 
 def _write_field(group: h5py.Group, name: str, value: Any, units: str | None,
@@ -130,6 +161,7 @@ def _write_field(group: h5py.Group, name: str, value: Any, units: str | None,
         sub.attrs["type"] = "DofMap"
         sub.attrs["n_nodes"] = int(value.n_nodes)
         sub.create_dataset("fixed", data=np.asarray(value.fixed, dtype=np.int64))
+        _write_strings(sub, DOF_LABELS, dof_labels(np.arange(value.ndof)))
         return "dofmap"
     if dataclasses.is_dataclass(value) and not isinstance(value, type):
         write_result(group.create_group(name), value)

@@ -226,7 +226,10 @@ class HDF5Store:
         """Create a new store (replacing any file at ``path``) for ``header``."""
         import h5py
 
+        from rotorsim.io.output_folder import prepare_folder
+
         path = Path(path)
+        prepare_folder(path, "sweep store")
         tmp = path.with_name(path.name + ".tmp")
         space, n = header.space, header.space.n_points
         with h5py.File(tmp, "w") as f:

@@ -51,6 +51,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from rotorsim.errors import ModelError
+from rotorsim.io.output_folder import prepare_folder
 from rotorsim.model.rotor import Rotor
 from rotorsim.results.critical_speeds import CriticalSpeeds
 from rotorsim.results.frequency_response import FrequencyResponseResult
@@ -97,14 +98,15 @@ def export_vtk(
         ``CriticalSpeeds`` needs mode shapes (exact analysis) and ``rotor``.
     path : path-like
         ``*.pvd`` for a time series (one VTU per mode/frequency/time sample), ``*.vtu`` for
-        one file.
+        one file; missing folders are created.
     rotor : Rotor, optional
         The analysed model: adds the ``radius`` point data and supplies node positions
         and the number of shaft nodes (else taken from ``result.summary``).
     input : int
         Input column of a :class:`FrequencyResponseResult`.
     every : int
-        Time-sample stride of a :class:`TransientResult` (one VTU per ``every`` samples).
+        Time-sample stride of a :class:`TransientResult` (one VTU per ``every`` samples,
+        and one for the final sample).
 
     Returns
     -------
@@ -130,9 +132,8 @@ def export_vtk(
     suffix = target.suffix.lower()
     if suffix not in (".pvd", ".vtu"):
         raise ModelError(f"file must end in .pvd or .vtu, got {target.name!r}", _WHERE)
-    if not target.parent.is_dir():
-        raise FileNotFoundError(f"folder of {target} does not exist")
     geometry = _geometry(result, rotor)
+    prepare_folder(target, _WHERE)
     times = None
     if isinstance(result, TransientResult):
         steps, prefix, times = _transient_steps(result, geometry, every)
@@ -242,11 +243,14 @@ def _harmonic_steps(shapes: NDArray[np.complex128], scalars: dict[str, FloatArra
 
 def _transient_steps(result: TransientResult, geometry: _Geometry, every: int
                      ) -> tuple[list[_Step], str, FloatArray]:
-    """One step per ``every``-th sample: kept DOFs in place, zeros elsewhere."""
+    """One step per ``every``-th sample and the last one: kept DOFs in place, zeros
+    elsewhere."""
     if not (isinstance(every, int) and every >= 1):
         raise ModelError(f"every must be a positive int, got {every!r}", _WHERE)
     n_nodes = geometry.points.shape[0]
     rows = np.arange(0, result.t.size, every)
+    if rows[-1] != result.t.size - 1:  # the final sample always: the series ends at t_end
+        rows = np.append(rows, result.t.size - 1)
     full = np.zeros((rows.size, 6 * n_nodes))
     full[:, result.dofs] = result.q[rows]
     nodes = full.reshape(rows.size, n_nodes, 6)

@@ -35,6 +35,9 @@ class Rotor:
         DOFs held at zero, ``dof`` one of ``ux, uy, uz, rx, ry, rz``.
     tag : str, optional
         Model name.
+
+    Disks, point masses and bearings (linear and nonlinear together) must have unique
+    tags (``None`` is no tag); shaft elements may share one (a segment's elements).
     nonlinear_elements : sequence of NonlinearElement, optional
         Nonlinear elements such as :class:`~rotorsim.elements.rolling.element.RollingBearing`
         (a nonlinear element given among ``bearing_elements`` is moved here). Transient
@@ -86,6 +89,7 @@ class Rotor:
                 raise ModelError(f"not a nonlinear element (needs nodes and force): {el!r}",
                                  f"nonlinear_elements[{i}]")
         object.__setattr__(self, "nonlinear_elements", nonlinear)
+        _check_unique_tags(self)
         object.__setattr__(self, "n_nodes", self._count_nodes())
         fixed = tuple((int(n), str(d)) for n, d in self.fixed)
         for node, dof in fixed:
@@ -202,6 +206,31 @@ class Rotor:
             "mass_shaft_kg": self.m_shaft,
             "mass_disks_kg": self.m_disks,
         }
+
+
+def _check_unique_tags(rotor: Rotor) -> None:
+    """Refuse two disks, two point masses or two bearings (linear and nonlinear together,
+    since analyses such as critical-speed maps select bearings by tag) with the same tag.
+    Shaft elements may share a tag: a segment's elements all carry it."""
+    groups = (
+        (("disk_elements", rotor.disk_elements),),
+        (("point_mass_elements", rotor.point_mass_elements),),
+        (("bearing_elements", rotor.bearing_elements),
+         ("nonlinear_elements", rotor.nonlinear_elements)),
+    )
+    for group in groups:
+        seen: dict[str, str] = {}
+        for name, elements in group:
+            for i, el in enumerate(elements):
+                tag = getattr(el, "tag", None)
+                if not tag:
+                    continue
+                here = f"{name}[{i}]"
+                if tag in seen:
+                    raise ModelError(f"duplicate tag {tag!r}: {seen[tag]} and {here} (tags "
+                                     "select elements, so each must be unique)",
+                                     f"Rotor '{rotor.tag}'")
+                seen[tag] = here
 
 
 def _is_nonlinear(element: Any) -> bool:

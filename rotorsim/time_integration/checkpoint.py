@@ -80,9 +80,10 @@ def save_checkpoint(path: str | os.PathLike[str], state: State, *,
     """
     import h5py
 
+    from rotorsim.io.output_folder import prepare_folder
+
     target = Path(path)
-    if not target.parent.is_dir():
-        raise FileNotFoundError(f"folder of checkpoint {target} does not exist")
+    prepare_folder(target, "checkpoint")
     temp = target.with_name(f".{target.name}.{uuid.uuid4().hex}.tmp")
     try:
         with h5py.File(temp, "x") as f:

@@ -20,7 +20,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike
 
-from rotorsim.errors import ModelError, Status
+from rotorsim.errors import ConvergenceError, ModelError, Status
 from rotorsim.time_integration.base import FloatArray, IntArray, State, TimeStepper
 from rotorsim.time_integration.checkpoint import load_checkpoint, save_checkpoint
 from rotorsim.time_integration.output import OutputRecorder, OutputSpec
@@ -52,8 +52,12 @@ class IntegrationResult:
         ``residual_evaluations``, ``iterations``, ``max_iterations``,
         ``iterations_per_step``, ``wall_time`` [s] (of this call only).
     status : Status
+        ``OK``, or ``NOT_CONVERGED`` when a step failed under ``on_failure="stop"`` (the
+        samples then end at the last accepted step).
     method : str
         Stepper name.
+    message : str
+        Why the run stopped short ("" when it reached ``t_end``).
     """
 
     t: FloatArray
@@ -65,6 +69,7 @@ class IntegrationResult:
     stats: dict[str, float]
     status: Status
     method: str
+    message: str = ""
 
 
 def integrate(problem: SecondOrderProblem, stepper: TimeStepper, t_span: Sequence[float],
@@ -72,7 +77,8 @@ def integrate(problem: SecondOrderProblem, stepper: TimeStepper, t_span: Sequenc
               a0: ArrayLike | None = None, checkpoint: str | os.PathLike[str] | None = None,
               checkpoint_every: int = 1000, resume: str | os.PathLike[str] | None = None,
               progress: bool = False,
-              callback: Callable[[State], None] | None = None) -> IntegrationResult:
+              callback: Callable[[State], None] | None = None,
+              on_failure: str = "raise") -> IntegrationResult:
     """Integrate ``M a + (C + s G) v + K q + r(q, v, t) = f(t)`` over ``t_span``.
 
     Parameters
@@ -87,7 +93,9 @@ def integrate(problem: SecondOrderProblem, stepper: TimeStepper, t_span: Sequenc
     dt : float
         Step size (first trial step for an adaptive stepper) [s].
     output : OutputSpec, optional
-        What to keep (default: every step, all unknowns).
+        What to keep (default: every step, all unknowns). The run always ends at ``t_end``
+        (the last step is shortened when ``dt`` does not divide the span) and, with
+        ``every``, the final state is always kept.
     a0 : array-like (n,), optional
         Initial acceleration (default: solved from the equation of motion).
     checkpoint : path, optional
@@ -103,6 +111,11 @@ def integrate(problem: SecondOrderProblem, stepper: TimeStepper, t_span: Sequenc
     callback : callable, optional
         ``callback(state)`` after each accepted step (and its checkpoint); an exception
         it raises stops the run.
+    on_failure : {"raise", "stop"}
+        When a step fails: raise :class:`~rotorsim.errors.ConvergenceError`, or end the run
+        at the last accepted step and return what was computed with status
+        ``NOT_CONVERGED`` and the error in ``message`` (the checkpoint then holds the
+        last accepted step).
 
     Returns
     -------
@@ -113,8 +126,8 @@ def integrate(problem: SecondOrderProblem, stepper: TimeStepper, t_span: Sequenc
     ModelError
         For invalid inputs (checked before the first step).
     ConvergenceError
-        When a step fails (time, step, iteration and worst DOF in the message); the last
-        checkpoint is left in place.
+        When a step fails and ``on_failure="raise"`` (time, step, iteration and worst DOF
+        in the message); the last checkpoint is left in place.
 
     Examples
     --------
@@ -132,6 +145,9 @@ def integrate(problem: SecondOrderProblem, stepper: TimeStepper, t_span: Sequenc
     if int(checkpoint_every) != checkpoint_every or checkpoint_every < 1:
         raise ModelError(f"checkpoint_every must be a positive integer, got "
                          f"{checkpoint_every!r}", "integrate")
+    if on_failure not in ("raise", "stop"):
+        raise ModelError(f"on_failure must be 'raise' or 'stop', got {on_failure!r}",
+                         "integrate")
     spec = output if output is not None else OutputSpec()
     spec.check(problem.n, t0, t_end)
     config = run_config(problem, stepper, (t0, t_end), dt, spec, (q0, v0, a0))
@@ -148,9 +164,16 @@ def integrate(problem: SecondOrderProblem, stepper: TimeStepper, t_span: Sequenc
         if checkpoint is not None:
             save_checkpoint(checkpoint, state, config=config, output=recorder.snapshot())
     bar = _progress_bar(progress, stepper.name, t0, t_end, state.t)
+    status, message = Status.OK, ""
     try:
         while state.t < t_end:
-            old, state = state, _advance(problem, stepper, state, t_end)
+            try:
+                old, state = state, _advance(problem, stepper, state, t_end)
+            except ConvergenceError as exc:
+                if on_failure == "raise":
+                    raise
+                status, message = Status.NOT_CONVERGED, str(exc)
+                break
             recorder.record(stepper, old, state)
             if bar is not None:
                 bar.update(state.t - old.t)
@@ -161,12 +184,13 @@ def integrate(problem: SecondOrderProblem, stepper: TimeStepper, t_span: Sequenc
     finally:
         if bar is not None:
             bar.close()
-    if checkpoint is not None and state.step % checkpoint_every != 0:
+    added = recorder.finish(state)
+    if checkpoint is not None and (added or state.step % checkpoint_every != 0):
         save_checkpoint(checkpoint, state, config=config, output=recorder.snapshot())
     t, q, v = recorder.arrays()
     return IntegrationResult(t, q, v, recorder.dofs, recorder.reduced, state,
-                             _stats(state, time.perf_counter() - clock), Status.OK,
-                             stepper.name)
+                             _stats(state, time.perf_counter() - clock), status,
+                             stepper.name, message)
 
 
 def run_config(problem: SecondOrderProblem, stepper: TimeStepper, t_span: tuple[float, float],

@@ -78,8 +78,9 @@ class OutputSpec:
         Increasing sample times inside the time span [s], evaluated by the stepper's
         interpolant. Excludes ``every``.
     every : int, optional
-        Keep the initial state and every ``every``-th accepted step (default 1 when
-        ``times`` is not given).
+        Keep the initial state, every ``every``-th accepted step and the final state
+        (default 1 when ``times`` is not given): the samples always end at ``t_end``,
+        also when the number of steps is not a multiple of ``every``.
     dofs : sequence of int, optional
         Unknowns kept in the samples (default all).
     velocities : bool
@@ -154,6 +155,13 @@ class _Rows:
         self._data[self._size: need] = rows
         self._size = need
 
+    @property
+    def size(self) -> int:
+        return self._size
+
+    def last(self) -> FloatArray:
+        return self._data[self._size - 1]
+
     def array(self) -> FloatArray:
         return self._data[: self._size].copy()
 
@@ -197,6 +205,15 @@ class OutputRecorder:
                 self._append(ts, q, v)
                 self._next = stop
         self._reduce(new)
+
+    def finish(self, state: State) -> bool:
+        """Keep the final state ``state`` when ``every`` skipped it; True when it was added
+        (idempotent, so a run resumed from a finished checkpoint keeps it once)."""
+        if self.spec.times is not None or (self._t.size and self._t.last()[0] == state.t):
+            return False
+        self._append(np.array([state.t]), state.q[self.dofs][None, :],
+                     state.v[self.dofs][None, :])
+        return True
 
     def snapshot(self) -> dict[str, FloatArray]:
         """Arrays to store in a checkpoint (restored by the constructor's ``saved``)."""

@@ -494,11 +494,15 @@ def test_crash_mid_write_keeps_previous_file_and_leaves_no_temp(results, tmp_pat
     assert_results_equal(results["static"], load(target))
 
 
-def test_overwrite_replaces_and_missing_folder_fails(results, tmp_path):
+def test_overwrite_replaces_and_missing_folder_is_created(results, tmp_path):
     target = tmp_path / "out.h5"
     save(results["static"], target)
     save(results["modal"], target)
     assert type(load(target)).__name__ == "ModalResult"
     assert [p.name for p in tmp_path.iterdir()] == ["out.h5"]
-    with pytest.raises(FileNotFoundError):
-        save(results["modal"], tmp_path / "no" / "such" / "x.h5")
+    nested = save(results["modal"], tmp_path / "no" / "such" / "x.h5")
+    assert type(load(nested)).__name__ == "ModalResult"
+    (tmp_path / "blocker").write_text("a file where a folder is needed")
+    with pytest.raises(ModelError, match=r"^save: cannot create the folder .*blocker.*: a "
+                       "file of that name is in the way"):
+        save(results["modal"], tmp_path / "blocker" / "x.h5")

@@ -20,6 +20,7 @@ from rotorsim.results.frequency_response import FrequencyResponseResult
 from rotorsim.results.modal import ModalResult
 from rotorsim.results.periodic import PeriodicResult
 from rotorsim.results.static import StaticResult
+from rotorsim.results.sweep import SweepResult
 from rotorsim.results.transient import TransientResult
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -35,7 +36,7 @@ RESULT_TYPES = {
     "critical_speed_map": CriticalSpeedMapResult, "unbalance": FrequencyResponseResult,
     "frequency_response": FrequencyResponseResult, "static": StaticResult,
     "transient": TransientResult, "periodic": PeriodicResult,
-    "periodic_parameter": PeriodicResult,
+    "periodic_parameter": PeriodicResult, "sweep": SweepResult,
 }
 FILES = sorted(p.stem for p in MODELS.glob("*.toml"))
 CASES = [(f, a) for f in FILES for a in load_model(MODELS / f"{f}.toml").analyses]

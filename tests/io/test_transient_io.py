@@ -133,8 +133,9 @@ def test_vtk_time_series_of_kept_nodes(tmp_path):
     r = _transient()
     files = export_vtk(r, tmp_path / "run.pvd", every=50)
     steps = _steps(files[0])
-    rows = np.arange(0, r.t.size, 50)
+    rows = np.append(np.arange(0, r.t.size, 50), r.t.size - 1)  # and the final sample
     assert [float(s) for s, _ in steps] == r.t[rows].tolist()  # time steps are times [s]
+    assert float(steps[-1][0]) == r.t[-1]
     assert [p for _, p in steps] == files[1:]
     expected_kept = [0, 1, 1, 0, 1]
     for row, (_, path) in zip(rows, steps, strict=True):
@@ -162,5 +163,7 @@ def test_vtk_single_file_and_bad_stride(tmp_path):
     pd = meshio.read(path).point_data
     assert {"step_0", "step_1", "step_0_rotation", "step_1_kept"} <= set(pd)
     np.testing.assert_array_equal(pd["step_1"][1, :2], r.q[200, :2])
+    np.testing.assert_array_equal(pd["step_2"][1, :2], r.q[399, :2])  # the final sample
+    assert "step_3" not in pd
     with pytest.raises(ModelError, match="every must be a positive int"):
         export_vtk(r, tmp_path / "bad.pvd", every=0)

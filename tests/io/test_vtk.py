@@ -191,3 +191,15 @@ def test_bad_requests_raise_model_error(rotor, tmp_path, case):
     with pytest.raises(ModelError, match=message):
         export_vtk(make(rotor), tmp_path / name, **kwargs)
     assert list(tmp_path.iterdir()) == []
+
+
+def test_missing_folders_are_created(rotor, tmp_path):
+    target = tmp_path / "new" / "deeper" / "modes.pvd"
+    files = export_vtk(modal(rotor, num_modes=2), target, rotor=rotor)
+    assert files[0] == target and all(f.is_file() for f in files) and len(files) == 3
+    with pytest.raises(ModelError, match="export_vtk"):  # a bad request creates nothing
+        export_vtk(modal(rotor, num_modes=1), tmp_path / "other" / "x.vtk")
+    assert not (tmp_path / "other").exists()
+    (tmp_path / "blocker").write_text("a file where a folder is needed")
+    with pytest.raises(ModelError, match="a file of that name is in the way"):
+        export_vtk(modal(rotor, num_modes=1), tmp_path / "blocker" / "x.vtu", rotor=rotor)

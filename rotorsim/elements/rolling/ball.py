@@ -213,6 +213,9 @@ class BallBearing:
         if abs(radial) >= 0.5 * self.ball_diameter:
             raise ModelError(f"radial clearance {radial} m exceeds the ball radius: check "
                              "the units (metres)", where)
+        problem = geometry.interference_problem(radial, self.ball_diameter, "ball")
+        if problem is not None:
+            raise ModelError(problem, where)
         return float(radial)
 
     def _resolve_arm(self, a0: float, where: str) -> float:

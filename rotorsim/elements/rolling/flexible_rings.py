@@ -45,7 +45,11 @@ from rotorsim.elements.rolling.flexible_ring_geometry import (
 from rotorsim.elements.rolling.flexible_ring_roller import RollerPotential
 from rotorsim.elements.rolling.flexible_ring_solve import solve_state
 from rotorsim.elements.rolling.flexible_ring_state import FlexibleRingState
-from rotorsim.elements.rolling.geometry import cage_ratio, element_angles
+from rotorsim.elements.rolling.geometry import (
+    cage_ratio,
+    element_angles,
+    interference_problem,
+)
 from rotorsim.elements.rolling.hertz_line import LINE_EXPONENT
 from rotorsim.elements.rolling.roller_profile import (
     CircularCrown,
@@ -187,6 +191,9 @@ class FlexibleRingRollerBearing:
         if abs(g) >= r_b:
             raise ModelError(f"diametral_clearance {g} m exceeds the roller radius: check the "
                              "units (metres)", where)
+        problem = interference_problem(0.5 * g, 2.0 * r_b, "roller")
+        if problem is not None:
+            raise ModelError(problem, where)
         for name in ("E", "rho"):
             _number(getattr(self, name), name, where, positive=True)
         for name in ("ring_modulus", "roller_mass", "contact_constant", "cage_ratio"):

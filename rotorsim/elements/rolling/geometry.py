@@ -43,6 +43,37 @@ def cage_ratio(element_diameter: float, pitch_diameter: float, contact_angle: fl
     return 0.5 * (1.0 - element_diameter * math.cos(contact_angle) / pitch_diameter)
 
 
+MAX_INTERFERENCE_RATIO = 0.01
+"""Largest radial interference (negative radial clearance, preload) accepted, as a fraction
+of the rolling-element diameter. A steel contact at the ISO 76 static-capacity stress of
+4.2 GPa deflects of the order of 0.1 to 0.3 % of the element diameter, so an interference
+above 1 % would need contact stresses far beyond what bearing steel carries: it is a sign
+or unit mistake, not a preload."""
+
+
+def interference_problem(radial_clearance: float, element_diameter: float,
+                         element: str) -> str | None:
+    """Why a radial clearance [m] is a physically absurd interference for rolling elements
+    of diameter ``element_diameter`` [m] (``element`` names them: "ball", "roller"), or
+    None when it is plausible.
+
+    Examples
+    --------
+    >>> interference_problem(-2e-6, 0.008, "ball") is None
+    True
+    >>> print(interference_problem(-0.5e-3, 0.008, "ball")[:67])
+    radial interference 500 um (diametral clearance -1000 um) is 6.25 %
+    """
+    if radial_clearance >= -MAX_INTERFERENCE_RATIO * element_diameter:
+        return None
+    return (f"radial interference {-radial_clearance * 1e6:.4g} um (diametral clearance "
+            f"{2e6 * radial_clearance:.4g} um) is {-100 * radial_clearance / element_diameter:.3g}"
+            f" % of the {element} diameter {element_diameter * 1e3:.4g} mm; a preload is at "
+            f"most {100 * MAX_INTERFERENCE_RATIO:g} % "
+            f"({MAX_INTERFERENCE_RATIO * element_diameter * 1e6:.4g} um): check the sign and "
+            "the units")
+
+
 def element_angles(n_elements: int, phi: ArrayLike = 0.0, kappa: float = 0.0,
                    psi0: float = 0.0) -> FloatArray:
     """Angular positions ``psi`` [rad] of the rolling elements, shape ``(S, N)``.

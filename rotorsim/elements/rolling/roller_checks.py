@@ -9,6 +9,7 @@ from typing import Any
 
 import numpy as np
 
+from rotorsim.elements.rolling.geometry import interference_problem
 from rotorsim.elements.rolling.hertz_line import LINE_EXPONENT, iso_roller_constant
 from rotorsim.elements.rolling.roller_profile import (
     CircularCrown,
@@ -39,6 +40,9 @@ def resolve_clearance(b: Any, where: str) -> float:
     if abs(radial) >= 0.5 * b.roller_diameter:
         raise ModelError(f"radial clearance {radial} m exceeds the roller radius: check "
                          "the units (metres)", where)
+    problem = interference_problem(radial, b.roller_diameter, "roller")
+    if problem is not None:
+        raise ModelError(problem, where)
     return float(radial)
 
 

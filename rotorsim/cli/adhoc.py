@@ -1,0 +1,99 @@
+"""The analysis a subcommand such as ``rotorsim modal`` runs: the model's first analysis of
+that type (or a default one) with the command-line overrides applied."""
+
+from __future__ import annotations
+
+import argparse
+import dataclasses
+from typing import Any
+
+from rotorsim.cli.parser import SUBCOMMAND_TYPES
+
+
+def adhoc_job(model: Any, args: argparse.Namespace) -> tuple[str, Any]:
+    """The model's first analysis of the subcommand's type (or a default one) with the
+    command-line overrides applied."""
+    from rotorsim.io.analysis_spec import SPEC_TYPES, Grid
+    from rotorsim.units import to_si
+
+    kind = SUBCOMMAND_TYPES[args.command]
+    name, spec = next(((n, s) for n, s in model.analyses.items() if s.type == kind),
+                      (kind, None))
+    cls = SPEC_TYPES[kind]
+    changes: dict[str, Any] = {}
+    if getattr(args, "num_modes", None) is not None:
+        changes["num_modes"] = args.num_modes
+    for option in ("harmonics", "max_points"):
+        if getattr(args, option, None) is not None:
+            changes[option] = _count(str(getattr(args, option)))
+    if getattr(args, "no_stability", False):
+        changes["stability"] = "none"
+    if getattr(args, "speed", None) is not None:
+        changes["speed"] = to_si(args.speed, "speed", "--speed")
+    ranges = () if kind == "periodic_parameter" else (("start", "start", "speed"),
+                                                      ("stop", "stop", "speed"))
+    for option, key, kind_of in (("t_end", "t_end", "time"), ("dt", "dt", "time"),
+                                 ("speed_stop", "speed_stop", "speed"), *ranges):
+        if getattr(args, option, None) is not None:
+            changes[key] = to_si(getattr(args, option), kind_of,
+                                 f"--{option.replace('_', '-')}")
+    if getattr(args, "speeds", None) is not None:
+        start, stop, num = args.speeds
+        changes["speeds"] = Grid(to_si(start, "speed", "--speeds START"),
+                                 to_si(stop, "speed", "--speeds STOP"), _count(num))
+    if getattr(args, "stiffness", None) is not None:
+        kmin, kmax, num = args.stiffness
+        changes["stiffness"] = Grid(to_si(kmin, "stiffness", "--stiffness KMIN"),
+                                    to_si(kmax, "stiffness", "--stiffness KMAX"),
+                                    _count(num), "log")
+    if spec is None:
+        if kind in ("campbell", "unbalance") and "speeds" not in changes:
+            from rotorsim.errors import ModelError
+
+            raise ModelError("the model has no such analysis; give --speeds START STOP NUM",
+                             args.command)
+        if kind == "transient" and not {"t_end", "dt"} <= set(changes):
+            from rotorsim.errors import ModelError
+
+            raise ModelError("the model has no transient analysis; give --t-end and --dt",
+                             args.command)
+        if kind == "periodic" and not {"start", "stop"} <= set(changes):
+            from rotorsim.errors import ModelError
+
+            raise ModelError("the model has no periodic analysis; give --start and --stop",
+                             args.command)
+    if kind == "periodic_parameter":
+        changes.update(_parameter_changes(model, spec, args))
+    spec = cls(**changes) if spec is None else dataclasses.replace(spec, **changes)
+    return name, spec
+
+
+def _parameter_changes(model: Any, spec: Any, args: argparse.Namespace) -> dict[str, Any]:
+    """``vary``, ``start`` and ``stop`` (SI) of ``rotorsim periodic-parameter``."""
+    from rotorsim.errors import ModelError
+    from rotorsim.io.model_parameter import parameter_range
+
+    given = {k: getattr(args, k) for k in ("vary", "start", "stop")
+             if getattr(args, k) is not None}
+    if spec is None and not {"vary", "start", "stop", "speed"} <= {*given, *(
+            ["speed"] if args.speed is not None else [])}:
+        raise ModelError("the model has no periodic_parameter analysis; give --vary, "
+                         "--speed, --start and --stop", args.command)
+    vary = str(given.get("vary", getattr(spec, "vary", "")))
+    if not given.keys() & {"vary", "start", "stop"}:
+        return {}
+    start, stop = parameter_range(model, vary, given.get("start", getattr(spec, "start", 0)),
+                                  given.get("stop", getattr(spec, "stop", 0)))
+    return {"vary": vary, "start": start, "stop": stop}
+
+
+def _count(text: str) -> int:
+    from rotorsim.errors import ModelError
+
+    try:
+        value = int(text)
+    except ValueError:
+        raise ModelError(f"NUM must be an integer, got {text!r}", "command line") from None
+    if value < 1:
+        raise ModelError(f"NUM must be >= 1, got {value}", "command line")
+    return value
