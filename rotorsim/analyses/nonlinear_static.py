@@ -2,8 +2,12 @@
 
 Newton's method on the whole system with the exact tangent ``K + P K_t P^T`` (``K_t`` the
 gathered element tangent on the nonlinear DOFs), a backtracking line search on the residual
-norm, and load stepping when a full-load Newton fails (the load is applied in fractions,
-each solution starting the next). Free rigid-body motions (e.g. torsion, or axial motion on
+norm. When a full-load Newton fails (typically a shaft that starts inside a bearing
+clearance, where the tangent is singular or nearly so), the minimum of the total potential
+energy (:func:`rotorsim.analyses.rotor_energy.energy_equilibrium`, a trust-region method
+that needs no line search) is sought from the same start and polished by Newton; if an
+element has no energy or that fails too, the load is applied in fractions (load stepping),
+each solution starting the next. Free rigid-body motions (e.g. torsion, or axial motion on
 cylindrical roller bearings) are held at their starting value.
 """
 
@@ -14,7 +18,7 @@ from dataclasses import dataclass
 
 import numpy as np
 import scipy.sparse as sp
-from numpy.typing import NDArray
+from numpy.typing import ArrayLike, NDArray
 
 from rotorsim.assembly.system import RotorSystem
 from rotorsim.elements.base import FloatArray
@@ -31,6 +35,9 @@ class NonlinearEquilibrium:
     iterations: int
     residual: float
     load_steps: int
+    method: str = "newton"
+    """``"newton"`` (full load), ``"energy"`` (energy minimum polished by Newton) or
+    ``"load steps"``."""
 
 
 def nonlinear_equilibrium(system: RotorSystem, f: FloatArray, *, speed: float = 0.0,
@@ -88,6 +95,9 @@ def nonlinear_equilibrium(system: RotorSystem, f: FloatArray, *, speed: float = 
         return NonlinearEquilibrium(q, it, res, 1)
     except ConvergenceError as first:
         failure = first
+    found = _energy_equilibrium(system, solver, f, q, held)
+    if found is not None:
+        return found
     steps = 2
     while steps <= max_load_steps:
         try:
@@ -95,13 +105,59 @@ def nonlinear_equilibrium(system: RotorSystem, f: FloatArray, *, speed: float = 
             for j in range(1, steps + 1):
                 qs, it, res = solver.solve(qs, f * (j / steps))
                 total += it
-            return NonlinearEquilibrium(qs, total, res, steps)
+            return NonlinearEquilibrium(qs, total, res, steps, "load steps")
         except ConvergenceError as exc:
             failure = exc
             steps *= 2
     raise ConvergenceError(f"static equilibrium failed even with {max_load_steps} load "
                            f"steps: {failure}", "nonlinear static",
                            iteration=max_iter, residual=failure.residual)
+
+
+def _energy_equilibrium(system: RotorSystem, solver: _Newton, f: FloatArray, q: FloatArray,
+                        held: Sequence[int]) -> NonlinearEquilibrium | None:
+    """Minimum of the potential energy from ``q``, polished by Newton; None when an element
+    has no energy or either step fails (the caller then steps the load)."""
+    from rotorsim.analyses.rotor_energy import energy_equilibrium
+
+    try:
+        eq = energy_equilibrium(system, f, speed=solver.speed, phi=solver.phi, q0=q, held=held)
+        polished, it, res = solver.solve(eq.q, f)
+    except (ModelError, ConvergenceError):
+        return None
+    solver.stats.iterations += eq.iterations
+    return NonlinearEquilibrium(polished, eq.iterations + it, res, 1, "energy")
+
+
+def start_point(system: RotorSystem, x0: ArrayLike, where: str) -> FloatArray:
+    """A user's starting displacement on all DOFs (``(ndof,)`` [m, rad], e.g. a
+    ``StaticResult.displacement``) as a vector on the free DOFs.
+
+    Raises
+    ------
+    ModelError
+        Not ``ndof`` finite numbers, or a nonzero value on a fixed (or unconnected) DOF.
+    """
+    ndof = system.dof_map.ndof
+    try:
+        x = np.asarray(x0, dtype=float)
+    except (TypeError, ValueError):
+        raise ModelError(f"must be an array of {ndof} numbers (all DOFs) [m, rad], got "
+                         f"{type(x0).__name__}", where) from None
+    if x.shape != (ndof,):
+        raise ModelError(f"must have shape ({ndof},) (all DOFs of the rotor), got shape "
+                         f"{x.shape}", where)
+    bad = np.flatnonzero(~np.isfinite(x))
+    names = system.dof_map.names()
+    if bad.size:
+        raise ModelError(f"must be finite; DOF {names[bad[0]]} is {x[bad[0]]}", where)
+    free = system.dof_map.free
+    held = np.setdiff1d(np.arange(ndof), free)
+    moved = held[x[held] != 0.0]
+    if moved.size:
+        raise ModelError(f"is {x[moved[0]]:.6g} on DOF {names[moved[0]]}, which is fixed "
+                         "(or connected to nothing); it must be 0 there", where)
+    return np.array(x[free])
 
 
 class _Newton:

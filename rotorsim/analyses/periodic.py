@@ -43,6 +43,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike
 
+from rotorsim.analyses.nonlinear_static import start_point
 from rotorsim.analyses.periodic_branch import Stepping, trace_branch
 from rotorsim.analyses.periodic_events import floquet_events
 from rotorsim.analyses.periodic_excitation import ExcitationPlan, HarmonicBase, plan_excitation
@@ -110,6 +111,7 @@ def periodic(
     resume: str | os.PathLike[str] | None = None,
     progress: bool = False,
     fold_map: bool | ParameterMap = False,
+    x0: ArrayLike | None = None,
 ) -> PeriodicResult:
     """Branch of periodic responses from ``start`` to ``stop`` (module docstring).
 
@@ -178,6 +180,10 @@ def periodic(
         (``options["fold_map"]`` lists, per fold, the fold parameter against the forcing
         fraction from 1 down to the cusp); a :class:`~.periodic_folds.ParameterMap` in a
         model parameter of the nonlinear elements (e.g. the clearance; key ``"mu"``).
+    x0 : array (ndof,), optional
+        Starting displacement of the static start on all DOFs [m, rad] (e.g. a
+        ``StaticResult.displacement``), as ``x0`` of :func:`~rotorsim.analyses.static.static`;
+        default the centred start (the energy minimum is sought when Newton fails from there).
 
     Returns
     -------
@@ -212,10 +218,11 @@ def periodic(
                            varying_compliance=varying_compliance, fundamental=fundamental,
                            frequency_parameter=frequency)
     stats = Stats()
+    q0 = None if x0 is None else start_point(system, x0, f"{WHERE}.x0")
     rp = build_problem(system, plan, speed0=float(start),
                        fixed_speed=speed if frequency else None, phi0=float(shaft_angle),
                        unbalance=list(unbalance), gravity=gravity, direction=direction,
-                       loads=list(loads), base=base, stats=stats)
+                       loads=list(loads), base=base, stats=stats, x0=q0)
     residual = make_residual(rp.problem, harmonics, samples=samples,
                              condense=condense and rp.problem.k > 0)
     recovery = Recovery(residual, *kept_dofs(system, rp, nodes))
@@ -360,6 +367,7 @@ def _describe(arguments: dict[str, Any]) -> dict[str, Any]:
         "stability": a["stability"], "stability_modes": a["stability_modes"],
         "bifurcations": bool(a["bifurcations"]),
         "nodes": None if a["nodes"] is None else [int(n) for n in a["nodes"]],
+        "x0_given": a["x0"] is not None,
     }
 
 

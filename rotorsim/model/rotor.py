@@ -62,9 +62,11 @@ class Rotor:
     n_nodes: int = field(init=False)
 
     def __post_init__(self) -> None:
+        if isinstance(self.shaft_elements, str) or not isinstance(self.shaft_elements,
+                                                                   Iterable):
+            raise ModelError("give a sequence of ShaftElement (may be empty: a rigid rotor "
+                             "or point mass at node 0)", f"Rotor '{self.tag}'")
         shaft = tuple(self.shaft_elements)
-        if not shaft:
-            raise ModelError("a rotor needs at least one shaft element", f"Rotor '{self.tag}'")
         numbered = []
         for i, el in enumerate(shaft):
             if not isinstance(el, ShaftElement):
