@@ -62,6 +62,7 @@ from rotorsim.analyses.periodic_stability import (
     check_options,
     stability_model,
 )
+from rotorsim.analyses.transient_start import rolling_start
 from rotorsim.assembly.loads import STANDARD_GRAVITY
 from rotorsim.assembly.system import RotorSystem, assemble
 from rotorsim.elements.base import NonlinearElement
@@ -218,7 +219,9 @@ def periodic(
                            varying_compliance=varying_compliance, fundamental=fundamental,
                            frequency_parameter=frequency)
     stats = Stats()
-    q0 = None if x0 is None else start_point(system, x0, f"{WHERE}.x0")
+    q0 = start_point(system, x0, f"{WHERE}.x0") if x0 is not None else _static_guess(
+        model, nonlinear, system, gravity, direction, loads,
+        float(speed) if frequency and speed is not None else float(start), float(shaft_angle))
     rp = build_problem(system, plan, speed0=float(start),
                        fixed_speed=speed if frequency else None, phi0=float(shaft_angle),
                        unbalance=list(unbalance), gravity=gravity, direction=direction,
@@ -279,6 +282,20 @@ def _system(model: Any, nonlinear: Sequence[NonlinearElement]) -> RotorSystem:
         raise ModelError(f"expected a Rotor, RotorSystem or Model, got "
                          f"{type(model).__name__}", WHERE)
     return assemble(model, nonlinear=tuple(nonlinear))
+
+
+def _static_guess(model: Any, nonlinear: Sequence[NonlinearElement], system: RotorSystem,
+                  gravity: float | None, direction: ArrayLike,
+                  loads: Sequence[tuple[int, str, float]], speed: float, phi: float
+                  ) -> Any:
+    """Start of the static Newton iteration from the robust rolling-bearing statics (as the
+    transient's static start), or None (an assembled system, other nonlinear elements, or
+    that solve fails): the centred start inside a clearance may have no useful tangent."""
+    if not isinstance(model, Rotor) and hasattr(model, "rotor"):
+        model = model.rotor.with_nonlinear(tuple(getattr(model, "rolling_bearings", ())))
+    if not isinstance(model, Rotor) or system.nonlinear is None:
+        return None
+    return rolling_start(model, nonlinear, system, gravity, direction, list(loads), speed, phi)
 
 
 def _check_parameter(parameter: str, start: float, stop: float,
