@@ -27,6 +27,13 @@ from rotorsim.solvers.linear import Factorization, factorize
 from rotorsim.solvers.stats import Stats
 
 
+POLISH_SHIFT = 1e-6
+"""Newton's polish of an energy minimum adds this multiple of the nominal tangent to the
+tangent: a motion that no loaded contact resists (a rigid rotor rocking about its one loaded
+ball) then takes bounded steps, while the other directions converge as before (the shift
+changes each step by about 1e-6 relative, not the solution)."""
+
+
 @dataclass(frozen=True, eq=False)
 class NonlinearEquilibrium:
     """Solution of :func:`nonlinear_equilibrium` on the free DOFs."""
@@ -120,11 +127,16 @@ def _energy_equilibrium(system: RotorSystem, solver: _Newton, f: FloatArray, q: 
     has no energy or either step fails (the caller then steps the load)."""
     from rotorsim.analyses.rotor_energy import energy_equilibrium
 
+    if solver.nominal is None:
+        solver.nominal = sp.csr_matrix(nominal_tangent(system))[solver.keep][:, solver.keep]
     try:
         eq = energy_equilibrium(system, f, speed=solver.speed, phi=solver.phi, q0=q, held=held)
+        solver.shift = POLISH_SHIFT
         polished, it, res = solver.solve(eq.q, f)
     except (ModelError, ConvergenceError):
         return None
+    finally:
+        solver.shift = 0.0
     solver.stats.iterations += eq.iterations
     return NonlinearEquilibrium(polished, eq.iterations + it, res, 1, "energy")
 
@@ -169,6 +181,7 @@ class _Newton:
         self.nl, self.K, self.speed, self.phi = system.nonlinear, K, speed, phi
         self.keep, self.tol, self.max_iter, self.stats = keep, tol, max_iter, stats
         self.nominal = None if nominal is None else sp.csr_matrix(nominal)[keep][:, keep]
+        self.shift = 0.0  # multiple of the nominal tangent added to every tangent
 
     def residual(self, q: FloatArray, f: FloatArray) -> tuple[FloatArray, FloatArray, float]:
         nl = self.nl
@@ -199,6 +212,8 @@ class _Newton:
     def _factors(self, kt: FloatArray, it: int, norm: float) -> Factorization:
         """LU of the tangent, regularised by the nominal tangent when singular."""
         J = self._tangent(kt)
+        if self.shift and self.nominal is not None:
+            J = J + self.shift * self.nominal
         try:
             return factorize(J, stats=self.stats, where="nonlinear static")
         except ConvergenceError as exc:

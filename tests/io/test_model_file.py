@@ -195,7 +195,9 @@ CORPUS = [
     (_delete(("analyses", "campbell", "speeds")), "analyses.campbell.speeds", "field required"),
     (_delete(("analyses", "campbell", "speeds", "num")), "analyses.campbell.speeds.num",
      "field required"),
-    (_delete(("shaft",)), "shaft", "field required"),
+    # no [[shaft]] is a rigid rotor at node 0 (z = 0): items elsewhere are refused
+    (_delete(("shaft",)), "disks[0].z", "0.5 m is not a node position; nearest nodes: 0 at"),
+    (_set(("shaft",), []), "disks[0].z", "0.5 m is not a node position; nearest nodes: 0 at"),
     (_set(("shaft", 0, "n_elements"), "six"), "shaft[0].n_elements", "expected an integer"),
     (_set(("shaft", 0, "n_elements"), 6.0), "shaft[0].n_elements", "expected an integer"),
     (_set(("shaft", 0, "gyroscopic"), "yes"), "shaft[0].gyroscopic", "expected true or false"),
