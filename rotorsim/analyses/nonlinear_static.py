@@ -26,7 +26,6 @@ from rotorsim.errors import ConvergenceError, ModelError
 from rotorsim.solvers.linear import Factorization, factorize
 from rotorsim.solvers.stats import Stats
 
-
 POLISH_SHIFT = 1e-6
 """Newton's polish of an energy minimum adds this multiple of the nominal tangent to the
 tangent: a motion that no loaded contact resists (a rigid rotor rocking about its one loaded
