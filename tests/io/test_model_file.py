@@ -233,7 +233,7 @@ CORPUS = [
      "0.512 m is not a node position; nearest nodes: 2 at 0.5 m, 3 at 0.75 m"),
     (_set(("loads", "unbalance", 0, "z"), 2.0), "loads.unbalance[0].z",
      "2 m is not a node position"),
-    (_set(("shaft",), []), "shaft", "must not be empty"),
+    (_set(("shaft",), {}), "shaft", "expected an array"),
     (_set(("bearings", 0, "kxx"), [1e6, 2e6]), "bearings[0].kxx",
      "is an array but no frequency is given"),
     (_set(("bearings", 0, "frequency"), [0.0, 10.0, 5.0]), "bearings[0].frequency",
