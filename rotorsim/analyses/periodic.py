@@ -41,7 +41,7 @@ from collections.abc import Sequence
 from typing import Any
 
 import numpy as np
-from numpy.typing import ArrayLike
+from numpy.typing import ArrayLike, NDArray
 
 from rotorsim.analyses.nonlinear_static import start_point
 from rotorsim.analyses.periodic_branch import Stepping, trace_branch
@@ -183,8 +183,10 @@ def periodic(
         model parameter of the nonlinear elements (e.g. the clearance; key ``"mu"``).
     x0 : array (ndof,), optional
         Starting displacement of the static start on all DOFs [m, rad] (e.g. a
-        ``StaticResult.displacement``), as ``x0`` of :func:`~rotorsim.analyses.static.static`;
-        default the centred start (the energy minimum is sought when Newton fails from there).
+        ``StaticResult.displacement``), as ``x0`` of :func:`~rotorsim.analyses.static.static`.
+        Default: the rolling-bearing statics of ``static`` (robust from the centred position
+        inside a clearance), or the centred start for other nonlinear elements; Newton's
+        method then falls back to the energy minimum when it fails.
 
     Returns
     -------
@@ -287,7 +289,7 @@ def _system(model: Any, nonlinear: Sequence[NonlinearElement]) -> RotorSystem:
 def _static_guess(model: Any, nonlinear: Sequence[NonlinearElement], system: RotorSystem,
                   gravity: float | None, direction: ArrayLike,
                   loads: Sequence[tuple[int, str, float]], speed: float, phi: float
-                  ) -> Any:
+                  ) -> NDArray[np.float64] | None:
     """Start of the static Newton iteration from the robust rolling-bearing statics (as the
     transient's static start), or None (an assembled system, other nonlinear elements, or
     that solve fails): the centred start inside a clearance may have no useful tangent."""

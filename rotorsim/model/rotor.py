@@ -28,6 +28,8 @@ class Rotor:
     Parameters
     ----------
     shaft_elements : sequence of ShaftElement
+        May be empty: the rotor is then rigid, a disk or point mass at node 0 (``z = 0``)
+        on its bearings, the classic model of the bearing literature.
     disk_elements : sequence of DiskElement, optional
     bearing_elements : sequence of BearingElement, optional
     point_mass_elements : sequence of PointMass, optional
@@ -49,6 +51,10 @@ class Rotor:
     ...               [BearingElement(n=0, kxx=1e6), BearingElement(n=4, kxx=1e6)])
     >>> rotor.n_nodes, rotor.ndof
     (5, 30)
+    >>> rigid = Rotor([], [DiskElement(n=0, m=1.0, Id=1e-3, Ip=2e-3)],
+    ...               [BearingElement(n=0, kxx=1e6)])
+    >>> rigid.n_nodes, rigid.length
+    (1, 0.0)
     """
 
     shaft_elements: Sequence[ShaftElement]
