@@ -141,3 +141,32 @@ def test_every_analysis_of_the_model_file_runs():
         hertz_deflection(model.rolling_bearings[0].bearing, LOAD), rel=1e-6)
     branch = run_analysis(model, "vc")
     assert branch.parameter[-1] == pytest.approx(1100 * math.pi / 30, rel=1e-9)
+
+
+def test_the_periodic_static_start_uses_a_given_start():
+    _, system, f = _system_and_load()
+    K = system.matrices(100.0).K
+    centred, given = Stats(), Stats()
+    q, _ = static_start(system, K, f, 100.0, 0.0, centred)
+    again, _ = static_start(system, K, f, 100.0, 0.0, given, q)
+    assert given.iterations == 0 < centred.iterations  # Newton stops at once from there
+    assert again[1] == pytest.approx(q[1], rel=1e-12)
+
+
+def test_the_issue_reproduction_with_a_stub_shaft_starts():
+    # issue 12 as reported (before rotors without shaft existed): the rigid rotor on a
+    # massless, nearly stiffless stub element to a fixed node, tilt and axial motion free;
+    # the HB static start failed with a line-search failure at all 64 load steps
+    rotor, bearing = textbook()
+    ghost = rs.Material(name="ghost", E=1.0, G_s=0.4, rho=1e-9)
+    stub = rs.Rotor([rs.ShaftElement(L=0.01, idl=0.0, odl=0.01, material=ghost)],
+                    rotor.disk_elements, nonlinear_elements=rotor.nonlinear_elements,
+                    fixed=[(1, d) for d in rs.DOF_NAMES])
+    system = assemble(stub)
+    f = nodal_load(system, 0, "uy", -LOAD)
+    q, _ = static_start(system, system.matrices(100.0).K, f, 100.0, 0.0, Stats())
+    y = system.dofs_of(0, ("uy",))[0]
+    assert -q[y] == pytest.approx(hertz_deflection(bearing, LOAD), rel=1e-6)
+    res = rs.periodic(stub, start=100.0, stop=101.0, gravity=None, loads=[(0, "uy", -LOAD)],
+                      harmonics=3, max_points=3, stability=None, bifurcations=False)
+    assert len(res) >= 2
