@@ -139,6 +139,11 @@ def test_every_analysis_of_the_model_file_runs():
     static = run_analysis(model, "static")
     assert -static.displacement[1] == pytest.approx(
         hertz_deflection(model.rolling_bearings[0].bearing, LOAD), rel=1e-6)
+    # one ball in contact at the static load: k_y = 1.5 Kn (d - c)^0.5 (Hertz tangent)
+    bearing = model.rolling_bearings[0].bearing
+    k_y = 1.5 * bearing.Kn * (hertz_deflection(bearing, LOAD) - bearing.clearance) ** 0.5
+    wn = run_analysis(model, "modes").wn
+    assert wn == pytest.approx([math.sqrt(k_y / 1.0)], rel=1e-9)
     branch = run_analysis(model, "vc")
     assert branch.parameter[-1] == pytest.approx(1100 * math.pi / 30, rel=1e-9)
 
