@@ -175,3 +175,31 @@ def test_the_issue_reproduction_with_a_stub_shaft_starts():
     res = rs.periodic(stub, start=100.0, stop=101.0, gravity=None, loads=[(0, "uy", -LOAD)],
                       harmonics=3, max_points=3, stability=None, bifurcations=False)
     assert len(res) >= 2
+
+
+def hertz_stiffness(bearing: rs.BallBearing, load: float, phi: float) -> float:
+    """``dW/dd = sum_j 1.5 Kn (d cos psi_j - c)^0.5 cos^2 psi_j`` over the loaded balls
+    (load along -y, the deflection d of :func:`hertz_deflection`) [N/m]."""
+    d = hertz_deflection(bearing, load, phi)
+    psi = np.asarray(bearing.element_angles(phi), dtype=float).ravel() + 0.5 * math.pi
+    delta = d * np.cos(psi) - float(bearing.clearance)
+    on = delta > 0
+    return float(np.sum(1.5 * bearing.Kn * delta[on] ** 0.5 * np.cos(psi[on]) ** 2))
+
+
+def test_stiffness_over_a_ball_pass_of_the_textbook_bearing():
+    # the VC stiffness variation itself: the warm start from the previous position fails
+    # where a second ball comes into contact, and the ray guess or the energy method takes
+    # over (it raised ConvergenceError in `rotorsim bearing` before)
+    _, bearing = textbook()
+    v = rs.stiffness_over_pass(bearing, [0.0, -LOAD, 0.0, 0.0, 0.0], n_points=24)
+    assert v.stiffness[0, 1, 1] == pytest.approx(hertz_stiffness(bearing, LOAD, 0.0),
+                                                 rel=1e-6)
+    half = v.shaft_angle[12]  # half a ball pass: two balls at +-22.5 deg from the load
+    assert v.stiffness[12, 1, 1] == pytest.approx(hertz_stiffness(bearing, LOAD, half),
+                                                  rel=1e-6)
+    assert -v.displacement[12, 1] == pytest.approx(hertz_deflection(bearing, LOAD, half),
+                                                   rel=1e-6)
+    # the ring moves sideways symmetrically about the half pass (mirror image positions)
+    np.testing.assert_allclose(v.displacement[1:12, 0], -v.displacement[23:12:-1, 0],
+                               atol=1e-6 * 13e-6)
