@@ -269,7 +269,9 @@ def _static_step(result: StaticResult, geometry: _Geometry) -> _Step:
     shear, moment = result.shear_force, result.bending_moment
     axial, torque = result.axial_force, result.torque
     cell: dict[str, list[NDArray[Any]]] = {}
-    if shear is not None and moment is not None and axial is not None and torque is not None:
+    lines = bool(geometry.cells) and geometry.cells[0][0] == "line"  # none: a rigid rotor
+    if lines and shear is not None and moment is not None and axial is not None \
+            and torque is not None:
         n_lines = geometry.cells[0][1].shape[0]
         if shear.shape[0] != n_lines:
             raise ModelError(f"{shear.shape[0]} section forces for {n_lines} shaft elements",

@@ -185,3 +185,16 @@ def test_bad_starts_are_refused_by_name(case):
         rs.static(linear_rotor(), x0=x0)
     with pytest.raises(ModelError, match="periodic.x0: " + message):
         rs.periodic(rotor, start=100.0, stop=101.0, gravity=None, loads=LOAD, x0=x0)
+
+
+def test_vtk_export_of_a_rigid_rotor(tmp_path):
+    meshio = pytest.importorskip("meshio")
+    rotor = linear_rotor()
+    static_file = rs.export_vtk(rs.static(rotor), tmp_path / "static.vtu")[0]
+    mesh = meshio.read(static_file)
+    assert [c.type for c in mesh.cells] == ["vertex"]  # node 0, no shaft line
+    assert mesh.point_data["displacement"][0, 1] == pytest.approx(-9.80665 * M / KY,
+                                                                  rel=1e-12)
+    modal_files = rs.export_vtk(rs.modal(rotor, num_modes=2), tmp_path / "modes.vtu",
+                                rotor=rotor)
+    assert len(modal_files) >= 1 and all(p.exists() for p in modal_files)
