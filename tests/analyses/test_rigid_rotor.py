@@ -198,3 +198,17 @@ def test_vtk_export_of_a_rigid_rotor(tmp_path):
     modal_files = rs.export_vtk(rs.modal(rotor, num_modes=2), tmp_path / "modes.vtu",
                                 rotor=rotor)
     assert len(modal_files) >= 1 and all(p.exists() for p in modal_files)
+
+
+def test_a_rigid_rotor_model_file_round_trips(tmp_path):
+    from pathlib import Path
+
+    from rotorsim.assembly.system import assemble
+
+    model = rs.load_model(Path(__file__).resolve().parents[2] / "models" / "rigid_rotor_vc.toml")
+    again = rs.load_model(rs.save_model(model, tmp_path / "rigid.toml"))
+    assert again.rotor.shaft_elements == ()
+    assert repr(again.rolling_bearings) == repr(model.rolling_bearings)  # same parameters
+    a, b = assemble(again.rotor).matrices(), assemble(model.rotor).matrices()
+    for key in "MK":  # the same numbers written and read back
+        assert (getattr(a, key) - getattr(b, key)).count_nonzero() == 0
