@@ -9,7 +9,8 @@ chosen here (documented, not fitted):
 
 * rotor: ``m = 10 kg``, ``J_d = 0.05 kg m^2``, ``J_p = 0.08 kg m^2`` (a disk of about
   200 mm), modelled as one node with a rigid disk; a stub shaft element of negligible
-  stiffness and mass joins it to a fully fixed node (rotorsim rotors need a shaft element);
+  stiffness and mass joins it to a fully fixed node (written before rotors without shaft
+  elements existed; ``rs.Rotor([], [disk], ...)`` now gives the model without it);
   the axial and torsional motions, which no cylindrical roller restrains, are held
   (the seed's two multipliers at +1 belong to them);
 * bearing: NU205-like, 12 rollers of 7 mm x 7 mm on a 38.5 mm pitch diameter, no

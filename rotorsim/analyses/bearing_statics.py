@@ -235,7 +235,7 @@ def stiffness_over_pass(
         for k in range(n_points):
             setup = first if k == 0 else make_setup(bearing, load, psi[k:k + 1], load_stiffness,
                                                 max_displacement, first.held)
-            deltas[k], _ = solve_local(setup, method, x0, tol, max_iter, stats)
+            deltas[k] = _pass_point(setup, method, x0, tol, max_iter, stats)
             x0 = deltas[k]
         states = bearing.state(deltas, psi)
         load_arr = first.load
@@ -245,6 +245,28 @@ def stiffness_over_pass(
         max_element_load=states.element_load.max(axis=1), load=load_arr, held_dofs=held,
         options={"n_points": n_points, "method": method, "tol": tol},
         stats=stats.finish(), status=Status.OK, summary=bearing_summary(bearing))
+
+
+def _pass_point(setup: Any, method: str, x0: FloatArray | None, tol: float, max_iter: int,
+                stats: Stats) -> FloatArray:
+    """One position of :func:`stiffness_over_pass`, warm-started from the previous one; when
+    that fails, from the load-direction ray guess, then by the other local method (as
+    ``method="auto"`` of :func:`bearing_equilibrium`). With a clearance a ball entering or
+    leaving the contact zone moves the ring sideways between two positions (the textbook
+    varying-compliance case: one ball under the load has no lateral stiffness), and Newton
+    may find no useful tangent on the way."""
+    other = "energy" if method == "newton" else "newton"
+    tries = [(method, x0), (method, None), (other, None)] if x0 is not None \
+        else [(method, None), (other, None)]
+    failure = None
+    for name, start in tries:
+        try:
+            delta, _ = solve_local(setup, name, start, tol, max_iter, stats)
+            return np.asarray(delta, dtype=float)
+        except ConvergenceError as exc:
+            failure = exc
+    assert failure is not None
+    raise failure
 
 
 def linearized_bearings(bearings: Sequence[Any], loads: Sequence[ArrayLike], *,

@@ -2,8 +2,12 @@
 
 Newton's method on the whole system with the exact tangent ``K + P K_t P^T`` (``K_t`` the
 gathered element tangent on the nonlinear DOFs), a backtracking line search on the residual
-norm, and load stepping when a full-load Newton fails (the load is applied in fractions,
-each solution starting the next). Free rigid-body motions (e.g. torsion, or axial motion on
+norm. When a full-load Newton fails (typically a shaft that starts inside a bearing
+clearance, where the tangent is singular or nearly so), the minimum of the total potential
+energy (:func:`rotorsim.analyses.rotor_energy.energy_equilibrium`, a trust-region method
+that needs no line search) is sought from the same start and polished by Newton; if an
+element has no energy or that fails too, the load is applied in fractions (load stepping),
+each solution starting the next. Free rigid-body motions (e.g. torsion, or axial motion on
 cylindrical roller bearings) are held at their starting value.
 """
 
@@ -14,13 +18,19 @@ from dataclasses import dataclass
 
 import numpy as np
 import scipy.sparse as sp
-from numpy.typing import NDArray
+from numpy.typing import ArrayLike, NDArray
 
 from rotorsim.assembly.system import RotorSystem
 from rotorsim.elements.base import FloatArray
 from rotorsim.errors import ConvergenceError, ModelError
 from rotorsim.solvers.linear import Factorization, factorize
 from rotorsim.solvers.stats import Stats
+
+POLISH_SHIFT = 1e-6
+"""Newton's polish of an energy minimum adds this multiple of the nominal tangent to the
+tangent: a motion that no loaded contact resists (a rigid rotor rocking about its one loaded
+ball) then takes bounded steps, while the other directions converge as before (the shift
+changes each step by about 1e-6 relative, not the solution)."""
 
 
 @dataclass(frozen=True, eq=False)
@@ -31,6 +41,9 @@ class NonlinearEquilibrium:
     iterations: int
     residual: float
     load_steps: int
+    method: str = "newton"
+    """``"newton"`` (full load), ``"energy"`` (energy minimum polished by Newton) or
+    ``"load steps"``."""
 
 
 def nonlinear_equilibrium(system: RotorSystem, f: FloatArray, *, speed: float = 0.0,
@@ -88,6 +101,9 @@ def nonlinear_equilibrium(system: RotorSystem, f: FloatArray, *, speed: float = 
         return NonlinearEquilibrium(q, it, res, 1)
     except ConvergenceError as first:
         failure = first
+    found = _energy_equilibrium(system, solver, f, q, held)
+    if found is not None:
+        return found
     steps = 2
     while steps <= max_load_steps:
         try:
@@ -95,13 +111,64 @@ def nonlinear_equilibrium(system: RotorSystem, f: FloatArray, *, speed: float = 
             for j in range(1, steps + 1):
                 qs, it, res = solver.solve(qs, f * (j / steps))
                 total += it
-            return NonlinearEquilibrium(qs, total, res, steps)
+            return NonlinearEquilibrium(qs, total, res, steps, "load steps")
         except ConvergenceError as exc:
             failure = exc
             steps *= 2
     raise ConvergenceError(f"static equilibrium failed even with {max_load_steps} load "
                            f"steps: {failure}", "nonlinear static",
                            iteration=max_iter, residual=failure.residual)
+
+
+def _energy_equilibrium(system: RotorSystem, solver: _Newton, f: FloatArray, q: FloatArray,
+                        held: Sequence[int]) -> NonlinearEquilibrium | None:
+    """Minimum of the potential energy from ``q``, polished by Newton; None when an element
+    has no energy or either step fails (the caller then steps the load)."""
+    from rotorsim.analyses.rotor_energy import energy_equilibrium
+
+    if solver.nominal is None:
+        solver.nominal = sp.csr_matrix(nominal_tangent(system))[solver.keep][:, solver.keep]
+    try:
+        eq = energy_equilibrium(system, f, speed=solver.speed, phi=solver.phi, q0=q, held=held)
+        solver.shift = POLISH_SHIFT
+        polished, it, res = solver.solve(eq.q, f)
+    except (ModelError, ConvergenceError):
+        return None
+    finally:
+        solver.shift = 0.0
+    solver.stats.iterations += eq.iterations
+    return NonlinearEquilibrium(polished, eq.iterations + it, res, 1, "energy")
+
+
+def start_point(system: RotorSystem, x0: ArrayLike, where: str) -> FloatArray:
+    """A user's starting displacement on all DOFs (``(ndof,)`` [m, rad], e.g. a
+    ``StaticResult.displacement``) as a vector on the free DOFs.
+
+    Raises
+    ------
+    ModelError
+        Not ``ndof`` finite numbers, or a nonzero value on a fixed (or unconnected) DOF.
+    """
+    ndof = system.dof_map.ndof
+    try:
+        x = np.asarray(x0, dtype=float)
+    except (TypeError, ValueError):
+        raise ModelError(f"must be an array of {ndof} numbers (all DOFs) [m, rad], got "
+                         f"{type(x0).__name__}", where) from None
+    if x.shape != (ndof,):
+        raise ModelError(f"must have shape ({ndof},) (all DOFs of the rotor), got shape "
+                         f"{x.shape}", where)
+    bad = np.flatnonzero(~np.isfinite(x))
+    names = system.dof_map.names()
+    if bad.size:
+        raise ModelError(f"must be finite; DOF {names[bad[0]]} is {x[bad[0]]}", where)
+    free = system.dof_map.free
+    held = np.setdiff1d(np.arange(ndof), free)
+    moved = held[x[held] != 0.0]
+    if moved.size:
+        raise ModelError(f"is {x[moved[0]]:.6g} on DOF {names[moved[0]]}, which is fixed "
+                         "(or connected to nothing); it must be 0 there", where)
+    return np.array(x[free])
 
 
 class _Newton:
@@ -113,6 +180,7 @@ class _Newton:
         self.nl, self.K, self.speed, self.phi = system.nonlinear, K, speed, phi
         self.keep, self.tol, self.max_iter, self.stats = keep, tol, max_iter, stats
         self.nominal = None if nominal is None else sp.csr_matrix(nominal)[keep][:, keep]
+        self.shift = 0.0  # multiple of the nominal tangent added to every tangent
 
     def residual(self, q: FloatArray, f: FloatArray) -> tuple[FloatArray, FloatArray, float]:
         nl = self.nl
@@ -143,6 +211,8 @@ class _Newton:
     def _factors(self, kt: FloatArray, it: int, norm: float) -> Factorization:
         """LU of the tangent, regularised by the nominal tangent when singular."""
         J = self._tangent(kt)
+        if self.shift and self.nominal is not None:
+            J = J + self.shift * self.nominal
         try:
             return factorize(J, stats=self.stats, where="nonlinear static")
         except ConvergenceError as exc:

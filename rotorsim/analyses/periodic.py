@@ -41,8 +41,9 @@ from collections.abc import Sequence
 from typing import Any
 
 import numpy as np
-from numpy.typing import ArrayLike
+from numpy.typing import ArrayLike, NDArray
 
+from rotorsim.analyses.nonlinear_static import start_point
 from rotorsim.analyses.periodic_branch import Stepping, trace_branch
 from rotorsim.analyses.periodic_events import floquet_events
 from rotorsim.analyses.periodic_excitation import ExcitationPlan, HarmonicBase, plan_excitation
@@ -61,6 +62,7 @@ from rotorsim.analyses.periodic_stability import (
     check_options,
     stability_model,
 )
+from rotorsim.analyses.transient_start import rolling_start
 from rotorsim.assembly.loads import STANDARD_GRAVITY
 from rotorsim.assembly.system import RotorSystem, assemble
 from rotorsim.elements.base import NonlinearElement
@@ -110,6 +112,7 @@ def periodic(
     resume: str | os.PathLike[str] | None = None,
     progress: bool = False,
     fold_map: bool | ParameterMap = False,
+    x0: ArrayLike | None = None,
 ) -> PeriodicResult:
     """Branch of periodic responses from ``start`` to ``stop`` (module docstring).
 
@@ -178,6 +181,12 @@ def periodic(
         (``options["fold_map"]`` lists, per fold, the fold parameter against the forcing
         fraction from 1 down to the cusp); a :class:`~.periodic_folds.ParameterMap` in a
         model parameter of the nonlinear elements (e.g. the clearance; key ``"mu"``).
+    x0 : array (ndof,), optional
+        Starting displacement of the static start on all DOFs [m, rad] (e.g. a
+        ``StaticResult.displacement``), as ``x0`` of :func:`~rotorsim.analyses.static.static`.
+        Default: the rolling-bearing statics of ``static`` (robust from the centred position
+        inside a clearance), or the centred start for other nonlinear elements; Newton's
+        method then falls back to the energy minimum when it fails.
 
     Returns
     -------
@@ -212,10 +221,13 @@ def periodic(
                            varying_compliance=varying_compliance, fundamental=fundamental,
                            frequency_parameter=frequency)
     stats = Stats()
+    q0 = start_point(system, x0, f"{WHERE}.x0") if x0 is not None else _static_guess(
+        model, nonlinear, system, gravity, direction, loads,
+        float(speed) if frequency and speed is not None else float(start), float(shaft_angle))
     rp = build_problem(system, plan, speed0=float(start),
                        fixed_speed=speed if frequency else None, phi0=float(shaft_angle),
                        unbalance=list(unbalance), gravity=gravity, direction=direction,
-                       loads=list(loads), base=base, stats=stats)
+                       loads=list(loads), base=base, stats=stats, x0=q0)
     residual = make_residual(rp.problem, harmonics, samples=samples,
                              condense=condense and rp.problem.k > 0)
     recovery = Recovery(residual, *kept_dofs(system, rp, nodes))
@@ -272,6 +284,20 @@ def _system(model: Any, nonlinear: Sequence[NonlinearElement]) -> RotorSystem:
         raise ModelError(f"expected a Rotor, RotorSystem or Model, got "
                          f"{type(model).__name__}", WHERE)
     return assemble(model, nonlinear=tuple(nonlinear))
+
+
+def _static_guess(model: Any, nonlinear: Sequence[NonlinearElement], system: RotorSystem,
+                  gravity: float | None, direction: ArrayLike,
+                  loads: Sequence[tuple[int, str, float]], speed: float, phi: float
+                  ) -> NDArray[np.float64] | None:
+    """Start of the static Newton iteration from the robust rolling-bearing statics (as the
+    transient's static start), or None (an assembled system, other nonlinear elements, or
+    that solve fails): the centred start inside a clearance may have no useful tangent."""
+    if not isinstance(model, Rotor) and hasattr(model, "rotor"):
+        model = model.rotor.with_nonlinear(tuple(getattr(model, "rolling_bearings", ())))
+    if not isinstance(model, Rotor) or system.nonlinear is None:
+        return None
+    return rolling_start(model, nonlinear, system, gravity, direction, list(loads), speed, phi)
 
 
 def _check_parameter(parameter: str, start: float, stop: float,
@@ -360,6 +386,7 @@ def _describe(arguments: dict[str, Any]) -> dict[str, Any]:
         "stability": a["stability"], "stability_modes": a["stability_modes"],
         "bifurcations": bool(a["bifurcations"]),
         "nodes": None if a["nodes"] is None else [int(n) for n in a["nodes"]],
+        "x0_given": a["x0"] is not None,
     }
 
 

@@ -170,10 +170,12 @@ def build_problem(system: RotorSystem, plan: ExcitationPlan, *, speed0: float,
                   unbalance: Sequence[tuple[int, float, float]], gravity: float | None,
                   direction: Any, loads: Sequence[tuple[int, str, float]],
                   base: HarmonicBase | None, stats: Stats,
-                  held: IntArray | None = None) -> RotorPeriodicProblem:
+                  held: IntArray | None = None, x0: FloatArray | None = None
+                  ) -> RotorPeriodicProblem:
     """Assemble the periodic problem of ``system`` (module docstring) and its static start
-    at the speed ``speed0`` [rad/s] and shaft angle ``phi0`` [rad]; with ``held`` given the
-    static solve is skipped (``static`` zero) and those free DOFs are held."""
+    at the speed ``speed0`` [rad/s] and shaft angle ``phi0`` [rad], its Newton iteration
+    started from ``x0`` (n_free,) when given; with ``held`` given the static solve is
+    skipped (``static`` zero) and those free DOFs are held."""
     if system.variable_bearings and fixed_speed is None:
         tags = [b.label for _, b in system.variable_bearings]
         raise ModelError(f"speed-dependent linear bearings {tags} need a fixed speed: use "
@@ -186,7 +188,7 @@ def build_problem(system: RotorSystem, plan: ExcitationPlan, *, speed0: float,
     for i, (node, dof, value) in enumerate(loads):
         f_const += nodal_load(system, int(node), str(dof), float(value), where=f"loads[{i}]")
     if held is None:
-        static, held = static_start(system, mats.K, f_const, W, phi0, stats)
+        static, held = static_start(system, mats.K, f_const, W, phi0, stats, x0)
     else:
         static = np.zeros(system.n_free)
     active = np.setdiff1d(np.arange(system.n_free), held).astype(np.int64)
@@ -238,9 +240,10 @@ def _uses_speed(element: Any) -> bool:
 
 
 def static_start(system: RotorSystem, K: Any, f: FloatArray, speed: float, phi: float,
-                 stats: Stats) -> tuple[FloatArray, IntArray]:
+                 stats: Stats, x0: FloatArray | None = None) -> tuple[FloatArray, IntArray]:
     """Static equilibrium ``K q + r(q) = f`` (n_free,) and the held free DOFs, one per free
-    rigid motion of ``K`` plus the nominal bearing tangent."""
+    rigid motion of ``K`` plus the nominal bearing tangent; the nonlinear solve starts from
+    ``x0`` (n_free,) when given (:func:`~rotorsim.analyses.nonlinear_static.start_point`)."""
     if system.nonlinear is None:
         rigid = free_rigid_motions(system, sp.csr_matrix(K))
         held = np.asarray(held_dofs(rigid), dtype=np.int64)
@@ -253,6 +256,6 @@ def static_start(system: RotorSystem, K: Any, f: FloatArray, speed: float, phi: 
     nominal = nominal_tangent(system)
     rigid = free_rigid_motions(system, sp.csr_matrix(K + nominal))
     held = np.asarray(held_dofs(rigid), dtype=np.int64)
-    eq = nonlinear_equilibrium(system, f, speed=speed, phi=phi, held=held.tolist(),
+    eq = nonlinear_equilibrium(system, f, speed=speed, phi=phi, q0=x0, held=held.tolist(),
                                nominal=nominal, stats=stats)
     return eq.q, held

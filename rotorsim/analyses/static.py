@@ -51,6 +51,7 @@ def static(
     speed: float = 0.0,
     rigid_tol: float = 1e-10,
     method: str = "newton",
+    x0: ArrayLike | None = None,
 ) -> StaticResult:
     """Linear static deflection, bearing reactions and shaft internal forces.
 
@@ -88,6 +89,12 @@ def static(
         minimisation of the total potential energy of the rotor and its bearings
         (:mod:`rotorsim.analyses.rotor_energy`, seed 000 for the whole rotor). Both give
         the same equilibrium; ``options`` record the method (and the energy).
+    x0 : array (ndof,), optional
+        Starting displacement of the nonlinear solve on all DOFs [m, rad] (e.g. the
+        ``displacement`` of an earlier result; zero on fixed DOFs). Newton's method then
+        starts there (falling back to the energy minimum, then to load steps, when it
+        fails), or the energy minimisation does. A linear rotor has a unique solution and
+        only checks it.
 
     Returns
     -------
@@ -101,7 +108,8 @@ def static(
     Raises
     ------
     ModelError
-        If the load cannot be equilibrated (e.g. no bearings) or an input is invalid.
+        If the load cannot be equilibrated (e.g. no bearings) or an input is invalid
+        (``x0`` not ``ndof`` finite numbers, or nonzero on a fixed DOF).
 
     Examples
     --------
@@ -123,11 +131,22 @@ def static(
     if method not in ("newton", "energy"):
         raise ModelError(f"method must be 'newton' or 'energy', got {method!r}", "static")
     if isinstance(rotor, Rotor) and rotor.nonlinear_elements:
-        from rotorsim.analyses.static_nonlinear import energy_static, newton_static
+        from rotorsim.analyses.static_nonlinear import (
+            energy_static,
+            newton_static,
+            started_static,
+        )
 
-        solve = energy_static if method == "energy" else newton_static
-        return solve(rotor, gravity, direction, loads, float(speed))
+        if method == "energy":
+            return energy_static(rotor, gravity, direction, loads, float(speed), x0)
+        if x0 is not None:
+            return started_static(rotor, gravity, direction, loads, float(speed), x0)
+        return newton_static(rotor, gravity, direction, loads, float(speed))
     system = as_system(rotor)
+    if x0 is not None:
+        from rotorsim.analyses.nonlinear_static import start_point
+
+        start_point(system, x0, "static.x0")
     model = rotor if isinstance(rotor, Rotor) else None
     g = 0.0 if gravity is None else float(gravity)
     if not np.isfinite(g):
@@ -327,15 +346,7 @@ def _post_process(model: Rotor, q: FloatArray, f_all: FloatArray, g: float,
                   unit: FloatArray, speed: float) -> dict[str, Any]:
     """Bearing reactions, constraint reactions and shaft section forces from the elements."""
     internal = np.zeros(model.ndof)  # K_full q assembled element by element
-    shaft = model.shaft_elements
-    mats = shaft_matrices(shaft)
-    nodes = np.array([el.nodes for el in shaft])
-    dofs = (DOFS_PER_NODE * nodes[:, :, None] + np.arange(DOFS_PER_NODE)).reshape(len(shaft), -1)
-    end_forces = np.einsum("eij,ej->ei", mats.K, q[dofs])
-    np.add.at(internal, dofs, end_forces)
-    if g != 0.0:
-        end_forces = end_forces - consistent_gravity(mats.M, g, unit)
-    sections = np.stack([-end_forces[:, :6], end_forces[:, 6:]], axis=1)  # (E, 2, 6)
+    sections, z = _shaft_sections(model, q, g, unit, internal)
     b_nodes, b_forces = [], []
     for b in model.bearing_elements:
         bdofs = (DOFS_PER_NODE * np.asarray(b.nodes)[:, None] + np.arange(6)).ravel()
@@ -344,7 +355,6 @@ def _post_process(model: Rotor, q: FloatArray, f_all: FloatArray, g: float,
         b_nodes.append(b.n)
         b_forces.append(-force[:6])
     reactions = np.array(b_forces).reshape(-1, 6)
-    z = model.nodes_pos[nodes]
     return {
         "bearing_nodes": np.array(b_nodes, dtype=np.int64),
         "bearing_forces": reactions[:, :3], "bearing_moments": reactions[:, 3:],
@@ -353,3 +363,22 @@ def _post_process(model: Rotor, q: FloatArray, f_all: FloatArray, g: float,
         "bending_moment": sections[..., 3:5], "torque": sections[..., 5],
     }
 
+
+
+def _shaft_sections(model: Rotor, q: FloatArray, g: float, unit: FloatArray,
+                    internal: FloatArray) -> tuple[FloatArray, FloatArray]:
+    """Section forces ``(E, 2, 6)`` at both ends of every shaft element and their axial
+    positions ``(E, 2)`` [m]; adds the elements' ``K q`` to ``internal``. A rigid rotor
+    (no shaft element) has none: arrays of length 0."""
+    shaft = model.shaft_elements
+    if not shaft:
+        return np.zeros((0, 2, DOFS_PER_NODE)), np.zeros((0, 2))
+    mats = shaft_matrices(shaft)
+    nodes = np.array([el.nodes for el in shaft])
+    dofs = (DOFS_PER_NODE * nodes[:, :, None] + np.arange(DOFS_PER_NODE)).reshape(len(shaft), -1)
+    end_forces = np.einsum("eij,ej->ei", mats.K, q[dofs])
+    np.add.at(internal, dofs, end_forces)
+    if g != 0.0:
+        end_forces = end_forces - consistent_gravity(mats.M, g, unit)
+    sections = np.stack([-end_forces[:, :6], end_forces[:, 6:]], axis=1)
+    return sections, model.nodes_pos[nodes]

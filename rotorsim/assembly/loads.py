@@ -151,7 +151,7 @@ def gravity_load_all_dofs(
     shaft = rotor.shaft_elements
     groups: list[tuple[NDArray[np.int64], FloatArray]] = [
         (np.array([el.nodes for el in shaft]), shaft_matrices(shaft).M)
-    ]
+    ] if shaft else []  # a rigid rotor has none
     for kind in (rotor.disk_elements, rotor.point_mass_elements):
         if kind:
             groups.append((np.array([el.nodes for el in kind]),

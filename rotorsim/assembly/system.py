@@ -148,8 +148,9 @@ def _assemble(rotor: Rotor, fixed: list[int]) -> RotorSystem:
     groups: list[tuple[NDArray[np.int64], ElementMatrices]] = []
 
     shaft = rotor.shaft_elements
-    shaft_nodes = np.array([el.nodes for el in shaft], dtype=np.int64)
-    groups.append((_element_dofs(shaft_nodes), shaft_matrices(shaft)))
+    if shaft:  # none in a rigid rotor (a disk or point mass on its bearings)
+        shaft_nodes = np.array([el.nodes for el in shaft], dtype=np.int64)
+        groups.append((_element_dofs(shaft_nodes), shaft_matrices(shaft)))
     for kind in (rotor.disk_elements, rotor.point_mass_elements):
         if kind:
             nodes = np.array([el.nodes for el in kind], dtype=np.int64)

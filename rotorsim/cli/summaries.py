@@ -116,7 +116,7 @@ def static_summary(result: Any) -> str:
                                            strict=True)]
         lines.append(table(rows, ("bearing node", "Fx [N]", "Fy [N]", "Fz [N]")))
     moment = result.bending_moment_magnitude
-    if moment is not None:
+    if moment is not None and np.size(moment):  # a rigid rotor has no shaft sections
         lines.append(f"max bending moment {np.max(moment):.2f} N m")
     return "\n".join(lines)
 

@@ -279,7 +279,7 @@ class ModelTable(Table):
 
     model: ModelInfo = ModelInfo()
     materials: list[MaterialTable] = Field(default_factory=list)
-    shaft: Annotated[list[ShaftSegment], Field(min_length=1)]
+    shaft: list[ShaftSegment] = Field(default_factory=list)  # none: a rigid rotor at node 0
     disks: list[DiskTable] = Field(default_factory=list)
     bearings: list[BearingTable] = Field(default_factory=list)
     rolling_bearings: list[Any] = Field(default_factory=list)

@@ -174,9 +174,10 @@ def _geometry(result: object, rotor: Rotor | None) -> _Geometry:
     points = np.zeros((n_nodes, 3))
     points[:, 2] = z
     starts = np.arange(n_shaft - 1, dtype=np.int64)
-    cells = [("line", np.column_stack([starts, starts + 1]))]
-    if n_nodes > n_shaft:
-        cells.append(("vertex", np.arange(n_shaft, n_nodes, dtype=np.int64)[:, None]))
+    cells = [("line", np.column_stack([starts, starts + 1]))] if starts.size else []
+    first_vertex = n_shaft if starts.size else 0  # a rigid rotor's node 0 is a vertex
+    if n_nodes > first_vertex:
+        cells.append(("vertex", np.arange(first_vertex, n_nodes, dtype=np.int64)[:, None]))
     data: dict[str, NDArray[Any]] = {"node": np.arange(n_nodes, dtype=np.int64)}
     if rotor is not None:
         data["radius"] = _outer_radius(rotor)
@@ -190,14 +191,14 @@ def _shaft_nodes(result: Any, rotor: Rotor | None, n_nodes: int) -> int:
     if elements is None:
         raise ModelError("result.summary has no 'shaft_elements': pass rotor=", _WHERE)
     n_shaft = int(elements) + 1
-    if not 2 <= n_shaft <= n_nodes:
+    if not 1 <= n_shaft <= n_nodes:
         raise ModelError(f"{n_shaft} shaft nodes do not fit {n_nodes} nodes", _WHERE)
     return n_shaft
 
 
 def _outer_radius(rotor: Rotor) -> FloatArray:
     """Largest outer radius of the shaft elements meeting at each node; 0 off the shaft."""
-    od = np.array([(el.odl, el.odr) for el in rotor.shaft_elements], dtype=float)
+    od = np.array([(el.odl, el.odr) for el in rotor.shaft_elements], dtype=float).reshape(-1, 2)
     radius = np.zeros(rotor.n_nodes)
     n_el = od.shape[0]
     radius[:n_el] = od[:, 0] / 2.0
@@ -272,7 +273,9 @@ def _static_step(result: StaticResult, geometry: _Geometry) -> _Step:
     shear, moment = result.shear_force, result.bending_moment
     axial, torque = result.axial_force, result.torque
     cell: dict[str, list[NDArray[Any]]] = {}
-    if shear is not None and moment is not None and axial is not None and torque is not None:
+    lines = bool(geometry.cells) and geometry.cells[0][0] == "line"  # none: a rigid rotor
+    if lines and shear is not None and moment is not None and axial is not None \
+            and torque is not None:
         n_lines = geometry.cells[0][1].shape[0]
         if shear.shape[0] != n_lines:
             raise ModelError(f"{shear.shape[0]} section forces for {n_lines} shaft elements",

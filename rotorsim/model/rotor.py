@@ -28,6 +28,8 @@ class Rotor:
     Parameters
     ----------
     shaft_elements : sequence of ShaftElement
+        May be empty: the rotor is then rigid, a disk or point mass at node 0 (``z = 0``)
+        on its bearings, the classic model of the bearing literature.
     disk_elements : sequence of DiskElement, optional
     bearing_elements : sequence of BearingElement, optional
     point_mass_elements : sequence of PointMass, optional
@@ -52,6 +54,10 @@ class Rotor:
     ...               [BearingElement(n=0, kxx=1e6), BearingElement(n=4, kxx=1e6)])
     >>> rotor.n_nodes, rotor.ndof
     (5, 30)
+    >>> rigid = Rotor([], [DiskElement(n=0, m=1.0, Id=1e-3, Ip=2e-3)],
+    ...               [BearingElement(n=0, kxx=1e6)])
+    >>> rigid.n_nodes, rigid.length
+    (1, 0.0)
     """
 
     shaft_elements: Sequence[ShaftElement]
@@ -65,9 +71,11 @@ class Rotor:
     n_nodes: int = field(init=False)
 
     def __post_init__(self) -> None:
+        if isinstance(self.shaft_elements, str) or not isinstance(self.shaft_elements,
+                                                                   Iterable):
+            raise ModelError("give a sequence of ShaftElement (may be empty: a rigid rotor "
+                             "or point mass at node 0)", f"Rotor '{self.tag}'")
         shaft = tuple(self.shaft_elements)
-        if not shaft:
-            raise ModelError("a rotor needs at least one shaft element", f"Rotor '{self.tag}'")
         numbered = []
         for i, el in enumerate(shaft):
             if not isinstance(el, ShaftElement):

@@ -64,9 +64,9 @@ def rotor_layout_figure(rotor: Any, ax: Any = None, *, node_labels: bool = True)
                         color="0.3")
     ax.axhline(0.0, color="k", lw=0.5, ls="-.")
     span = z[: rotor.n_shaft_nodes]
-    margin = 0.05 * (span.max() - span.min() or 1.0)
-    ax.set_xlim(span.min() - margin, span.max() + margin)
     extent = radius * 1.6 + size * 2.5
+    margin = 0.05 * (span.max() - span.min()) or extent  # a rigid rotor: a square view
+    ax.set_xlim(span.min() - margin, span.max() + margin)
     ax.set_ylim(-extent, extent)
     ax.set_aspect("equal", adjustable="box")
     ax.set_xlabel("z [mm]")
