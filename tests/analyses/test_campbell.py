@@ -120,7 +120,7 @@ def test_friswell_591_frequencies_at_4000_rpm() -> None:
     assert c.stats["eigen_solves"] == 21
 
 
-@pytest.mark.validation
+@pytest.mark.verification
 def test_grid_critical_speeds_match_exact_ones() -> None:
     rotor = friswell_591()
     c = campbell(rotor, np.linspace(0.0, 1200.0, 121), num_modes=10)

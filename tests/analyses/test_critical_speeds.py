@@ -151,7 +151,7 @@ def test_map_of_one_bearing_leaves_the_other() -> None:
     assert res.bearings.tolist() == [1]
 
 
-@pytest.mark.validation
+@pytest.mark.verification
 def test_speed_dependent_bearing_intersections() -> None:
     freq = np.array([0.0, 200.0, 400.0, 800.0])
     k = np.array([2e5, 1e6, 4e6, 1e7])

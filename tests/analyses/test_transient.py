@@ -31,7 +31,7 @@ def _rolling_model():
     return load_model("models/rolling_ball.toml")
 
 
-@pytest.mark.validation
+@pytest.mark.verification
 def test_linear_steady_state_matches_unbalance_response():
     """Issue 6: amplitude and phase within 0.5 % of the frequency-domain solution."""
     rotor, W, unb = _rotor(), 400.0, [(3, 2e-4, 0.7)]
