@@ -10,8 +10,8 @@ import sys
 from pathlib import Path
 
 import numpy as np
-import scipy.linalg
 import pytest
+import scipy.linalg
 
 from rotorsim.assembly.system import assemble
 from rotorsim.errors import Status
