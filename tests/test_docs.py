@@ -4,6 +4,13 @@
   blocks whose first line is ``# <file>.toml`` are written to that file, ``rotorsim ...``
   lines of bash blocks run through the CLI entry point (exit code 0), python blocks run in
   one namespace. ``docs/analyses.md`` python blocks run the same way.
+* The values those pages document are what the code prints: a top-level ``print(...)``
+  whose line ends in a comment (or is followed by comment lines) must print that comment's
+  text, and a ``text`` block whose first line appears in the output of the page's
+  ``rotorsim`` commands must be that output, line for line. Words and layout must match
+  (whitespace aside); numbers match to one unit of their last printed digit (a printed,
+  rounded value may flip at a rounding boundary when the BLAS kernel changes its last
+  bits), integers exactly.
 * Every ``rotorsim ...`` command of ``docs/cli.md`` runs (with ``--fast --no-plots`` added,
   so the whole page takes seconds) and exits with 0.
 * Every ``usage: rotorsim ...`` block of ``docs/cli.md`` has the words of the current
@@ -17,14 +24,17 @@ from __future__ import annotations
 
 import argparse
 import ast
+import contextlib
 import dataclasses
 import enum
 import inspect
+import io
 import math
 import re
 import shlex
 import subprocess
 import sys
+import tokenize
 from pathlib import Path
 from typing import Any
 
@@ -63,25 +73,127 @@ def workdir(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> Path:
     return tmp_path
 
 
-def run_page(page: str, workdir: Path) -> dict[str, Any]:
-    """Execute the TOML, bash (``rotorsim`` lines) and python blocks of a page in order."""
+NUMBER = re.compile(r"[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?")
+
+
+def _shape(text: str) -> str:
+    """The words and punctuation of ``text``, numbers replaced by ``#``, no whitespace."""
+    return re.sub(r"\s+", "", NUMBER.sub("#", text))
+
+
+def _unit(number: str) -> float:
+    """One unit of the last printed digit of ``number`` (0 for an integer: exact)."""
+    mantissa, _, exponent = number.lower().partition("e")
+    if "." not in mantissa:
+        return 0.0
+    decimals = len(mantissa.split(".")[1])
+    return 10.0 ** (-decimals) * 10.0 ** int(exponent or 0)
+
+
+def assert_prints(actual: str, documented: str, where: str, whole: bool = False) -> None:
+    """``actual`` output reads as ``documented`` (a prefix of it unless ``whole``): same
+    words, numbers within one unit of the documented last digit."""
+    got, want = _shape(actual), _shape(documented)
+    same = got == want if whole else want.startswith(got)
+    assert got and same, f"{where}: prints {actual!r}, the page says {documented!r}"
+    for a, d in zip(NUMBER.findall(actual), NUMBER.findall(documented), strict=False):
+        assert abs(float(a) - float(d)) <= _unit(d) + 1e-12 * abs(float(d)), \
+            f"{where}: prints {a} where the page says {d} ({actual!r})"
+
+
+def _comments(code: str) -> dict[int, str]:
+    """``{line: comment text}`` of the comments of a python block (1-based lines)."""
+    tokens = tokenize.generate_tokens(io.StringIO(code).readline)
+    return {t.start[0]: t.string[1:].strip() for t in tokens if t.type == tokenize.COMMENT}
+
+
+def _documented_output(code: str, stmt: ast.stmt) -> str | None:
+    """The output a page documents for a top-level ``print(...)``: the comment ending its
+    last line, else the comment-only lines right below it; None if there is none."""
+    call = stmt.value if isinstance(stmt, ast.Expr) else None
+    if not (isinstance(call, ast.Call) and isinstance(call.func, ast.Name)
+            and call.func.id == "print"):
+        return None
+    comments, lines = _comments(code), code.splitlines()
+    end = stmt.end_lineno or stmt.lineno
+    if end in comments:
+        return comments[end]
+    below = []
+    for number in range(end + 1, len(lines) + 1):
+        if not lines[number - 1].lstrip().startswith("#"):
+            break
+        below.append(comments[number])
+    return "\n".join(below) or None
+
+
+def run_python(code: str, namespace: dict[str, Any], where: str) -> int:
+    """Execute a python block statement by statement; check documented prints. Returns
+    the number of prints checked."""
+    checked = 0
+    for stmt in ast.parse(code).body:
+        out = io.StringIO()
+        with contextlib.redirect_stdout(out):
+            exec(compile(ast.Module([stmt], []), where, "exec"), namespace)
+        documented = _documented_output(code, stmt)
+        if documented is not None:
+            assert_prints(out.getvalue().strip(), documented, f"{where} line {stmt.lineno}")
+            checked += 1
+    return checked
+
+
+def check_text_block(code: str, output: str, where: str) -> bool:
+    """If the first line of a ``text`` block is a line of ``output``, the block must be
+    the output from there on, line for line. Returns whether it was compared."""
+    doc_lines = [line for line in code.splitlines() if line.strip()]
+    out_lines = [line for line in output.splitlines() if line.strip()]
+    starts = [i for i, line in enumerate(out_lines) if line.strip() == doc_lines[0].strip()]
+    if not starts:
+        return False
+    got = out_lines[starts[0]: starts[0] + len(doc_lines)]
+    assert len(got) == len(doc_lines), f"{where}: the output ends early"
+    for a, d in zip(got, doc_lines, strict=True):
+        assert_prints(a, d, where, whole=True)
+    return True
+
+
+@dataclasses.dataclass
+class PageRun:
+    namespace: dict[str, Any]
+    prints_checked: int
+    outputs_checked: int
+
+
+def run_page(page: str, workdir: Path) -> PageRun:
+    """Execute the TOML, bash (``rotorsim`` lines) and python blocks of a page in order,
+    checking the values the page documents (module docstring)."""
     import matplotlib.pyplot as plt
 
-    namespace: dict[str, Any] = {"__name__": f"docs_{Path(page).stem}"}
+    run = PageRun({"__name__": f"docs_{Path(page).stem}"}, 0, 0)
+    cli_output = ""
     for i, (lang, code) in enumerate(fenced_blocks(page)):
+        where = f"{page} block {i}"
         if lang == "toml" and code.startswith("# ") and code.split("\n", 1)[0].endswith(".toml"):
             (workdir / code.split("\n", 1)[0][2:].strip()).write_text(code)
         elif lang == "bash":
             for args in cli_lines(code):
-                assert main(args) == 0, f"{page} block {i}: rotorsim {shlex.join(args)}"
+                out = io.StringIO()
+                with contextlib.redirect_stdout(out):
+                    code_ = main(args)
+                assert code_ == 0, f"{where}: rotorsim {shlex.join(args)}"
+                cli_output += out.getvalue()
         elif lang == "python":
-            exec(compile(code, f"{page} block {i}", "exec"), namespace)
+            run.prints_checked += run_python(code, run.namespace, where)
+        elif lang == "text" and cli_output:
+            run.outputs_checked += check_text_block(code, cli_output, where)
     plt.close("all")
-    return namespace
+    return run
 
 
 def test_getting_started_runs(workdir: Path) -> None:
-    ns = run_page("getting_started.md", workdir)
+    run = run_page("getting_started.md", workdir)
+    ns = run.namespace
+    # the documented values are checked, and none of these checks went missing
+    assert run.prints_checked >= 12 and run.outputs_checked >= 1
     # the page loads what `rotorsim run first.toml` wrote and saves its own Campbell diagram
     assert (workdir / "results" / "first" / "campbell.h5").is_file()
     assert (workdir / "results" / "first" / "campbell.png").stat().st_size > 5000
@@ -90,8 +202,9 @@ def test_getting_started_runs(workdir: Path) -> None:
 
 
 def test_analyses_examples_run(workdir: Path) -> None:
-    ns = run_page("analyses.md", workdir)
-    assert type(ns["stat"]).__name__ == "StaticResult"
+    run = run_page("analyses.md", workdir)
+    assert type(run.namespace["stat"]).__name__ == "StaticResult"
+    assert run.prints_checked >= 15
 
 
 def test_cli_examples_run(workdir: Path) -> None:

@@ -14,7 +14,7 @@ if str(ROOT) not in sys.path:
 from examples import seed001_rotating_basement as example  # noqa: E402
 
 
-@pytest.mark.validation
+@pytest.mark.verification
 def test_dynamic_roller_forces_match_the_quasi_static_distribution(tmp_path):
     """Seed 001 section 3.2: after the run-up each roller's inner-contact force swings
     between the largest and smallest loads of the quasi-static distribution of section 3.1

@@ -69,7 +69,7 @@ def branch():
 
 
 # ----------------------------------------------------------------------------- physics
-@pytest.mark.validation
+@pytest.mark.verification
 def test_linear_rotor_branch_is_the_unbalance_response_plus_the_static_sag():
     """Exact reference: with linear bearings HB is exact with one harmonic; harmonic 1
     equals rs.unbalance_response and harmonic 0 equals rs.static (to round-off)."""
@@ -252,7 +252,7 @@ def test_frequency_continuation_of_a_housing_excitation_at_fixed_speed():
 
 
 # ----------------------------------------------------------------------------- numerics
-@pytest.mark.validation
+@pytest.mark.verification
 def test_hill_and_hsu_give_the_same_multipliers_on_a_rotor_point(branch):
     """Two independent Floquet methods (Hill's spectral method and Hsu's transition matrix
     with 512 steps, seed 002 eq 3.38): the critical multipliers agree to the accuracy Hsu
@@ -281,7 +281,7 @@ def test_hill_and_hsu_give_the_same_multipliers_on_a_rotor_point(branch):
     assert abs(branch.multipliers[middle, 0] - mu_hill) < 0.02 * abs(mu_hill)
 
 
-@pytest.mark.validation
+@pytest.mark.verification
 def test_response_converges_in_harmonics_and_samples():
     """Peak-to-peak response at 1200 rad/s against H = 24, N = 512: the error falls with H
     (1.2 % at H = 1, < 2e-4 at H = 8; the contact opening on part of the orbit makes the

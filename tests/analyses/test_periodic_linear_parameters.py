@@ -56,7 +56,7 @@ def damping_branch():
                                  name="damper [N s/m]", max_points=200)
 
 
-@pytest.mark.validation
+@pytest.mark.verification
 def test_folds_in_the_damping_are_folds_of_the_speed_branch_at_that_damping(damping_branch):
     res = damping_branch
     folds = res.events("fold")
@@ -70,7 +70,7 @@ def test_folds_in_the_damping_are_folds_of_the_speed_branch_at_that_damping(damp
         assert min(abs(f.parameter - W) for f in speed.events("fold")) < 1e-6 * W
 
 
-@pytest.mark.validation
+@pytest.mark.verification
 def test_damping_branch_points_equal_the_response_at_that_damping(damping_branch):
     res = damping_branch
     first_fold = min(f.index for f in res.events("fold"))
@@ -87,7 +87,7 @@ def test_damping_branch_points_equal_the_response_at_that_damping(damping_branch
         assert abs(fold.multiplier - 1.0) < 0.05
 
 
-@pytest.mark.validation
+@pytest.mark.verification
 def test_jump_map_in_the_damping_crosses_the_folds_of_the_damping_branch(damping_branch):
     """fold_map=ParameterMap(vary -> Rotor): the upper fold of the 5000 N s/m speed branch
     continued in the damper coefficient passes 1250 rad/s where the damping branch at
@@ -113,7 +113,7 @@ def test_jump_map_in_the_damping_crosses_the_folds_of_the_damping_branch(damping
     assert min(abs(at_4000 - f.parameter) for f in direct.events("fold")) < 1e-4 * W  # 1.7e-5
 
 
-@pytest.mark.validation
+@pytest.mark.verification
 def test_static_load_branch_equals_the_response_under_that_load():
     res = rs.periodic_parameter(jeffcott(), "loads", speed=W, start=0.0, stop=500.0,
                                 loads=[(DISK, "uy", -1.0)], unbalance=UNBALANCE,

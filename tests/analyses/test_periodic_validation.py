@@ -24,7 +24,7 @@ from rotorsim.analyses.periodic import periodic
 from rotorsim.analyses.speed_profile import LinearSpeed
 from rotorsim.analyses.transient import transient
 
-pytestmark = pytest.mark.validation
+pytestmark = pytest.mark.verification
 DISK = 1
 
 

@@ -50,7 +50,7 @@ def test_energy_gradient_is_the_static_residual(name):
         assert fd == pytest.approx(grad[j], rel=1e-5, abs=1e-6 * np.abs(grad).max())
 
 
-@pytest.mark.validation
+@pytest.mark.verification
 @pytest.mark.parametrize("name", FILES)
 def test_energy_minimum_is_the_newton_equilibrium(name):
     """Two independent formulations of the static problem: Newton with an energy line search

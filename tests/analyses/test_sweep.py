@@ -37,6 +37,27 @@ STEEL = Material(name="steel", E=211e9, G_s=81.2e9, rho=7810.0)
 # dense eigen solvers: ARPACK starts from a random vector, so its results differ in the
 # last digits from call to call; the dense path is bitwise reproducible
 CRITICAL = critical_speeds_eval(1.0, 2, whirl="forward", sparse=False)
+# Results of different processes, threads or code paths are compared at the accuracy of
+# the dense eigen solver, not bit for bit: a worker may run its BLAS with another number
+# of threads or another kernel, which changes the last bits. The eigen solve is backward
+# stable (n eps cond ~ 1e-13 on these 20-DOF models); 1e-8 is the margin kept for eigen
+# results, and any mix-up of points or parameters moves the speeds by > 1e-3.
+EIGEN_RTOL = 1e-8
+# log dec = -2 pi Re(lam) / Im(lam): an eigenvalue error of EIGEN_RTOL |lam| moves it by at
+# most 2 pi EIGEN_RTOL in absolute terms (the log decs here go through zero)
+LOG_DEC_ATOL = 2 * np.pi * EIGEN_RTOL
+
+
+def assert_outputs_agree(result, reference, name: str = "") -> None:
+    """Every output of ``result`` equals ``reference`` at the eigen-solver accuracy."""
+    assert sorted(result.outputs) == sorted(reference.outputs), name
+    for key, expected in reference.outputs.items():
+        if key.startswith("log_dec"):
+            np.testing.assert_allclose(result.outputs[key], expected, rtol=0,
+                                       atol=LOG_DEC_ATOL, err_msg=f"{name} {key}")
+        else:
+            np.testing.assert_allclose(result.outputs[key], expected, rtol=EIGEN_RTOL,
+                                       err_msg=f"{name} {key}")
 
 
 def small_rotor(k: float = 1e6, c: float = 0.0) -> Rotor:
@@ -126,7 +147,9 @@ def test_serial_sweep_matches_direct_analyses_point_by_point():
         model = Rotor(rotor.shaft_elements, [DiskElement(2, d.m * s, d.Id * s, d.Ip * s)],
                       [BearingElement(n=n, kxx=k) for n in (0, 4)], fixed=rotor.fixed)
         expected = critical_speeds(model, 1, 2, whirl="forward", sparse=False).speed
-        np.testing.assert_array_equal(res.outputs["critical_speeds"][i], expected)
+        # another model-building path (disk rebuilt by hand): solver accuracy, not bits
+        np.testing.assert_allclose(res.outputs["critical_speeds"][i], expected,
+                                   rtol=EIGEN_RTOL)
     # heavier disk -> lower first critical speed; stiffer bearings -> higher
     first = res.reshape("critical_speeds")[..., 0]
     assert np.all(np.diff(first, axis=1) < 0) and np.all(np.diff(first, axis=0) > 0)
@@ -140,8 +163,8 @@ def test_scaled_stiffness_equals_set_stiffness():
     scaled = sweep(rotor, Grid({"f": [0.5, 2.0]}),
                    scale_bearing_stiffness([0, 1], "f"), CRITICAL)
     direct = sweep(rotor, Grid({"k": [1e6, 4e6]}), set_bearing_stiffness([0, 1], "k"), CRITICAL)
-    np.testing.assert_array_equal(scaled.outputs["critical_speeds"],
-                                  direct.outputs["critical_speeds"])
+    # 2e6 x 0.5 and 2e6 x 2 are exact, but the two functions build the bearings differently
+    assert_outputs_agree(scaled, direct)
 
 
 def test_sample_sweep_cannot_be_reshaped():
@@ -230,25 +253,31 @@ def _stability_case():
         min_log_dec("speed", 4, sparse=False)
 
 
-def test_process_and_dask_executors_give_identical_results(tmp_path, dask_client):
+def test_process_and_thread_executors_agree_with_serial(tmp_path):
     rotor, space, apply, evaluate = _stability_case()
     serial = sweep(rotor, space, apply, evaluate)
     assert np.any(serial.outputs["log_dec_min"] < 0) and np.any(serial.outputs["log_dec_min"] > 0)
-    runs = {
-        "process": sweep(rotor, space, apply, evaluate, executor="process", max_workers=2,
-                         store=tmp_path / "process.h5"),
-        "dask": sweep(rotor, space, apply, evaluate, executor=dask_client,
-                      store=tmp_path / "dask.h5"),
-    }
+    runs = {"process": sweep(rotor, space, apply, evaluate, executor="process", max_workers=2,
+                             store=tmp_path / "process.h5")}
     with cf.ThreadPoolExecutor(2) as pool:
         runs["threads"] = sweep(rotor, space, apply, evaluate, executor=pool)
     for name, res in runs.items():
         assert res.status == Status.OK, name
-        for key in serial.outputs:
-            np.testing.assert_array_equal(res.outputs[key], serial.outputs[key], err_msg=name)
-    stored = load_sweep(tmp_path / "dask.h5")
-    np.testing.assert_array_equal(stored.outputs["log_dec"], serial.outputs["log_dec"])
-    assert runs["dask"].options["executor"] == "Client"
+        assert_outputs_agree(res, serial, name)
+    # the store holds what the process sweep returned (the same numbers, written once)
+    np.testing.assert_array_equal(load_sweep(tmp_path / "process.h5").outputs["log_dec"],
+                                  runs["process"].outputs["log_dec"])
+
+
+def test_dask_executor_agrees_with_serial(tmp_path, dask_client):
+    rotor, space, apply, evaluate = _stability_case()
+    serial = sweep(rotor, space, apply, evaluate)
+    res = sweep(rotor, space, apply, evaluate, executor=dask_client, store=tmp_path / "dask.h5")
+    assert res.status == Status.OK
+    assert_outputs_agree(res, serial, "dask")
+    np.testing.assert_array_equal(load_sweep(tmp_path / "dask.h5").outputs["log_dec"],
+                                  res.outputs["log_dec"])
+    assert res.options["executor"] == "Client"
 
 
 def test_dask_records_failures_like_serial(dask_client):
@@ -341,12 +370,16 @@ def test_worker_death_in_a_process_pool_keeps_finished_points(tmp_path, helper):
     partial = load_sweep(store)
     done = partial.point_status == Status.OK
     assert 3 <= done.sum() < 15
-    np.testing.assert_array_equal(partial.outputs["critical_speeds"][done],
-                                  reference.outputs["critical_speeds"][done])
+    # points of pool workers against the serial reference: solver accuracy (EIGEN_RTOL)
+    np.testing.assert_allclose(partial.outputs["critical_speeds"][done],
+                               reference.outputs["critical_speeds"][done], rtol=EIGEN_RTOL)
     resumed = sweep(small_rotor(), stiffness_grid(), APPLY, helper.evaluate, store=store)
     assert resumed.stats["resumed"] == done.sum()
-    np.testing.assert_array_equal(resumed.outputs["critical_speeds"],
-                                  reference.outputs["critical_speeds"])
+    # the resumed points are read back bit for bit from the store
+    np.testing.assert_array_equal(resumed.outputs["critical_speeds"][done],
+                                  partial.outputs["critical_speeds"][done])
+    np.testing.assert_allclose(resumed.outputs["critical_speeds"],
+                               reference.outputs["critical_speeds"], rtol=EIGEN_RTOL)
 
 
 def test_keyboard_interrupt_keeps_finished_points(tmp_path, helper, monkeypatch):

@@ -31,7 +31,7 @@ def _rolling_model():
     return load_model("models/rolling_ball.toml")
 
 
-@pytest.mark.validation
+@pytest.mark.verification
 def test_linear_steady_state_matches_unbalance_response():
     """Issue 6: amplitude and phase within 0.5 % of the frequency-domain solution."""
     rotor, W, unb = _rotor(), 400.0, [(3, 2e-4, 0.7)]
@@ -122,7 +122,11 @@ def test_local_tangents_give_the_dense_path_result():
         slow = transient(system, 0.004, 2e-5, **kw)
     finally:
         transient_loads.RestoringForce.__call__ = original
-    np.testing.assert_allclose(fast.q, slow.q, rtol=0, atol=1e-12 * np.abs(slow.q).max())
+    # two linear-algebra paths (low-rank update of a constant factorisation against a dense
+    # factorisation per iteration): equal at the accuracy of the Newton iteration, whose
+    # stopping test is max |dq| <= 1e-10 max |q| (Newmark default). Measured 4e-14 ... 3e-13
+    # relative depending on the BLAS kernel.
+    np.testing.assert_allclose(fast.q, slow.q, rtol=0, atol=1e-10 * np.abs(slow.q).max())
     assert fast.stats["factorizations"] == 2 and slow.stats["factorizations"] > 100
 
 

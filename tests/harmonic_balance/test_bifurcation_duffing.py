@@ -21,8 +21,6 @@ from rotorsim.harmonic_balance.problem import HBProblem
 from rotorsim.harmonic_balance.residual import continuation_function, make_residual
 from rotorsim.solvers.continuation import Continuation, continue_branch
 
-pytestmark = pytest.mark.validation
-
 ZETA, GAMMA, FORCE = 0.05, 0.1, 0.3
 KAPPA = 0.75 * GAMMA
 OPTIONS = Continuation(initial_step=0.05, max_step=0.2, lam_max=3.0)
@@ -72,6 +70,7 @@ def folds_of(residual):
     return branch, sorted(events, key=lambda e: e.lam)
 
 
+@pytest.mark.validation
 def test_single_harmonic_folds_match_the_analytic_ones():
     reference = analytic_folds()
     _, hb = folds_of(duffing(1))
@@ -85,6 +84,7 @@ def test_single_harmonic_folds_match_the_analytic_ones():
         assert e.method == c.method == "extended_system"
 
 
+@pytest.mark.verification
 def test_more_harmonics_converge_and_explain_the_single_harmonic_error():
     """Folds with H = 5 and 7 agree to 1e-8 (converged); they differ from H = 1 by about the
     first-order effect of the third harmonic A3 that H = 1 drops: the cubic term's first
@@ -103,6 +103,7 @@ def test_more_harmonics_converge_and_explain_the_single_harmonic_error():
         assert 0.25 * estimate <= error <= 2.0 * estimate, (error, estimate)
 
 
+@pytest.mark.verification
 def test_branch_between_folds_is_unstable():
     """Hill multipliers: one real multiplier is > 1 exactly between the folds (saddle
     branch); no period doubling or Neimark-Sacker point on this curve."""
@@ -123,6 +124,7 @@ def test_branch_between_folds_is_unstable():
     assert np.all(largest[middle] > 1.0) and np.all(largest[~middle] < 1.0)
 
 
+@pytest.mark.validation
 def test_jump_map_fold_curve_ends_at_the_analytic_cusp():
     """Both folds continued in F meet at the cusp F_c below which there is no overhang;
     F_c is where the fold equation has a double root, found here by brentq on its minimum.

@@ -101,7 +101,7 @@ def test_convergence_in_harmonics_is_geometric(reference):
         assert np.abs(even).max() < 1e-12
 
 
-@pytest.mark.validation
+@pytest.mark.verification
 @pytest.mark.parametrize("branch", [0, 2])
 def test_stable_branches_agree_with_a_long_newmark_integration(h7, branch):
     _, sols = h7
@@ -116,7 +116,7 @@ def test_stable_branches_agree_with_a_long_newmark_integration(h7, branch):
     assert amplitude == pytest.approx(sol.amplitude(0), rel=5e-3)
 
 
-@pytest.mark.validation
+@pytest.mark.verification
 def test_the_middle_branch_is_left_by_a_time_integration(h7):
     """The saddle (unstable by Floquet) is not an attractor: started on it, the motion
     ends on one of the stable branches."""

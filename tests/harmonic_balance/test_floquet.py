@@ -191,7 +191,7 @@ def rotor_with_cubic_damper():
                      excitation=lambda w, p: w**2 * unbalance)
 
 
-@pytest.mark.validation
+@pytest.mark.verification
 def test_floquet_methods_agree_on_a_gyroscopic_rotor_with_nonlinear_damping():
     pb, omega = rotor_with_cubic_damper(), 11.0
     res = make_residual(pb, 5)

@@ -123,7 +123,7 @@ def test_contact_converges_with_harmonics():
     assert errors[2] < 1e-3 * np.abs(ref.coefficients).max()
 
 
-@pytest.mark.validation
+@pytest.mark.verification
 def test_contact_response_agrees_with_a_newmark_integration():
     _, sol = solve_contact(24, 512)
     X, h = sol.coefficients, np.arange(1, 25)

@@ -1,5 +1,7 @@
-"""Every file in models/ loads, assembles and runs each of its named analyses (fast grids);
-the textbook files build exactly the rotors of examples/textbook_rotors.py."""
+"""Every file in models/ loads, assembles and runs each of its named analyses (fast grids),
+and the results of the static, modal, Campbell, critical-speed and unbalance analyses are
+checked against physics computed here; the textbook files build exactly the rotors of
+examples/textbook_rotors.py."""
 
 from __future__ import annotations
 
@@ -9,6 +11,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+import scipy.linalg
 
 from rotorsim.assembly.system import assemble
 from rotorsim.errors import Status
@@ -130,3 +133,150 @@ def test_large_rotor_is_large():
     rotor = load_model(MODELS / "large_rotor.toml").rotor
     assert len(rotor.shaft_elements) >= 100
     assert len(rotor.disk_elements) == 3 and len(rotor.bearing_elements) == 2
+
+
+# ---------------------------------------------------------------- physics of the shipped models
+# Each result of the loop above is checked against a computation that does not go through
+# the analysis that produced it: scipy's dense eigen solver on the first-order form of the
+# assembled matrices, the dynamic equation of the response, the weight of the rotor.
+def _cases(kind: str) -> list[tuple[str, str]]:
+    return [(f, a) for f, a in CASES
+            if load_model(MODELS / f"{f}.toml").analyses[a].type == kind]
+
+
+def _ids(cases: list[tuple[str, str]]) -> list[str]:
+    return [f"{f}-{a}" for f, a in cases]
+
+
+# what run_analysis solves: the rotor, with its rolling bearings linearised at the static
+# load (at the spec's speed for modal and static, else at rest)
+def _linear_rotor(model, speed: float = 0.0):
+    return model.linearized(speed).rotor if model.rolling_bearings else model.rotor
+
+
+def _state_eigenvalues(rotor, speed: float, damped: bool = True) -> np.ndarray:
+    """All eigenvalues of ``[[0, I], [-M^-1 K, -M^-1 (C + W G)]]`` by scipy (dense)."""
+    mats = assemble(rotor).matrices(speed)
+    M, C, G, K = (getattr(mats, key).toarray() for key in "MCGK")
+    n = M.shape[0]
+    damping = (C if damped else np.zeros_like(C)) + speed * G
+    A = np.block([[np.zeros((n, n)), np.eye(n)],
+                  [-np.linalg.solve(M, K), -np.linalg.solve(M, damping)]])
+    return scipy.linalg.eigvals(A)
+
+
+# Two dense eigen solvers on two forms of the same problem (rotorsim's and the state matrix
+# above): measured <= 1e-8 relative (the 42-DOF tapered-roller model, whose bearings are
+# 1e4 times stiffer than the shaft), 1e-11 elsewhere. 1e-6 is far below any modelling change
+# (a shifted disk or a bearing of another stiffness moves the frequencies by > 1e-3).
+EIGEN_MATCH = 1e-6
+# rigid-body modes come out of the state matrix as |lam| ~ 1e-3 rad/s (round-off of zero);
+# every elastic mode of the shipped models is above 80 rad/s
+RIGID = 1.0
+
+
+def _nearest(lam: np.ndarray, value: complex) -> float:
+    return float(np.min(np.abs(lam - value)) / abs(value))
+
+
+@pytest.mark.parametrize(("name", "analysis"), _cases("static"), ids=_ids(_cases("static")))
+def test_static_reactions_carry_the_weight_and_the_point_loads(name, analysis):
+    """The supports (bearings and held DOFs) carry the weight m g of the rotor (its mass
+    summed by the model, independent of the static solve) plus the point loads."""
+    model = load_model(MODELS / f"{name}.toml")
+    s = run_analysis(model, analysis, fast=True)
+    loads = model.loads
+    applied = loads.gravity * model.rotor.m * np.asarray(loads.gravity_direction, float)
+    for _, dof, value in loads.point_loads:
+        if dof in ("ux", "uy", "uz"):
+            applied[("ux", "uy", "uz").index(dof)] += value
+    np.testing.assert_allclose(s.applied_force, applied, rtol=1e-12,
+                               atol=1e-12 * np.abs(applied).max())
+    support = np.zeros(3)
+    if s.bearing_forces is not None and len(s.bearing_forces):
+        support += s.bearing_forces.sum(axis=0)
+    if s.constraint_reactions is not None:
+        support += s.constraint_reactions.reshape(-1, 6)[:, :3].sum(axis=0)
+    # nonlinear bearings: equilibrium converged to 1e-6 of the bearing loads (Model.linearized);
+    # linear supports: round-off of one solve. Measured <= 1e-15 for all shipped models.
+    tol = 1e-6 if model.rolling_bearings else 1e-9
+    np.testing.assert_allclose(support + applied, 0.0, atol=tol * np.abs(applied).max())
+
+
+@pytest.mark.parametrize(("name", "analysis"), _cases("modal"), ids=_ids(_cases("modal")))
+def test_modal_frequencies_are_the_lowest_eigenvalues_of_the_state_matrix(name, analysis):
+    model = load_model(MODELS / f"{name}.toml")
+    spec = model.analyses[analysis]
+    result = run_analysis(model, analysis, fast=True)
+    speed = float(spec.speed or 0.0)
+    lam = _state_eigenvalues(_linear_rotor(model, speed), speed)
+    found = np.asarray(result.eigenvalues)
+    assert found.size == spec.num_modes
+    for value in found:
+        assert _nearest(lam, value) < EIGEN_MATCH, value
+    # and none is skipped: every elastic eigenvalue (upper half plane) below the largest
+    # one reported is reported (pairs of equal frequencies count twice)
+    elastic = lam[(np.abs(lam) > RIGID) & (lam.imag > 0)]
+    below = elastic[np.abs(elastic) < np.abs(found).max() * (1 - EIGEN_MATCH)]
+    assert below.size <= found.size
+    for value in below:
+        assert _nearest(found, value) < EIGEN_MATCH, value
+
+
+@pytest.mark.parametrize(("name", "analysis"), _cases("campbell"), ids=_ids(_cases("campbell")))
+def test_campbell_ends_are_eigenvalues_of_the_state_matrix(name, analysis):
+    """At the first and the last speed (0 rpm: the modal problem), every tracked mode
+    ``-wd log_dec / (2 pi) + i wd`` is an eigenvalue of the state matrix at that speed."""
+    model = load_model(MODELS / f"{name}.toml")
+    c = run_analysis(model, analysis, fast=True)
+    rotor = _linear_rotor(model)
+    for row in (0, -1):
+        lam = _state_eigenvalues(rotor, float(c.speeds[row]))
+        good = np.isfinite(c.wd[row])
+        assert good.sum() >= c.wd.shape[1] // 2
+        for wd, log_dec in zip(c.wd[row, good], c.log_dec[row, good], strict=True):
+            value = -wd * log_dec / (2 * np.pi) + 1j * wd
+            assert _nearest(lam, value) < EIGEN_MATCH, (row, value)
+
+
+@pytest.mark.parametrize(("name", "analysis"), _cases("critical_speeds"),
+                         ids=_ids(_cases("critical_speeds")))
+def test_critical_speeds_are_synchronous_undamped_frequencies(name, analysis):
+    """At each critical speed W the undamped rotor spinning at W has a natural frequency
+    equal to the excitation k W (the definition, checked on the state matrix)."""
+    model = load_model(MODELS / f"{name}.toml")
+    cs = run_analysis(model, analysis, fast=True)
+    rotor = _linear_rotor(model)
+    assert len(cs) > 0
+    for speed, frequency in zip(cs.speed, cs.frequency, strict=True):
+        lam = _state_eigenvalues(rotor, float(speed), damped=False)
+        assert np.min(np.abs(np.abs(lam.imag) - frequency)) < EIGEN_MATCH * frequency, speed
+
+
+@pytest.mark.parametrize(("name", "analysis"), _cases("unbalance"),
+                         ids=_ids(_cases("unbalance")))
+def test_unbalance_response_satisfies_the_equation_of_motion(name, analysis):
+    """``(K - W^2 M + i W (C + W G)) x = F(W)`` with the unbalance forces built here from
+    the model's unbalance list (``m e W^2 e^(i a)`` on ux, ``-i`` times it on uy)."""
+    model = load_model(MODELS / f"{name}.toml")
+    spec = model.analyses[analysis]
+    r = run_analysis(model, analysis, fast=True)
+    system = assemble(_linear_rotor(model))
+    to_free = system.dof_map.full_to_free
+    unbalance = model.loads.unbalance if spec.unbalance is None else spec.unbalance
+    assert len(unbalance) > 0
+    for i, w in enumerate(r.frequencies):
+        mats = system.matrices(w)
+        dynamic = (mats.K - w**2 * mats.M + 1j * w * (mats.C + w * mats.G)).toarray()
+        force = np.zeros(dynamic.shape[0], complex)
+        for node, me, phase in unbalance:
+            assert to_free[6 * node] >= 0 and to_free[6 * node + 1] >= 0  # free ux, uy
+            force[to_free[6 * node]] += me * w**2 * np.exp(1j * phase)
+            force[to_free[6 * node + 1]] += -1j * me * w**2 * np.exp(1j * phase)
+        kept = to_free >= 0
+        x = np.zeros(dynamic.shape[0], complex)
+        x[to_free[kept]] = r.response[i, kept, 0]
+        assert np.abs(x).max() > 0.0
+        # backward error of a stable LU solve, ~ n eps: measured <= 2e-16
+        residual = np.abs(dynamic @ x - force).max()
+        assert residual <= 1e-12 * np.abs(dynamic).max() * np.abs(x).max(), w

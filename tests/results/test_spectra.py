@@ -54,7 +54,10 @@ def test_phase_referred_to_t_zero_and_columns():
     assert s.phase[25, 0] == pytest.approx(0.4, abs=1e-9)
     assert s.amplitude[25, 1] == pytest.approx(6e-5, rel=1e-9)
     single = amplitude_spectrum(t, x[:, 1])
-    np.testing.assert_allclose(single.amplitude, s.amplitude[:, 1], rtol=0, atol=1e-20)
+    # one column alone or among others: the FFT may take another (vectorised) path; its
+    # round-off is O(eps log2 N) of the largest amplitude
+    np.testing.assert_allclose(single.amplitude, s.amplitude[:, 1], rtol=0,
+                               atol=1e-13 * s.amplitude[:, 1].max())
 
 
 def test_half_bin_scalloping_of_hann_matches_its_kernel():

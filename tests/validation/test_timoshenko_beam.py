@@ -20,8 +20,6 @@ from rotorsim.elements.shaft import ShaftElement
 from rotorsim.model.material import Material
 from rotorsim.model.rotor import Rotor
 
-pytestmark = pytest.mark.validation
-
 STEEL = Material(name="steel", E=211e9, G_s=81.2e9, rho=7810.0)
 L, D = 1.0, 0.1  # stocky: L/d = 10, shear lowers mode 5 by 20 %
 AREA, INERTIA = np.pi * D**2 / 4, np.pi * D**4 / 64
@@ -67,6 +65,7 @@ def observed_order(errors_coarse: np.ndarray, errors_fine: np.ndarray) -> np.nda
     return np.log2(errors_coarse / errors_fine)
 
 
+@pytest.mark.verification
 def test_x_and_y_planes_agree():
     """The full lateral model gives each frequency twice (x-z and y-z planes)."""
     result = modal(pinned_beam(20, planar=False), 0.0, 2 * N_MODES, sparse=False)
@@ -75,6 +74,7 @@ def test_x_and_y_planes_agree():
     np.testing.assert_allclose(planes[:, 0], fe_frequencies(20), rtol=1e-7)
 
 
+@pytest.mark.validation
 def test_frequency_equation_matches_the_differential_equation():
     """The closed form (derived for sin modes) equals a shooting solution of the ODEs."""
     beam = VariableBeam(L=L, d0=D, d1=D, E=STEEL.E, G=STEEL.G_s, rho=STEEL.rho)
@@ -88,6 +88,7 @@ def test_frequency_equation_matches_the_differential_equation():
     np.testing.assert_allclose(exact(shear=False, rotary=False), eb, rtol=1e-14)
 
 
+@pytest.mark.validation
 def test_timoshenko_20_elements_within_0p1_percent_at_l_over_d_50():
     """Issue requirement (first 5 frequencies within 0.1 % with 20 elements) on a beam of
     L/d = 50, where shear and rotary inertia still lower mode 5 by 1.19 %, i.e. more
@@ -105,6 +106,7 @@ def test_timoshenko_20_elements_within_0p1_percent_at_l_over_d_50():
     assert timoshenko_effect > 10 * 1e-3
 
 
+@pytest.mark.validation
 def test_stocky_beam_needs_54_elements_for_0p1_percent():
     """At L/d = 10 (shear lowers mode 5 by 20 %) the 0.1 % accuracy of the first 5 modes
     needs 54 elements (measured; 48 elements give 0.123 % on mode 5)."""
@@ -114,6 +116,7 @@ def test_stocky_beam_needs_54_elements_for_0p1_percent():
     assert errors_48[-1] > 1e-3
 
 
+@pytest.mark.validation
 def test_timoshenko_converges_from_above_at_second_order():
     """4, 8, 16, 32 elements: Rayleigh-Ritz upper bounds, observed order -> 2.
 
@@ -130,6 +133,7 @@ def test_timoshenko_converges_from_above_at_second_order():
     assert np.all(order > 1.8), order
 
 
+@pytest.mark.validation
 @pytest.mark.parametrize("rotary", [False, True], ids=["euler_bernoulli", "rayleigh"])
 def test_without_shear_converges_at_fourth_order(rotary):
     """Shear off: cubic Hermite bending with consistent mass, eigenvalue error O(h^4).

@@ -42,31 +42,48 @@ def test_example_runs_and_writes_its_figures(result):
 @pytest.mark.validation
 def test_preload_rigid_rings_carry_about_2_5_times_the_flexible_ring_loads(result):
     """Seed 001 section 3.1: with g = -40 um rigid rings give contact forces "2.5 higher"
-    than flexible rings (printed to two digits: accepted range [2.45, 2.55])."""
-    num = result[0]["numbers"]
-    # the purely structural effect (no roller centrifugal force): reproduced at the seed's
-    # printed precision
-    assert 2.45 <= num["preload_ratio_at_rest"] <= 2.55
-    if "preload_fe_max" in num:
-        # at 12000 rpm against the 2D ring FE (the counterpart of the seed's NX model)
-        assert 2.45 <= num["preload_rigid_fe_ratio"] <= 2.55
-    # at 12000 rpm the simplified ring model gives 2.631, 5 % above the seed's 2.5 (the
-    # roller mass of eq 18 is not given in the seed; docs/flexible_rings.md): regression
-    # value of this implementation, not a reference
-    assert num["preload_ratio"] == pytest.approx(2.631, abs=2e-3)
+    than flexible rings (printed to two digits: accepted range [2.45, 2.55]). The purely
+    structural effect (no roller centrifugal force) is compared: the seed does not give
+    the roller mass that its eq 18 needs at speed."""
+    assert 2.45 <= result[0]["numbers"]["preload_ratio_at_rest"] <= 2.55
 
 
 @pytest.mark.validation
-def test_positive_clearance_flexibility_matters_less_and_the_fe_shows_more(result):
+def test_preload_rigid_rings_carry_about_2_5_times_the_ring_fe_loads(result):
+    """The same seed figure at 12000 rpm against the 2D ring FE (the counterpart of the
+    seed's NX Nastran model, which the seed finds "very close" to its flexible rings)."""
+    pytest.importorskip("rotorsim.verification.ring_fe")
+    assert 2.45 <= result[0]["numbers"]["preload_rigid_fe_ratio"] <= 2.55
+
+
+def test_regression_preload_ratio_at_speed(result):
+    """Regression value, not a reference: at 12000 rpm the simplified ring model gives
+    rigid / flexible = 2.630803 (5 % above the seed's 2.5; the roller mass of eq 18 is
+    not in the seed, docs/flexible_rings.md). Useful because the at-rest ratio above does
+    not see the rollers' centrifugal force: this pins its coupling with the ring
+    flexibility. Tolerance 1e-6 relative: the equilibria are solved to a residual of
+    1e-10 of the load, so round-off and BLAS differences stay below 1e-8, while any
+    change of the model moves the ratio by far more."""
+    assert result[0]["numbers"]["preload_ratio"] == pytest.approx(2.630803, rel=1e-6)
+
+
+@pytest.mark.validation
+def test_positive_clearance_flexibility_matters_less(result):
     """Seed 001 section 3.1 (Fig. 5b): with g = +10 um the rings' flexibility matters less
-    than with preload, and the reference FE gives a larger reduction than the simplified
-    ring model ("performs worse if the bearing operates with positive clearance"); with
-    preload the simplified model is the closer one."""
+    than with preload."""
     num = result[0]["numbers"]
     assert 1.0 < num["clearance_ratio"] < num["preload_ratio"]
-    if "clearance_fe_max" in num:
-        assert num["clearance_fe_max"] < num["clearance_flexible_max"] < num["clearance_rigid_max"]
-        assert abs(num["clearance_fe_max_error"]) > abs(num["preload_fe_max_error"])
+
+
+@pytest.mark.validation
+def test_positive_clearance_the_fe_shows_more_flexibility_than_the_ring_model(result):
+    """Seed 001 section 3.1 (Fig. 5b): at g = +10 um the reference FE gives a larger
+    reduction than the simplified ring model ("performs worse if the bearing operates with
+    positive clearance"); with preload the simplified model is the closer one."""
+    pytest.importorskip("rotorsim.verification.ring_fe")
+    num = result[0]["numbers"]
+    assert num["clearance_fe_max"] < num["clearance_flexible_max"] < num["clearance_rigid_max"]
+    assert abs(num["clearance_fe_max_error"]) > abs(num["preload_fe_max_error"])
 
 
 @pytest.mark.validation
