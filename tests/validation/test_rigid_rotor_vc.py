@@ -26,8 +26,6 @@ from rotorsim.assembly.loads import nodal_load
 from rotorsim.assembly.system import assemble
 from rotorsim.solvers.stats import Stats
 
-pytestmark = pytest.mark.validation
-
 MODEL = Path(__file__).resolve().parents[2] / "models" / "rigid_rotor_vc.toml"
 LOAD = 50.0  # N along -y
 STATIC_TOL = 1e-10
@@ -63,6 +61,7 @@ def test_the_model_file_is_the_textbook_case():
     assert model.loads.gravity is None and model.loads.point_loads == ((0, "uy", -LOAD),)
 
 
+@pytest.mark.validation  # against the Hertz law solved in this file
 def test_static_from_the_centred_start_balances_the_load_and_matches_hertz():
     rotor, bearing = textbook()
     s = rs.static(rotor, gravity=None, loads=[(0, "uy", -LOAD)])
@@ -89,6 +88,7 @@ def _system_and_load(fixed: tuple[tuple[int, str], ...] | None = None):
     return rotor, system, nodal_load(system, 0, "uy", -LOAD)
 
 
+@pytest.mark.validation  # against the Hertz law solved in this file
 def test_newton_from_the_centred_start_falls_back_to_the_energy_minimum():
     # the path that failed (issue 12): Newton from inside the clearance, then 64 load
     # steps, each ending in a line-search failure; now the energy minimum takes over
@@ -99,6 +99,7 @@ def test_newton_from_the_centred_start_falls_back_to_the_energy_minimum():
     assert -eq.q[1] == pytest.approx(hertz_deflection(bearing, LOAD), rel=1e-6)
 
 
+@pytest.mark.validation  # against the Hertz law solved in this file
 @pytest.mark.parametrize("fixed", [None, ((0, "rz"),), ()],
                          ids=["radial 2-DOF", "5 DOF", "6 DOF"])
 def test_periodic_static_start_converges_from_the_centred_start(fixed):
@@ -112,6 +113,7 @@ def test_periodic_static_start_converges_from_the_centred_start(fixed):
     assert -q[y] == pytest.approx(hertz_deflection(bearing, LOAD), rel=1e-6)
 
 
+@pytest.mark.validation  # against the Hertz law solved in this file
 def test_periodic_runs_from_the_centred_start_over_a_short_speed_range():
     rotor, bearing = textbook()
     clock = time.perf_counter()
@@ -132,6 +134,7 @@ def test_periodic_runs_from_the_centred_start_over_a_short_speed_range():
     assert np.all(res.amplitude(0, "uy", "peak_to_peak") > 0)  # the VC vibration
 
 
+@pytest.mark.validation  # against the Hertz law solved in this file
 def test_every_analysis_of_the_model_file_runs():
     from rotorsim.io.analysis_spec import run_analysis
 
@@ -158,6 +161,7 @@ def test_the_periodic_static_start_uses_a_given_start():
     assert again[1] == pytest.approx(q[1], rel=1e-12)
 
 
+@pytest.mark.validation  # against the Hertz law solved in this file
 def test_the_issue_reproduction_with_a_stub_shaft_starts():
     # issue 12 as reported (before rotors without shaft existed): the rigid rotor on a
     # massless, nearly stiffless stub element to a fixed node, tilt and axial motion free;
@@ -187,6 +191,7 @@ def hertz_stiffness(bearing: rs.BallBearing, load: float, phi: float) -> float:
     return float(np.sum(1.5 * bearing.Kn * delta[on] ** 0.5 * np.cos(psi[on]) ** 2))
 
 
+@pytest.mark.validation  # against the Hertz law solved in this file
 def test_stiffness_over_a_ball_pass_of_the_textbook_bearing():
     # the VC stiffness variation itself: the warm start from the previous position fails
     # where a second ball comes into contact, and the ray guess or the energy method takes
