@@ -12,6 +12,7 @@ from scipy.interpolate import CubicSpline
 from scipy.optimize import brentq
 
 from rotorsim.analyses.critical_speeds import solve_critical_speeds
+from rotorsim.analyses.keyword_check import checked_keywords
 from rotorsim.analyses.system_input import require_linear
 from rotorsim.assembly.system import assemble
 from rotorsim.elements.linear_bearing import BearingElement
@@ -23,6 +24,7 @@ from rotorsim.solvers.stats import Stats
 FloatArray = NDArray[np.float64]
 
 
+@checked_keywords
 def critical_speed_map(
     rotor: Rotor,
     stiffness_range: tuple[float, float] = (1e5, 1e10),

@@ -23,6 +23,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike
 
+from rotorsim.analyses.keyword_check import checked_keywords
 from rotorsim.analyses.speed_profile import BoundSpeed, SpeedProfile, as_speed_profile
 from rotorsim.analyses.transient_loads import (
     BaseExcitation,
@@ -56,6 +57,7 @@ DENSE_STEPPING = 400
 then cost less than scipy.sparse's call overhead."""
 
 
+@checked_keywords
 def transient(
     model: Rotor | RotorSystem,
     t_end: float | Sequence[float],
@@ -167,6 +169,9 @@ def transient(
         raise ModelError(f"dt must be a positive number [s], got {dt!r}", f"{WHERE}.dt")
     system = _system(model, nonlinear)
     t0, t_end = _span(t_end)
+    if dt > t_end - t0:
+        raise ModelError(f"dt {dt} s exceeds the duration {t_end - t0} s: check the units",
+                         f"{WHERE}.dt")
     profile = as_speed_profile(speed).bind(t0, t_end, max(4096, int((t_end - t0) / dt)))
     problem, loads_fn = _problem(system, profile, t0, unbalance, gravity, direction, loads,
                                  forces, base)
