@@ -70,7 +70,7 @@ def modal(
         raise ModelError(f"num_modes must be >= 1, got {num_modes}", "modal")
     for name, value in (("speed", speed), ("sigma", sigma)):
         if not np.isfinite(as_float_array(value, name, "modal")).all() or np.ndim(value):
-            raise ModelError(f"{name} must be a finite number, got {value!r}", "modal")
+            raise ModelError(f"{name} must be finite, got {value!r}", "modal")
     system = as_system(rotor)
     own_stats = stats is None
     stats = Stats() if stats is None else stats

@@ -79,7 +79,7 @@ MODEL_ERRORS = [
                  r"^modal: speed must be a number in SI units, got '3000 rpm'",
                  id="modal-speed-unit-string"),
     pytest.param(lambda: rs.modal(ROTOR, num_modes=4, sigma=NAN),
-                 r"^modal: sigma must be a finite number, got nan", id="modal-sigma-nan"),
+                 r"^modal: sigma must be finite, got nan", id="modal-sigma-nan"),
     pytest.param(lambda: rs.critical_speeds(ROTOR, harmonic=0),
                  r"^critical_speeds: harmonic must be finite and > 0, got 0",
                  id="critical-harmonic"),
