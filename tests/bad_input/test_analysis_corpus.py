@@ -125,6 +125,9 @@ MODEL_ERRORS = [
     pytest.param(transient(t_end=0.01, dt=0.1),
                  r"^transient\.dt: dt 0\.1 s exceeds the duration 0\.01 s: check the units",
                  id="transient-dt-above-t-end"),
+    pytest.param(transient(t_end=1.0, dt=1e-12),
+                 r"^transient\.dt: dt 1e-12 s gives 1e\+12 steps over 1\.0 s, more than 1e\+09",
+                 id="transient-dt-would-never-end"),
     pytest.param(transient(t_end="10 ms"), r"^transient: t_end must be a time or \(t0, t_end\), "
                  r"got '10 ms'", id="transient-t-end-unit-string"),
     pytest.param(transient(method="euler"), r"^transient\.method: unknown Newmark method 'euler'; "
