@@ -83,6 +83,9 @@ class DiskElement:
             Axial width, bore and outer diameter [m].
         """
         where = f"DiskElement(n={n})" if tag is None else f"DiskElement '{tag}'"
+        if not isinstance(material, Material):
+            raise ModelError(f"material must be a Material, got {type(material).__name__}",
+                             where)
         check_finite(width, "width", where, positive=True)
         check_finite(i_d, "i_d", where, nonnegative=True)
         check_finite(o_d, "o_d", where, positive=True)

@@ -112,7 +112,10 @@ class BearingElement:
         table = {}
         for key in COEFFICIENTS:
             value = np.atleast_1d(as_float_array(getattr(self, key), key, where))
-            if value.ndim != 1 or not np.all(np.isfinite(value)):
+            if value.ndim != 1:
+                raise ModelError(f"{key} must be a number or a 1-D array over frequency, got "
+                                 f"shape {value.shape}", where)
+            if not np.all(np.isfinite(value)):
                 raise ModelError(f"{key} must be finite, got {getattr(self, key)!r}", where)
             if value.size > 1:
                 if freq is None:
