@@ -105,6 +105,8 @@ def as_float_array(value: Any, name: str, where: str) -> FloatArray:
     if it is a string or not numeric (e.g. ``"50 mm"`` passed to the SI-only API)."""
     from rotorsim.errors import ModelError
 
+    if isinstance(value, bool):
+        raise ModelError(f"{name} must be a number, got {value!r}", where)
     if isinstance(value, str | bytes) or (
             isinstance(value, list | tuple) and any(isinstance(v, str | bytes) for v in value)):
         raise ModelError(f"{name} must be a number in SI units, got {value!r} (unit strings "

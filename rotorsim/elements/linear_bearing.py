@@ -94,7 +94,8 @@ class BearingElement:
     def __post_init__(self) -> None:
         where = self.label
         for key, node in (("n", self.n), ("n_link", self.n_link)):
-            if node is not None and (not isinstance(node, int | np.integer) or node < 0):
+            if node is not None and (isinstance(node, bool)
+                                     or not isinstance(node, int | np.integer) or node < 0):
                 raise ModelError(f"{key} must be a non-negative integer, got {node!r}", where)
         if self.n_link is not None and self.n_link == self.n:
             raise ModelError(f"n_link must differ from n (both {self.n})", where)

@@ -106,6 +106,8 @@ MODEL_ERRORS = [
     pytest.param(lambda: rs.static(ROTOR, gravity="9.81 m/s^2"),
                  r"^gravity: value must be a number in SI units, got '9\.81 m/s\^2'",
                  id="static-gravity-unit-string"),
+    pytest.param(lambda: rs.static(ROTOR, gravity=True),  # was read as 1 m/s^2
+                 r"^gravity: value must be a number, got True", id="static-gravity-bool"),
     pytest.param(lambda: rs.static(ROTOR, direction=(0, 0, 0)),
                  r"^direction: must be 3 finite components, not all zero", id="static-direction"),
     pytest.param(lambda: rs.static(ROTOR, speed=NAN),

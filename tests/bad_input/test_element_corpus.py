@@ -63,6 +63,8 @@ CASES = [
                  id="L-inf"),
     pytest.param(shaft_element(L="0.25 m"), r"^ShaftElement'S3': L \(length\) must be a number",
                  id="L-string"),
+    pytest.param(shaft_element(L=True), r"^ShaftElement'S3': L \(length\) must be a number, got "
+                 r"True", id="L-bool"),
     pytest.param(shaft_element(idl=0.06), r"^ShaftElement'S3': inner diameter idl=0\.06 m must "
                  r"be < outer diameter odl=0\.05 m", id="idl-above-odl"),
     pytest.param(shaft_element(idl=-0.01), r"^ShaftElement'S3': idl must be >= 0",
@@ -97,6 +99,9 @@ CASES = [
     pytest.param(lambda: rs.DiskElement(n=2.0, m=1.0, Id=0.1, Ip=0.2),
                  r"^DiskElement\(n=2\.0\): node number must be a non-negative integer",
                  id="disk-node-float"),
+    pytest.param(lambda: rs.DiskElement(n=True, m=1.0, Id=0.1, Ip=0.2),
+                 r"^DiskElement\(n=True\): node number must be a non-negative integer",
+                 id="disk-node-bool"),
     pytest.param(lambda: rs.DiskElement.from_geometry(2, steel, width=0.0, i_d=0.05, o_d=0.2),
                  r"^DiskElement\(n=2\): width must be > 0", id="disk-width-zero"),
     pytest.param(lambda: rs.DiskElement.from_geometry(2, steel, width=0.05, i_d=0.05, o_d=NAN),
