@@ -56,6 +56,8 @@ CASES = [
                  id="nu-inf"),
     pytest.param(material(G_s=NAN), r"^Material 'M1': give exactly one of G_s and nu",
                  id="neither-G-nor-nu"),
+    pytest.param(lambda: rs.Material(name="M\n1", E=-1.0, rho=7810.0, nu=0.3),
+                 r"^Material 'M\\n1': E must be a positive", id="name-with-newline"),
     # shaft elements
     pytest.param(shaft_element(L=-0.25), r"^ShaftElement'S3': L \(length\) must be > 0",
                  id="L-negative"),
@@ -63,6 +65,8 @@ CASES = [
                  id="L-inf"),
     pytest.param(shaft_element(L="0.25 m"), r"^ShaftElement'S3': L \(length\) must be a number",
                  id="L-string"),
+    pytest.param(shaft_element(L=-1.0, tag="S\r\n3"), r"^ShaftElement'S\\r\\n3': L \(length\)",
+                 id="tag-with-newline"),
     pytest.param(shaft_element(L=True), r"^ShaftElement'S3': L \(length\) must be a number, got "
                  r"True", id="L-bool"),
     pytest.param(shaft_element(idl=0.06), r"^ShaftElement'S3': inner diameter idl=0\.06 m must "
