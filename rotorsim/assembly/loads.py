@@ -32,7 +32,7 @@ def unit_direction(direction: ArrayLike, where: str = "direction") -> FloatArray
     >>> unit_direction((0.0, -2.0, 0.0)).tolist()
     [0.0, -1.0, 0.0]
     """
-    d = np.asarray(direction, dtype=float)
+    d = as_float_array(direction, "value", where)
     if d.shape != (3,) or not np.all(np.isfinite(d)) or not np.any(d):
         raise ModelError(f"must be 3 finite components, not all zero; got {direction!r}", where)
     return d / np.linalg.norm(d)

@@ -92,6 +92,8 @@ def check_finite(value: float, name: str, where: str, *, positive: bool = False,
     from rotorsim.errors import ModelError
 
     arr = as_float_array(value, name, where)
+    if arr.ndim:
+        raise ModelError(f"{name} must be a single number, got {value!r}", where)
     if not np.all(np.isfinite(arr)):
         raise ModelError(f"{name} must be finite, got {value!r}", where)
     if positive and np.any(arr <= 0):

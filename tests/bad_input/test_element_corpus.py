@@ -67,6 +67,8 @@ CASES = [
                  id="L-string"),
     pytest.param(shaft_element(L=-1.0, tag="S\r\n3"), r"^ShaftElement'S\\r\\n3': L \(length\)",
                  id="tag-with-newline"),
+    pytest.param(shaft_element(L=[0.25, 0.3]),
+                 r"^ShaftElement'S3': L \(length\) must be a single number", id="L-list"),
     pytest.param(shaft_element(L=True), r"^ShaftElement'S3': L \(length\) must be a number, got "
                  r"True", id="L-bool"),
     pytest.param(shaft_element(idl=0.06), r"^ShaftElement'S3': inner diameter idl=0\.06 m must "
