@@ -108,8 +108,6 @@ CASES = [
     pytest.param(edit((*BALL, "pitch_diameter"), "5 mm", base="rolling_ball"),
                  "rolling_bearings[0]", r"ball_diameter 0\.00794\d* m must be in \(0, pitch",
                  id="ball-pitch-below-ball"),
-    pytest.param(edit((*BALL, "diametral_clearance"), "10 mm", base="rolling_ball"),
-                 "rolling_bearings[0]", r"exceeds the ball radius", id="ball-clearance-mm"),
     pytest.param(edit((*BALL, "f_i"), 0.4, base="rolling_ball"), "rolling_bearings[0]",
                  r"f_i = 0\.4 must be > 0\.5", id="ball-groove-factor"),
     pytest.param(edit((*BALL, "n_rollers"), 12, base="rolling_ball"), "rolling_bearings[0]",
