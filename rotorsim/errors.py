@@ -8,6 +8,20 @@ from __future__ import annotations
 
 import enum
 
+_CONTROL = {**{i: f"\\x{i:02x}" for i in (*range(32), 127)}, 9: "\\t", 10: "\\n", 13: "\\r"}
+
+
+def one_line(text: str) -> str:
+    """``text`` with control characters escaped, so that a message stays on one line even
+    when a user's name or tag holds a newline.
+
+    Examples
+    --------
+    >>> print(one_line("Material 'a\\nb': E must be > 0"))
+    Material 'a\\nb': E must be > 0
+    """
+    return text.translate(_CONTROL)
+
 
 class RotorsimError(Exception):
     """Base class of all rotorsim errors."""
@@ -26,7 +40,7 @@ class ModelError(RotorsimError, ValueError):
 
     def __init__(self, message: str, where: str | None = None) -> None:
         self.where = where
-        super().__init__(f"{where}: {message}" if where else message)
+        super().__init__(one_line(f"{where}: {message}" if where else message))
 
 
 class InconsistentModelError(ModelError):
@@ -70,7 +84,7 @@ class ConvergenceError(RotorsimError, RuntimeError):
         if residual is not None:
             parts.append(f"residual {residual:.3e}")
         text = ", ".join(parts)
-        super().__init__(f"{where}: {text}" if where else text)
+        super().__init__(one_line(f"{where}: {text}" if where else text))
 
 
 class Status(enum.IntEnum):

@@ -10,6 +10,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from rotorsim.elements.base import as_float_array
 from rotorsim.errors import ConvergenceError, ModelError, Status
 from rotorsim.results.bearing import (
     BEARING_DOFS,
@@ -107,7 +108,7 @@ def make_setup(bearing: Any, load: ArrayLike, psi: FloatArray, load_stiffness: A
            max_displacement: float | None,
            held: tuple[tuple[str, str], ...] | None = None) -> Setup:
     where = _label(bearing)
-    f = np.asarray(load, dtype=float).reshape(-1)
+    f = as_float_array(load, "load", where).reshape(-1)
     if f.shape != (5,) or not np.all(np.isfinite(f)):
         raise ModelError(f"load must be 5 finite numbers [Fx, Fy, Fz, Mx, My], got {load!r}",
                          where)

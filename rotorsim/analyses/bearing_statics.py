@@ -50,6 +50,7 @@ from rotorsim.analyses.bearing_problem import (
     solve_global,
     solve_local,
 )
+from rotorsim.analyses.keyword_check import checked_keywords
 from rotorsim.errors import ConvergenceError, ModelError, Status
 from rotorsim.results.bearing import (
     BearingEquilibriumResult,
@@ -60,6 +61,7 @@ from rotorsim.solvers.stats import Stats
 FloatArray = NDArray[np.float64]
 
 
+@checked_keywords
 def bearing_equilibrium(
     bearing: Any,
     load: ArrayLike,

@@ -16,6 +16,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from scipy.optimize import linear_sum_assignment
 
+from rotorsim.analyses.keyword_check import checked_keywords
 from rotorsim.analyses.modal import modal
 from rotorsim.analyses.mode_shapes import mac
 from rotorsim.analyses.system_input import as_system
@@ -44,6 +45,7 @@ class _Candidates:
     kind: NDArray[np.str_]
 
 
+@checked_keywords
 def campbell(
     rotor: Rotor | RotorSystem,
     speeds: ArrayLike,

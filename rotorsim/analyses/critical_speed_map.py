@@ -12,8 +12,10 @@ from scipy.interpolate import CubicSpline
 from scipy.optimize import brentq
 
 from rotorsim.analyses.critical_speeds import solve_critical_speeds
+from rotorsim.analyses.keyword_check import checked_keywords
 from rotorsim.analyses.system_input import require_linear
 from rotorsim.assembly.system import assemble
+from rotorsim.elements.base import as_float_array
 from rotorsim.elements.linear_bearing import BearingElement
 from rotorsim.errors import ConvergenceError, ModelError, Status
 from rotorsim.model.rotor import Rotor
@@ -23,6 +25,7 @@ from rotorsim.solvers.stats import Stats
 FloatArray = NDArray[np.float64]
 
 
+@checked_keywords
 def critical_speed_map(
     rotor: Rotor,
     stiffness_range: tuple[float, float] = (1e5, 1e10),
@@ -134,14 +137,15 @@ def critical_speed_map(
 def _stiffness_grid(stiffness: ArrayLike | None, num_points: int,
                     stiffness_range: tuple[float, float]) -> FloatArray:
     if stiffness is None:
-        lo, hi = (float(v) for v in stiffness_range)
+        bounds = as_float_array(stiffness_range, "stiffness_range", "critical_speed_map")
+        lo, hi = (float(v) for v in bounds) if bounds.shape == (2,) else (np.nan, np.nan)
         if not (np.isfinite(hi) and 0 < lo < hi) or not isinstance(num_points, int | np.integer) \
                 or num_points < 2:
             raise ModelError("need 0 < stiffness_range[0] < stiffness_range[1] and an integer"
                              f" num_points >= 2; got {stiffness_range}, {num_points!r}",
                              "critical_speed_map")
         return np.geomspace(lo, hi, num_points)
-    grid = np.atleast_1d(np.asarray(stiffness, dtype=float))
+    grid = np.atleast_1d(as_float_array(stiffness, "stiffness", "critical_speed_map"))
     if grid.ndim != 1 or grid.size == 0 or not np.all(np.isfinite(grid) & (grid > 0)) \
             or np.any(np.diff(grid) <= 0):
         raise ModelError("stiffness must be a 1-D array of positive, increasing values",

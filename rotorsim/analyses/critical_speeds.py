@@ -24,6 +24,7 @@ import scipy.sparse.linalg as spl
 from numpy.typing import ArrayLike, NDArray
 from scipy.optimize import brentq
 
+from rotorsim.analyses.keyword_check import checked_keywords
 from rotorsim.analyses.mode_shapes import circularize, clusters, mode_kind, whirl_of
 from rotorsim.analyses.system_input import as_system
 from rotorsim.assembly.system import RotorSystem
@@ -65,6 +66,7 @@ class _Modes:
                         for f in ("w", "shapes", "whirl", "kind")))
 
 
+@checked_keywords
 def critical_speeds(
     rotor: Rotor | RotorSystem,
     harmonic: float = 1,

@@ -14,9 +14,11 @@ import numpy as np
 import scipy.sparse as sp
 from numpy.typing import ArrayLike, NDArray
 
+from rotorsim.analyses.keyword_check import checked_keywords
 from rotorsim.analyses.system_input import as_system
 from rotorsim.assembly.loads import nodal_load, unbalance_amplitudes
 from rotorsim.assembly.system import RotorSystem, SystemMatrices
+from rotorsim.elements.base import as_float_array
 from rotorsim.errors import ConvergenceError, ModelError, Status
 from rotorsim.model.rotor import Rotor
 from rotorsim.results.frequency_response import FrequencyResponseResult
@@ -28,6 +30,7 @@ ComplexArray = NDArray[np.complex128]
 _ON_FAILURE = ("raise", "record")
 
 
+@checked_keywords
 def unbalance_response(
     rotor: Rotor | RotorSystem,
     speeds: ArrayLike,
@@ -85,6 +88,7 @@ def unbalance_response(
     )
 
 
+@checked_keywords
 def frequency_response(
     rotor: Rotor | RotorSystem,
     frequencies: ArrayLike,
@@ -152,13 +156,13 @@ def frequency_response(
 
 
 def _frequencies(values: ArrayLike, name: str) -> FloatArray:
-    arr = np.atleast_1d(np.asarray(values, dtype=float))
+    arr = np.atleast_1d(as_float_array(values, "values", name))
     if arr.ndim != 1 or arr.size == 0:
         raise ModelError(f"must be a non-empty 1-D array [rad/s], got shape {arr.shape}", name)
     bad = np.flatnonzero(~np.isfinite(arr) | (arr < 0))
     if bad.size:
-        raise ModelError(f"value {arr[bad[0]]!r} at index {bad[0]} is not finite and >= 0",
-                         name)
+        raise ModelError(f"value {float(arr[bad[0]])} at index {bad[0]} is not finite and "
+                         ">= 0", name)
     return arr
 
 

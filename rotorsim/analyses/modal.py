@@ -7,9 +7,11 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from rotorsim.analyses.keyword_check import checked_keywords
 from rotorsim.analyses.mode_shapes import circularize, clusters, mode_kind, whirl_of
 from rotorsim.analyses.system_input import as_system
 from rotorsim.assembly.system import RotorSystem
+from rotorsim.elements.base import as_float_array
 from rotorsim.errors import ConvergenceError, ModelError
 from rotorsim.model.rotor import Rotor
 from rotorsim.results.modal import ModalResult
@@ -17,6 +19,7 @@ from rotorsim.solvers.eigen import DENSE_EIGEN_THRESHOLD, quadratic_eigen
 from rotorsim.solvers.stats import Stats
 
 
+@checked_keywords
 def modal(
     rotor: Rotor | RotorSystem,
     speed: float = 0.0,
@@ -65,8 +68,9 @@ def modal(
     """
     if num_modes < 1:
         raise ModelError(f"num_modes must be >= 1, got {num_modes}", "modal")
-    if not np.isfinite(speed):
-        raise ModelError(f"speed must be finite, got {speed}", "modal")
+    for name, value in (("speed", speed), ("sigma", sigma)):
+        if not np.isfinite(as_float_array(value, name, "modal")).all() or np.ndim(value):
+            raise ModelError(f"{name} must be finite, got {value!r}", "modal")
     system = as_system(rotor)
     own_stats = stats is None
     stats = Stats() if stats is None else stats

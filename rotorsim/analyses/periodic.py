@@ -43,6 +43,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from rotorsim.analyses.keyword_check import checked_keywords
 from rotorsim.analyses.nonlinear_static import start_point
 from rotorsim.analyses.periodic_branch import Stepping, trace_branch
 from rotorsim.analyses.periodic_events import floquet_events
@@ -78,6 +79,7 @@ WHERE = "periodic"
 PARAMETERS = ("speed", "frequency")
 
 
+@checked_keywords
 def periodic(
     model: Rotor | RotorSystem | Any,
     *,

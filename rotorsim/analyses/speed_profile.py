@@ -212,7 +212,7 @@ class _Tabulated:
 def _checked(fn: Callable[[float], float], t: float, name: str = "function") -> float:
     value = float(fn(float(t)))
     if not math.isfinite(value):
-        raise ModelError(f"returned {value!r} at t = {t!r} s", f"SpeedFunction.{name}")
+        raise ModelError(f"returned {value!r} at t = {float(t):.6g} s", f"SpeedFunction.{name}")
     return value
 
 

@@ -19,6 +19,7 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as spl
 from numpy.typing import ArrayLike, NDArray
 
+from rotorsim.analyses.keyword_check import checked_keywords
 from rotorsim.analyses.system_input import as_system
 from rotorsim.assembly.loads import (
     STANDARD_GRAVITY,
@@ -29,7 +30,7 @@ from rotorsim.assembly.loads import (
     unit_direction,
 )
 from rotorsim.assembly.system import RotorSystem
-from rotorsim.elements.base import DOFS_PER_NODE
+from rotorsim.elements.base import DOFS_PER_NODE, as_float_array
 from rotorsim.elements.shaft import shaft_matrices
 from rotorsim.errors import ConvergenceError, ModelError
 from rotorsim.model.rotor import Rotor
@@ -42,6 +43,7 @@ _MOTIONS = ("rotation about x", "rotation about y", "rotation about z",
             "x (translation)", "y (translation)", "z (translation)")
 
 
+@checked_keywords
 def static(
     rotor: Rotor | RotorSystem,
     *,
@@ -148,9 +150,10 @@ def static(
 
         start_point(system, x0, "static.x0")
     model = rotor if isinstance(rotor, Rotor) else None
-    g = 0.0 if gravity is None else float(gravity)
-    if not np.isfinite(g):
+    g_given = 0.0 if gravity is None else as_float_array(gravity, "value", "gravity")
+    if np.ndim(g_given) or not np.isfinite(g_given):
         raise ModelError(f"must be finite or None, got {gravity!r}", "gravity")
+    g = float(g_given)
     unit = unit_direction(direction)
     stats = Stats()
     K = system.matrices(float(speed)).K

@@ -23,6 +23,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike
 
+from rotorsim.analyses.keyword_check import checked_keywords
 from rotorsim.analyses.speed_profile import BoundSpeed, SpeedProfile, as_speed_profile
 from rotorsim.analyses.transient_loads import (
     BaseExcitation,
@@ -56,6 +57,7 @@ DENSE_STEPPING = 400
 then cost less than scipy.sparse's call overhead."""
 
 
+@checked_keywords
 def transient(
     model: Rotor | RotorSystem,
     t_end: float | Sequence[float],
@@ -172,6 +174,7 @@ def transient(
         raise ModelError(f"dt must be a positive number [s], got {dt!r}", f"{WHERE}.dt")
     system = _system(model, nonlinear)
     t0, t_end = _span(t_end)
+    _check_step_count(dt, t_end - t0)
     profile = as_speed_profile(speed).bind(t0, t_end, max(4096, int((t_end - t0) / dt)))
     problem, loads_fn = _problem(system, profile, t0, unbalance, gravity, direction, loads,
                                  forces, base)
@@ -226,6 +229,21 @@ def _system(model: Rotor | RotorSystem, nonlinear: Sequence[NonlinearElement]) -
         raise ModelError(f"expected a Rotor or RotorSystem, got {type(model).__name__}",
                          WHERE)
     return assemble(model, nonlinear=tuple(nonlinear))
+
+
+MAX_STEPS = 10**9
+"""Largest number of time steps of one run: more is a unit slip (``dt`` in s, not us), not
+a run that would end in any reasonable time."""
+
+
+def _check_step_count(dt: float, duration: float) -> None:
+    """Refuse a step longer than the run, or so short that the run would never end."""
+    if dt > duration:
+        raise ModelError(f"dt {dt} s exceeds the duration {duration} s: check the units",
+                         f"{WHERE}.dt")
+    if duration / dt > MAX_STEPS:
+        raise ModelError(f"dt {dt} s gives {duration / dt:.3g} steps over {duration} s, more "
+                         f"than {MAX_STEPS:.0e}: check the units", f"{WHERE}.dt")
 
 
 def _span(t_span: float | Sequence[float]) -> tuple[float, float]:

@@ -13,7 +13,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from rotorsim.assembly.system import RotorSystem
-from rotorsim.elements.base import DOF_NAMES, DOFS_PER_NODE, FloatArray
+from rotorsim.elements.base import DOF_NAMES, DOFS_PER_NODE, FloatArray, as_float_array
 from rotorsim.elements.shaft import shaft_matrices
 from rotorsim.errors import ModelError
 from rotorsim.model.rotor import Rotor
@@ -32,7 +32,7 @@ def unit_direction(direction: ArrayLike, where: str = "direction") -> FloatArray
     >>> unit_direction((0.0, -2.0, 0.0)).tolist()
     [0.0, -1.0, 0.0]
     """
-    d = np.asarray(direction, dtype=float)
+    d = as_float_array(direction, "value", where)
     if d.shape != (3,) or not np.all(np.isfinite(d)) or not np.any(d):
         raise ModelError(f"must be 3 finite components, not all zero; got {direction!r}", where)
     return d / np.linalg.norm(d)
@@ -119,8 +119,8 @@ def gravity_load(
     >>> bool(np.isclose(f[1::6].sum(), -STANDARD_GRAVITY * rotor.m))
     True
     """
-    if not np.isfinite(g):
-        raise ModelError(f"must be finite, got {g!r}", "gravity")
+    if np.ndim(as_float_array(g, "value", "gravity")) or not np.isfinite(g):
+        raise ModelError(f"must be a finite number, got {g!r}", "gravity")
     if rotor is not None:
         if rotor.ndof != system.dof_map.ndof:
             raise ModelError(f"rotor has {rotor.ndof} DOFs, system {system.dof_map.ndof}",

@@ -22,6 +22,7 @@ from rotorsim.elements.base import (
 )
 from rotorsim.elements.linear_bearing import BearingElement
 from rotorsim.elements.shaft import shaft_matrices
+from rotorsim.errors import ModelError
 from rotorsim.model.rotor import Rotor
 
 
@@ -114,6 +115,8 @@ def assemble(rotor: Rotor, nonlinear: Sequence[NonlinearElement] = ()) -> RotorS
     >>> system.matrices().M.shape
     (18, 18)
     """
+    if not isinstance(rotor, Rotor):
+        raise ModelError(f"expected a Rotor, got {type(rotor).__name__}", "assemble")
     fixed = [DOFS_PER_NODE * n + DOF_NAMES.index(d) for n, d in rotor.fixed]
     system = _assemble(rotor, fixed)
     inactive = _unconnected_dofs(system)

@@ -6,6 +6,7 @@ import argparse
 import sys
 from collections.abc import Sequence
 from pathlib import Path
+from typing import NoReturn
 
 RESTARTABLE = ("transient", "periodic", "periodic_parameter")
 """Analysis types with checkpoints (``--checkpoint``, ``--resume``)."""
@@ -46,9 +47,17 @@ EPILOG = """exit codes:
   130  interrupted (Ctrl-C); continue with --resume when --checkpoint was given"""
 
 
+class OneLineParser(argparse.ArgumentParser):
+    """An argument parser whose usage errors are one line on stderr (exit code 2), like
+    every other bad input, with a pointer to ``--help`` instead of the usage block."""
+
+    def error(self, message: str) -> NoReturn:
+        self.exit(2, f"rotorsim: error: {message} (see '{self.prog} --help')\n")
+
+
 def build_parser() -> argparse.ArgumentParser:
-    """The argument parser of ``rotorsim`` (all subcommands)."""
-    parser = argparse.ArgumentParser(
+    """The argument parser of ``rotorsim`` (all subcommands; they share its class)."""
+    parser = OneLineParser(
         prog="rotorsim", description="Rotordynamics with finite elements.", epilog=EPILOG,
         formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--debug", action="store_true", help="show tracebacks on errors")

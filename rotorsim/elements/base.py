@@ -86,13 +86,34 @@ def frozen_scalar(value: float) -> FloatArray:
 
 def check_finite(value: float, name: str, where: str, *, positive: bool = False,
                  nonnegative: bool = False) -> None:
-    """Raise :class:`~rotorsim.errors.ModelError` unless ``value`` is finite and signed as asked."""
+    """Raise :class:`~rotorsim.errors.ModelError` unless ``value`` is a finite number (or
+    array of them) signed as asked. Strings are refused: the API takes SI numbers, unit
+    strings are read only in model files and the CLI."""
     from rotorsim.errors import ModelError
 
-    arr = np.asarray(value, dtype=float)
+    arr = as_float_array(value, name, where)
+    if arr.ndim:
+        raise ModelError(f"{name} must be a single number, got {value!r}", where)
     if not np.all(np.isfinite(arr)):
         raise ModelError(f"{name} must be finite, got {value!r}", where)
     if positive and np.any(arr <= 0):
         raise ModelError(f"{name} must be > 0, got {value!r}", where)
     if nonnegative and np.any(arr < 0):
         raise ModelError(f"{name} must be >= 0, got {value!r}", where)
+
+
+def as_float_array(value: Any, name: str, where: str) -> FloatArray:
+    """``value`` as a float array, or a :class:`~rotorsim.errors.ModelError` naming ``name``
+    if it is a string or not numeric (e.g. ``"50 mm"`` passed to the SI-only API)."""
+    from rotorsim.errors import ModelError
+
+    if isinstance(value, bool):
+        raise ModelError(f"{name} must be a number, got {value!r}", where)
+    if isinstance(value, str | bytes) or (
+            isinstance(value, list | tuple) and any(isinstance(v, str | bytes) for v in value)):
+        raise ModelError(f"{name} must be a number in SI units, got {value!r} (unit strings "
+                         "are read in model files and the CLI only)", where)
+    try:
+        return np.asarray(value, dtype=float)
+    except (TypeError, ValueError):
+        raise ModelError(f"{name} must be a number, got {value!r}", where) from None

@@ -49,7 +49,7 @@ class DiskElement:
 
     def __post_init__(self) -> None:
         where = self.label
-        if not isinstance(self.n, int | np.integer) or self.n < 0:
+        if isinstance(self.n, bool) or not isinstance(self.n, int | np.integer) or self.n < 0:
             raise ModelError(f"node number must be a non-negative integer, got {self.n!r}", where)
         check_finite(self.m, "m", where, positive=True)
         check_finite(self.Id, "Id", where, nonnegative=True)
@@ -83,6 +83,9 @@ class DiskElement:
             Axial width, bore and outer diameter [m].
         """
         where = f"DiskElement(n={n})" if tag is None else f"DiskElement '{tag}'"
+        if not isinstance(material, Material):
+            raise ModelError(f"material must be a Material, got {type(material).__name__}",
+                             where)
         check_finite(width, "width", where, positive=True)
         check_finite(i_d, "i_d", where, nonnegative=True)
         check_finite(o_d, "o_d", where, positive=True)
@@ -126,7 +129,7 @@ class PointMass:
 
     def __post_init__(self) -> None:
         where = self.label
-        if not isinstance(self.n, int | np.integer) or self.n < 0:
+        if isinstance(self.n, bool) or not isinstance(self.n, int | np.integer) or self.n < 0:
             raise ModelError(f"node number must be a non-negative integer, got {self.n!r}", where)
         for key in ("m", "mx", "my", "mz"):
             value = getattr(self, key)

@@ -12,7 +12,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from rotorsim.elements.base import ElementMatrices, FloatArray
+from rotorsim.elements.base import ElementMatrices, FloatArray, as_float_array
 from rotorsim.errors import ModelError
 
 _LATERAL = ("xx", "xy", "yx", "yy")
@@ -94,14 +94,16 @@ class BearingElement:
     def __post_init__(self) -> None:
         where = self.label
         for key, node in (("n", self.n), ("n_link", self.n_link)):
-            if node is not None and (not isinstance(node, int | np.integer) or node < 0):
+            if node is not None and (isinstance(node, bool)
+                                     or not isinstance(node, int | np.integer) or node < 0):
                 raise ModelError(f"{key} must be a non-negative integer, got {node!r}", where)
         if self.n_link is not None and self.n_link == self.n:
             raise ModelError(f"n_link must differ from n (both {self.n})", where)
         for key, default in (("kyy", "kxx"), ("cyy", "cxx"), ("myy", "mxx")):
             if getattr(self, key) is None:
                 object.__setattr__(self, key, getattr(self, default))
-        freq = None if self.frequency is None else np.asarray(self.frequency, dtype=float)
+        freq = (None if self.frequency is None
+                else as_float_array(self.frequency, "frequency", where))
         if freq is not None:
             if freq.ndim != 1 or freq.size == 0 or not np.all(np.isfinite(freq)):
                 raise ModelError("frequency must be a 1-D array of finite speeds", where)
@@ -110,8 +112,11 @@ class BearingElement:
             object.__setattr__(self, "frequency", freq)
         table = {}
         for key in COEFFICIENTS:
-            value = np.atleast_1d(np.asarray(getattr(self, key), dtype=float))
-            if value.ndim != 1 or not np.all(np.isfinite(value)):
+            value = np.atleast_1d(as_float_array(getattr(self, key), key, where))
+            if value.ndim != 1:
+                raise ModelError(f"{key} must be a number or a 1-D array over frequency, got "
+                                 f"shape {value.shape}", where)
+            if not np.all(np.isfinite(value)):
                 raise ModelError(f"{key} must be finite, got {getattr(self, key)!r}", where)
             if value.size > 1:
                 if freq is None:
@@ -129,7 +134,7 @@ class BearingElement:
             value = getattr(self, key)
             if value is None:
                 continue
-            matrix = np.asarray(value, dtype=float)
+            matrix = as_float_array(value, key, where)
             if matrix.shape != (5, 5) or not np.all(np.isfinite(matrix)):
                 raise ModelError(f"{key} must be a finite (5, 5) array on (x, y, z, rx, ry), "
                                  f"got shape {matrix.shape}", where)

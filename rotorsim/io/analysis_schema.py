@@ -7,7 +7,7 @@ that analysis and the common reporting options of :class:`AnalysisTable`.
 
 from typing import Annotated, Any, Literal
 
-from pydantic import Field, PlainValidator
+from pydantic import Field, PlainValidator, model_validator
 
 from rotorsim.errors import ModelError
 from rotorsim.io.analysis_spec import Grid
@@ -26,6 +26,7 @@ from rotorsim.io.schema_types import (
     StiffnessGrid,
     Table,
     fail,
+    fmt,
     format_path,
     show,
     suggest,
@@ -140,6 +141,13 @@ class TransientTable(RestartableTable):
     initial: Literal["static", "zero"] = "static"
     on_failure: Literal["stop", "raise"] = "stop"
     unbalance: Annotated[list[UnbalanceTable], Field(min_length=1)] | None = None
+
+    @model_validator(mode="after")
+    def _step_within_run(self) -> "TransientTable":
+        if self.dt > self.t_end:
+            raise fail(f"{fmt(self.dt, 'time')} exceeds t_end ({fmt(self.t_end, 'time')}): "
+                       "check the units", ".dt")
+        return self
 
 
 class PeriodicTable(RestartableTable):

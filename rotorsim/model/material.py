@@ -43,12 +43,16 @@ class Material:
 
     def __post_init__(self) -> None:
         where = f"Material '{self.name}'"
-        for key in ("E", "rho"):
-            value = getattr(self, key)
-            if not math.isfinite(value) or value <= 0:
+        for key in ("E", "rho", "G_s", "nu"):
+            value = _number(getattr(self, key), key, where)
+            if key in ("E", "rho") and not (math.isfinite(value) and value > 0):
                 raise ModelError(f"{key} must be a positive finite number, got {value}", where)
+            if math.isinf(value):  # NaN is the "not given" default of G_s and nu
+                raise ModelError(f"{key} must be finite, got {value}", where)
         has_g = math.isfinite(self.G_s)
         has_nu = math.isfinite(self.nu)
+        if has_nu and not -1.0 < self.nu < 0.5:
+            raise ModelError(f"Poisson ratio {self.nu:.4f} outside (-1, 0.5)", where)
         if has_g == has_nu and not (has_g and _consistent(self.E, self.G_s, self.nu)):
             raise ModelError("give exactly one of G_s and nu", where)
         if has_g and not has_nu:
@@ -59,6 +63,17 @@ class Material:
             object.__setattr__(self, "G_s", self.E / (2.0 * (1.0 + self.nu)))
         if not -1.0 < self.nu < 0.5:
             raise ModelError(f"Poisson ratio {self.nu:.4f} outside (-1, 0.5)", where)
+
+
+def _number(value: object, key: str, where: str) -> float:
+    """``value`` as a float, or a :class:`ModelError` naming ``key`` (strings are refused:
+    the API takes SI numbers; unit strings are read in model files and the CLI only)."""
+    if isinstance(value, str | bytes | bool):
+        raise ModelError(f"{key} must be a number in SI units, got {value!r}", where)
+    try:
+        return float(value)  # type: ignore[arg-type]
+    except (TypeError, ValueError):
+        raise ModelError(f"{key} must be a number, got {value!r}", where) from None
 
 
 def _consistent(E: float, G: float, nu: float) -> bool:

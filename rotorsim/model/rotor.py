@@ -88,6 +88,7 @@ class Rotor:
         object.__setattr__(self, "n_shaft_nodes", len(shaft) + 1)
         for name in ("disk_elements", "bearing_elements", "point_mass_elements"):
             object.__setattr__(self, name, tuple(getattr(self, name)))
+            _check_kinds(name, getattr(self, name))
         moved = tuple(b for b in self.bearing_elements if _is_nonlinear(b))
         object.__setattr__(self, "bearing_elements",
                            tuple(b for b in self.bearing_elements if not _is_nonlinear(b)))
@@ -99,7 +100,7 @@ class Rotor:
         object.__setattr__(self, "nonlinear_elements", nonlinear)
         _check_unique_tags(self)
         object.__setattr__(self, "n_nodes", self._count_nodes())
-        fixed = tuple((int(n), str(d)) for n, d in self.fixed)
+        fixed = _fixed_dofs(self.fixed)
         for node, dof in fixed:
             if dof not in DOF_NAMES:
                 raise ModelError(f"unknown DOF '{dof}', use one of {DOF_NAMES}", "Rotor.fixed")
@@ -239,6 +240,37 @@ def _check_unique_tags(rotor: Rotor) -> None:
                                      "select elements, so each must be unique)",
                                      f"Rotor '{rotor.tag}'")
                 seen[tag] = here
+
+
+_KINDS: dict[str, tuple[type, ...]] = {"disk_elements": (DiskElement,),
+                                       "bearing_elements": (BearingElement,),
+                                       "point_mass_elements": (PointMass,)}
+
+
+def _check_kinds(name: str, elements: tuple[Any, ...]) -> None:
+    """Refuse an element in the wrong list (a bearing among the disks would be assembled
+    without its speed dependence); nonlinear elements may sit among the bearings."""
+    kinds = _KINDS[name]
+    for i, el in enumerate(elements):
+        if not isinstance(el, kinds) and not (name == "bearing_elements" and _is_nonlinear(el)):
+            raise ModelError(f"expected a {' or '.join(k.__name__ for k in kinds)}, got "
+                             f"{type(el).__name__}", f"{name}[{i}]")
+
+
+def _fixed_dofs(fixed: Iterable[Any]) -> tuple[tuple[int, str], ...]:
+    """``fixed`` as ``((node, dof), ...)``, or a ModelError naming the malformed entry."""
+    out = []
+    for i, item in enumerate(fixed):
+        try:
+            node, dof = item
+        except (TypeError, ValueError):
+            node = dof = None
+        if isinstance(node, bool) or not isinstance(node, int | np.integer) \
+                or not isinstance(dof, str):
+            raise ModelError(f"expected (node, dof) such as (0, 'uz'), got {item!r}",
+                             f"Rotor.fixed[{i}]")
+        out.append((int(node), dof))
+    return tuple(out)
 
 
 def _is_nonlinear(element: Any) -> bool:

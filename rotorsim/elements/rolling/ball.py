@@ -411,6 +411,8 @@ def _rows(axial: FloatArray, radial: FloatArray, dist: FloatArray, load: FloatAr
 
 
 def _finite(value: object, key: str, where: str) -> float:
+    if isinstance(value, str | bytes | bool):  # SI numbers only; units are read at the edges
+        raise ModelError(f"{key} must be a number, got {value!r}", where)
     try:
         number = float(value)  # type: ignore[arg-type]
     except (TypeError, ValueError):

@@ -51,6 +51,7 @@ from rotorsim.elements.rolling.hertz_line import (
 )
 from rotorsim.elements.rolling.roller_checks import (
     check_options,
+    finite_number,
     resolve_clearance,
     resolve_kn,
 )
@@ -163,16 +164,17 @@ class RollerBearing:
             raise ModelError(f"n_rollers must be an integer >= 1, got {self.n_rollers!r}", where)
         for name in ("pitch_diameter", "roller_diameter", "effective_length"):
             value = getattr(self, name)
-            if not (math.isfinite(value) and value > 0.0):
+            if not (finite_number(value) and value > 0.0):
                 raise ModelError(f"{name} must be positive and finite, got {value!r}", where)
         if self.roller_diameter >= self.pitch_diameter:
             raise ModelError(f"roller_diameter {self.roller_diameter} m must be smaller than "
                              f"pitch_diameter {self.pitch_diameter} m", where)
-        if not (math.isfinite(self.contact_angle) and 0.0 <= self.contact_angle <= 0.5 * math.pi):
+        if not (finite_number(self.contact_angle)
+                and 0.0 <= self.contact_angle <= 0.5 * math.pi):
             raise ModelError(f"contact_angle must be in [0, pi/2] rad (0 to 90 deg), got "
                              f"{self.contact_angle!r}", where)
         self._resolve_clearance(where)
-        if not (math.isfinite(self.exponent) and self.exponent >= 1.0):
+        if not (finite_number(self.exponent) and self.exponent >= 1.0):
             raise ModelError(f"exponent must be finite and >= 1 (10/9 for line contact), got "
                              f"{self.exponent!r}", where)
         self._resolve_kn(where)

@@ -24,12 +24,18 @@ CAGE_LAWS = ("rotating", "fixed")
 """Cage laws: ``"rotating"`` (inner ring turns, outer fixed) or ``"fixed"`` rollers."""
 
 
+def finite_number(value: Any) -> bool:
+    """True for a finite real number (not a bool or a string such as ``"7.5 mm"``)."""
+    return (isinstance(value, int | float | np.number) and not isinstance(value, bool)
+            and math.isfinite(value))
+
+
 def resolve_clearance(b: Any, where: str) -> float:
     """The radial clearance ``r_L`` [m] from ``radial_clearance`` or
     ``diametral_clearance`` (consistent when both are given)."""
     radial, diametral = b.radial_clearance, b.diametral_clearance
     for name, value in (("radial_clearance", radial), ("diametral_clearance", diametral)):
-        if value is not None and not math.isfinite(value):
+        if value is not None and not finite_number(value):
             raise ModelError(f"{name} must be finite, got {value!r}", where)
     if radial is None:
         radial = 0.0 if diametral is None else 0.5 * diametral
@@ -53,7 +59,7 @@ def resolve_kn(b: Any, where: str) -> float:
             raise ModelError("Kn must be given when exponent is not 10/9 (the ISO/TS 16281 "
                              "default is a 10/9 law)", where)
         return float(iso_roller_constant(b.effective_length))
-    if not (math.isfinite(b.Kn) and b.Kn > 0.0):
+    if not (finite_number(b.Kn) and b.Kn > 0.0):
         raise ModelError(f"Kn must be positive and finite, got {b.Kn!r}", where)
     return float(b.Kn)
 
@@ -75,5 +81,5 @@ def check_options(b: Any, where: str) -> None:
     if isinstance(b.n_slices, bool) or not isinstance(b.n_slices, int | np.integer) \
             or b.n_slices < 1:
         raise ModelError(f"n_slices must be an integer >= 1, got {b.n_slices!r}", where)
-    if not math.isfinite(b.psi0):
+    if not finite_number(b.psi0):
         raise ModelError(f"psi0 must be finite, got {b.psi0!r}", where)
