@@ -24,7 +24,8 @@ Evaluate = Callable[[Rotor, Params], Mapping[str, Any]]
 # ---------------------------------------------------------------------------- model changes
 def _value(params: Params, name: str) -> float:
     if name not in params:
-        raise KeyError(f"parameter {name!r} is not in the sweep; parameters are {list(params)}")
+        raise ModelError(f"parameter {name!r} is not in the sweep; parameters are "
+                         f"{list(params)}", "sweep")
     return float(params[name])
 
 

@@ -428,3 +428,16 @@ def test_rs_load_reads_a_sweep_store(tmp_path):
     loaded = rs.load(tmp_path / "s.h5")
     assert type(loaded).__name__ == "SweepResult"
     assert np.array_equal(loaded.outputs["critical_speeds"], result.outputs["critical_speeds"])
+
+
+def test_a_parameter_missing_from_the_sweep_is_a_named_error():
+    # min_log_dec reads the speed from each point: a sweep without it names the parameter
+    # (it was a bare KeyError)
+    space = Grid({"k": [1e6, 2e6]})
+    apply = set_bearing_stiffness([0, 1], "k")
+    with pytest.raises(ModelError, match="'speed' is not in the sweep"):
+        sweep(small_rotor(), space, apply, min_log_dec("speed", 4, sparse=False),
+              on_failure="raise")
+    res = sweep(small_rotor(), space, apply, min_log_dec("speed", 4, sparse=False))
+    assert res.point_status.tolist() == [Status.FAILED, Status.FAILED]
+    assert all("'speed' is not in the sweep" in m for m in res.messages)
