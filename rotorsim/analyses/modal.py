@@ -13,8 +13,14 @@ from rotorsim.assembly.system import RotorSystem
 from rotorsim.errors import ConvergenceError, ModelError
 from rotorsim.model.rotor import Rotor
 from rotorsim.results.modal import ModalResult
-from rotorsim.solvers.eigen import DENSE_EIGEN_THRESHOLD, quadratic_eigen
+from rotorsim.solvers.eigen import DENSE_EIGEN_THRESHOLD, EigenPairs, quadratic_eigen
 from rotorsim.solvers.stats import Stats
+
+RIGID_ROUNDING = 100.0
+"""An eigenpair ``(lam, x)`` is a rigid-body mode when ``|lam|^2 x^H M x <= RIGID_ROUNDING
+eps |x|^T |K| |x|``: its elastic energy is at the rounding level of ``K x`` (measured: at
+most 0.13 for the free axial/torsional modes, at least 1e7 for the lowest bending mode of a
+1000-element shaft, with supports of 1e6 to 1e30 N/m)."""
 
 
 def modal(
@@ -22,7 +28,7 @@ def modal(
     speed: float = 0.0,
     num_modes: int = 12,
     *,
-    sigma: float = -1.0,
+    sigma: float | None = None,
     sparse: bool | None = None,
     rigid_tol: float | None = None,
     stats: Stats | None = None,
@@ -36,22 +42,37 @@ def modal(
     rotor : Rotor or RotorSystem
         The model.
     speed : float
-        Spin speed W [rad/s].
+        Spin speed W [rad/s]. A negative speed is spin about ``-z``: the gyroscopic
+        terms change sign, so forward and backward whirl swap (see ``docs``).
     num_modes : int
-        Number of elastic modes to return (conjugate pairs count once).
-    sigma : float
+        Number of elastic modes to return (conjugate pairs count once), a positive
+        integer. If the model has fewer (resolvable) modes, all are returned and
+        ``notes`` says so.
+    sigma : float, optional
         Real shift [rad/s] of the eigen solver: modes nearest it are found. The default,
-        slightly negative, finds the lowest modes and keeps the solve regular when the
-        model has rigid-body modes.
+        :func:`~rotorsim.solvers.eigen.default_shift`, is slightly negative and scaled to
+        the model (``-1e-5 sqrt(min K_ii / M_ii)``, unaffected by stiff springs on a few
+        DOFs): it finds the lowest modes and keeps the solve regular when the model has
+        rigid-body modes.
     sparse : bool, optional
         Force sparse shift-invert (ARPACK) or dense (LAPACK); default by size.
     rigid_tol : float, optional
-        Eigenvalues with ``|lam|`` below this [rad/s] are rigid-body modes; default
-        ``1e-6 sqrt(max K_ii / max M_ii)``.
+        Eigenvalues with ``|lam|`` below this [rad/s] are rigid-body modes. Default: a
+        scale-free test per mode, ``|lam|^2 x^H M x <= 100 eps |x|^T |K| |x|`` (the
+        elastic energy of the mode is at the rounding level of ``K x``), which does not
+        depend on the stiffest spring of the model.
 
     Returns
     -------
     ModalResult
+
+    Raises
+    ------
+    ModelError
+        ``num_modes`` not a positive integer, a non-finite speed or ``sigma``, or a DOF
+        without mass.
+    ConvergenceError
+        No elastic mode found, or the eigen solver failed.
 
     Examples
     --------
@@ -63,31 +84,30 @@ def modal(
     >>> m.rigid_body_modes, m.kind[0]
     (2, 'lateral')
     """
-    if num_modes < 1:
-        raise ModelError(f"num_modes must be >= 1, got {num_modes}", "modal")
-    if not np.isfinite(speed):
-        raise ModelError(f"speed must be finite, got {speed}", "modal")
+    check_num_modes(num_modes, "modal")
+    speed = check_speed(speed, "modal")
+    if sigma is not None and not np.isfinite(sigma):
+        raise ModelError(f"sigma must be finite or None, got {sigma!r}", "modal")
     system = as_system(rotor)
     own_stats = stats is None
     stats = Stats() if stats is None else stats
     mats = system.matrices(speed)
     _check_mass(system, mats.M)
     D = mats.C + speed * mats.G
-    diag_k, diag_m = np.abs(mats.K.diagonal()), mats.M.diagonal()
-    tol = rigid_tol if rigid_tol is not None else 1e-6 * np.sqrt(diag_k.max() / diag_m.max())
 
     n = system.n_free
     extra = 4
     while True:
         k = 2 * num_modes + extra
         pairs = quadratic_eigen(mats.M, D, mats.K, k, sigma=sigma, sparse=sparse, stats=stats)
-        rigid = np.abs(pairs.values) < tol
+        rigid, tol = _rigid(pairs.values, pairs.vectors, mats.M, mats.K, rigid_tol)
         elastic = _elastic_indices(pairs.values, rigid)
-        if elastic.size >= num_modes or pairs.values.size >= 2 * n - 2 or k >= 2 * n:
+        if elastic.size >= num_modes or pairs.values.size < k or k >= 2 * n:
             break
         extra *= 2
     if elastic.size == 0:
         raise ConvergenceError("no elastic mode found", "modal", residual=None)
+    notes = _shortfall(num_modes, elastic.size, pairs)
     elastic = elastic[:num_modes]
     lam = pairs.values[elastic]
     shapes = system.dof_map.expand(pairs.vectors[:, elastic])
@@ -102,16 +122,63 @@ def modal(
     with np.errstate(divide="ignore", invalid="ignore"):
         log_dec = np.where(wd > 0, -2.0 * np.pi * lam.real / wd, np.inf)
     use_sparse = n > DENSE_EIGEN_THRESHOLD if sparse is None else sparse
-    options: dict[str, Any] = {"num_modes": num_modes, "sigma": sigma, "rigid_tol": tol,
-                               "solver": "sparse" if use_sparse else "dense"}
+    options: dict[str, Any] = {"num_modes": num_modes, "sigma": pairs.sigma,
+                               "rigid_tol": tol, "solver": "sparse" if use_sparse else "dense"}
     return ModalResult(
         speed=float(speed), eigenvalues=lam, wn=wn, wd=wd,
         damping_ratio=-lam.real / wn, log_dec=log_dec,
         whirl=whirl, whirl_ratio=ratio, kind=kind, mode_shapes=shapes,
         rigid_body_modes=rigid_shapes.shape[1], rigid_body_shapes=rigid_shapes,
         dof_map=system.dof_map, nodes_pos=system.nodes_pos, options=options,
-        stats=stats.finish() if own_stats else {}, summary=system.summary,
+        stats=stats.finish() if own_stats else {}, summary=system.summary, notes=notes,
     )
+
+
+def _rigid(values: NDArray[np.complex128], vectors: NDArray[np.complex128], M: Any, K: Any,
+           rigid_tol: float | None) -> tuple[NDArray[np.bool_], np.float64]:
+    """Rigid-body mask of the eigenpairs and the threshold [rad/s] (the largest per-mode
+    threshold of :data:`RIGID_ROUNDING` when ``rigid_tol`` is not given)."""
+    if rigid_tol is not None:
+        return np.abs(values) < rigid_tol, np.float64(rigid_tol)
+    if values.size == 0:
+        return np.zeros(0, dtype=bool), np.float64(0.0)
+    kinetic = np.real(np.einsum("ij,ij->j", vectors.conj(), M @ vectors))
+    size = np.abs(vectors)
+    rounding = np.einsum("ij,ij->j", size, abs(K) @ size)
+    threshold = np.sqrt(RIGID_ROUNDING * np.finfo(float).eps * rounding / kinetic)
+    return np.abs(values) <= threshold, np.float64(threshold.max())
+
+
+def _shortfall(num_modes: int, found: int, pairs: EigenPairs) -> tuple[str, ...]:
+    """A note when fewer than ``num_modes`` elastic modes exist or are resolved."""
+    if found >= num_modes:
+        return ()
+    note = f"num_modes = {num_modes} asked, but the model has only {found} elastic modes"
+    if pairs.unresolved:
+        note = (f"num_modes = {num_modes} asked, but only {found} elastic modes are "
+                f"resolved: {pairs.unresolved} eigenvalues of |lam| >= {pairs.limit:.3g} "
+                "rad/s (penalty modes of near-rigid springs or massless DOFs) were left out")
+    return (note,)
+
+
+def check_num_modes(num_modes: object, where: str) -> int:
+    """Refuse a ``num_modes`` that is not a positive integer (``bool`` and ``2.5``
+    included) with a :class:`ModelError`."""
+    if isinstance(num_modes, bool) or not isinstance(num_modes, int | np.integer) \
+            or num_modes < 1:
+        raise ModelError(f"num_modes must be a positive integer, got {num_modes!r}", where)
+    return int(num_modes)
+
+
+def check_speed(speed: object, where: str) -> float:
+    """A finite spin speed [rad/s]; negative means spin about ``-z`` (accepted)."""
+    try:
+        value = float(speed)  # type: ignore[arg-type]
+    except (TypeError, ValueError) as exc:
+        raise ModelError(f"speed must be a number [rad/s], got {speed!r}", where) from exc
+    if not np.isfinite(value):
+        raise ModelError(f"speed must be finite, got {speed!r}", where)
+    return value
 
 
 def _check_mass(system: RotorSystem, M) -> None:
