@@ -108,7 +108,7 @@ def critical_speed_map(
                for i, b in enumerate(rotor.bearing_elements)]
         try:
             res = solve_critical_speeds(assemble(rotor.with_bearings(new)), harmonic, num_modes,
-                                   "forward", gyroscopic, None, -1.0, stats)
+                                   "forward", gyroscopic, None, None, stats)
         except ConvergenceError:
             if on_failure == "raise":
                 raise

@@ -13,15 +13,8 @@ from rotorsim.assembly.system import RotorSystem
 from rotorsim.errors import ConvergenceError, ModelError
 from rotorsim.model.rotor import Rotor
 from rotorsim.results.modal import ModalResult
-from rotorsim.solvers.eigen import DENSE_EIGEN_THRESHOLD, EigenPairs, quadratic_eigen
+from rotorsim.solvers.eigen import DENSE_EIGEN_THRESHOLD, EigenPairs, quadratic_eigen, rounding_energy
 from rotorsim.solvers.stats import Stats
-
-RIGID_ROUNDING = 100.0
-"""An eigenpair ``(lam, x)`` is a rigid-body mode when ``|lam|^2 x^H M x <= RIGID_ROUNDING
-eps |x|^T |K| |x|``: its elastic energy is at the rounding level of ``K x`` (measured: at
-most 0.13 for the free axial/torsional modes, at least 1e7 for the lowest bending mode of a
-1000-element shaft, with supports of 1e6 to 1e30 N/m)."""
-
 
 def modal(
     rotor: Rotor | RotorSystem,
@@ -143,9 +136,7 @@ def _rigid(values: NDArray[np.complex128], vectors: NDArray[np.complex128], M: A
     if values.size == 0:
         return np.zeros(0, dtype=bool), np.float64(0.0)
     kinetic = np.real(np.einsum("ij,ij->j", vectors.conj(), M @ vectors))
-    size = np.abs(vectors)
-    rounding = np.einsum("ij,ij->j", size, abs(K) @ size)
-    threshold = np.sqrt(RIGID_ROUNDING * np.finfo(float).eps * rounding / kinetic)
+    threshold = np.sqrt(rounding_energy(vectors, K) / kinetic)  # |lam|^2 x^H M x = x^H K x
     return np.abs(values) <= threshold, np.float64(threshold.max())
 
 
