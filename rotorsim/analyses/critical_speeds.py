@@ -24,6 +24,7 @@ import scipy.sparse.linalg as spl
 from numpy.typing import ArrayLike, NDArray
 from scipy.optimize import brentq
 
+from rotorsim.analyses.modal import check_num_modes
 from rotorsim.analyses.mode_shapes import circularize, clusters, mode_kind, whirl_of
 from rotorsim.analyses.system_input import as_system
 from rotorsim.assembly.system import RotorSystem
@@ -35,7 +36,6 @@ from rotorsim.results.critical_speeds import (
     check_harmonic,
     check_whirl_filter,
 )
-from rotorsim.analyses.modal import check_num_modes
 from rotorsim.solvers.eigen import (
     DENSE_EIGEN_THRESHOLD,
     DENSE_SHIFT_FRACTION,
@@ -260,11 +260,11 @@ def _frozen_modes(system: RotorSystem, speed: float, k: float, gyroscopic: bool,
     elastic = energy > rounding_energy(vecs, mats.K)
     keep = np.flatnonzero(real & (mu.real > 0) & elastic & complete)
     keep = keep[np.argsort(mu.real[keep], kind="stable")]
-    mu, shapes = mu.real[keep], system.dof_map.expand(vecs[:, keep])
-    shapes = circularize(shapes, clusters(mu))
+    mu_real, shapes = mu.real[keep], system.dof_map.expand(vecs[:, keep])
+    shapes = circularize(shapes, clusters(mu_real))
     kind = mode_kind(system.dof_map.expand(mats.M.diagonal()), shapes)
     whirl = np.where(kind == "lateral", whirl_of(shapes)[0], "none").astype("<U9")
-    return _Modes(np.sqrt(mu), shapes, whirl, kind)
+    return _Modes(np.sqrt(mu_real), shapes, whirl, kind)
 
 
 def _dense_shift_invert(K: sp.csr_matrix, B: sp.csr_matrix, sigma: float, stats: Stats

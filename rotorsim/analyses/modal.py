@@ -13,8 +13,14 @@ from rotorsim.assembly.system import RotorSystem
 from rotorsim.errors import ConvergenceError, ModelError
 from rotorsim.model.rotor import Rotor
 from rotorsim.results.modal import ModalResult
-from rotorsim.solvers.eigen import DENSE_EIGEN_THRESHOLD, EigenPairs, quadratic_eigen, rounding_energy
+from rotorsim.solvers.eigen import (
+    DENSE_EIGEN_THRESHOLD,
+    EigenPairs,
+    quadratic_eigen,
+    rounding_energy,
+)
 from rotorsim.solvers.stats import Stats
+
 
 def modal(
     rotor: Rotor | RotorSystem,
