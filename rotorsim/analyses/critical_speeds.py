@@ -24,7 +24,7 @@ import scipy.sparse.linalg as spl
 from numpy.typing import ArrayLike, NDArray
 from scipy.optimize import brentq
 
-from rotorsim.analyses.modal import check_num_modes
+from rotorsim.analyses.linear_checks import check_num_modes
 from rotorsim.analyses.mode_shapes import circularize, clusters, mode_kind, whirl_of
 from rotorsim.analyses.system_input import as_system
 from rotorsim.assembly.system import RotorSystem

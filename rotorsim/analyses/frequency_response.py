@@ -14,6 +14,7 @@ import numpy as np
 import scipy.sparse as sp
 from numpy.typing import ArrayLike, NDArray
 
+from rotorsim.analyses.linear_checks import check_speed
 from rotorsim.analyses.system_input import as_system
 from rotorsim.assembly.loads import nodal_load, unbalance_amplitudes
 from rotorsim.assembly.system import RotorSystem, SystemMatrices
@@ -105,7 +106,9 @@ def frequency_response(
     inputs : list of (node, dof)
         Where each unit force (``ux, uy, uz`` [N]) or moment (``rx, ry, rz`` [N m]) acts.
     speed : float, optional
-        Fixed spin speed W [rad/s]; ``None`` means synchronous excitation (W = w).
+        Fixed spin speed W [rad/s], finite and >= 0 (see
+        :mod:`rotorsim.analyses.linear_checks`); ``None`` means synchronous excitation
+        (W = w).
     progress, on_failure
         As in :func:`unbalance_response`.
 
@@ -130,10 +133,8 @@ def frequency_response(
     w = _frequencies(frequencies, "frequencies")
     if speed is None:
         spins = w
-    elif not np.isfinite(speed):
-        raise ModelError(f"speed must be finite or None, got {speed!r}", "frequency_response")
     else:
-        spins = np.full_like(w, float(speed))
+        spins = np.full_like(w, check_speed(speed, "frequency_response"))
     if isinstance(inputs, str) or not isinstance(inputs, Sequence) or not inputs:
         raise ModelError("give a non-empty list of (node, dof)", "inputs")
     columns = []

@@ -7,6 +7,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from rotorsim.analyses.linear_checks import check_num_modes, check_speed
 from rotorsim.analyses.mode_shapes import circularize, clusters, mode_kind, whirl_of
 from rotorsim.analyses.system_input import as_system
 from rotorsim.assembly.system import RotorSystem
@@ -41,8 +42,8 @@ def modal(
     rotor : Rotor or RotorSystem
         The model.
     speed : float
-        Spin speed W [rad/s]. A negative speed is spin about ``-z``: the gyroscopic
-        terms change sign, so forward and backward whirl swap (see ``docs``).
+        Spin speed W [rad/s], finite and >= 0 (spin about +z; see
+        :mod:`rotorsim.analyses.linear_checks` for why negative speeds are refused).
     num_modes : int
         Number of elastic modes to return (conjugate pairs count once), a positive
         integer. If the model has fewer (resolvable) modes, all are returned and
@@ -68,8 +69,8 @@ def modal(
     Raises
     ------
     ModelError
-        ``num_modes`` not a positive integer, a non-finite speed or ``sigma``, or a DOF
-        without mass.
+        ``num_modes`` not a positive integer, a negative or non-finite speed, a non-finite
+        ``sigma``, or a DOF without mass.
     ConvergenceError
         No elastic mode found, or the eigen solver failed.
 
@@ -156,26 +157,6 @@ def _shortfall(num_modes: int, found: int, pairs: EigenPairs) -> tuple[str, ...]
                 f"resolved: {pairs.unresolved} eigenvalues of |lam| >= {pairs.limit:.3g} "
                 "rad/s (penalty modes of near-rigid springs or massless DOFs) were left out")
     return (note,)
-
-
-def check_num_modes(num_modes: object, where: str) -> int:
-    """Refuse a ``num_modes`` that is not a positive integer (``bool`` and ``2.5``
-    included) with a :class:`ModelError`."""
-    if isinstance(num_modes, bool) or not isinstance(num_modes, int | np.integer) \
-            or num_modes < 1:
-        raise ModelError(f"num_modes must be a positive integer, got {num_modes!r}", where)
-    return int(num_modes)
-
-
-def check_speed(speed: object, where: str) -> float:
-    """A finite spin speed [rad/s]; negative means spin about ``-z`` (accepted)."""
-    try:
-        value = float(speed)  # type: ignore[arg-type]
-    except (TypeError, ValueError) as exc:
-        raise ModelError(f"speed must be a number [rad/s], got {speed!r}", where) from exc
-    if not np.isfinite(value):
-        raise ModelError(f"speed must be finite, got {speed!r}", where)
-    return value
 
 
 def _check_mass(system: RotorSystem, M) -> None:

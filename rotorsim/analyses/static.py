@@ -19,6 +19,7 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as spl
 from numpy.typing import ArrayLike, NDArray
 
+from rotorsim.analyses.linear_checks import check_speed
 from rotorsim.analyses.system_input import as_system
 from rotorsim.assembly.loads import (
     STANDARD_GRAVITY,
@@ -79,7 +80,8 @@ def static(
     loads : list of (node, dof, value)
         Point forces [N] (``ux, uy, uz``) and moments [N m] (``rx, ry, rz``).
     speed : float
-        Spin speed W [rad/s] at which speed-dependent bearing stiffness is evaluated.
+        Spin speed W [rad/s], finite and >= 0, at which speed-dependent bearing stiffness
+        is evaluated (negative speeds are refused: :mod:`rotorsim.analyses.linear_checks`).
     rigid_tol : float
         A rigid motion ``r`` is free when ``||K r|| <= rigid_tol ||K||_F ||r||``; a support
         softer than about ``rigid_tol`` times the stiffest entry counts as absent.
@@ -116,8 +118,7 @@ def static(
     >>> bool(np.allclose(s.bearing_forces[:, 1], 9.80665 * rotor.m / 2))
     True
     """
-    if not np.isfinite(speed):
-        raise ModelError(f"speed must be finite, got {speed!r}", "static")
+    speed = check_speed(speed, "static")
     if not np.isfinite(rigid_tol) or rigid_tol <= 0:
         raise ModelError(f"rigid_tol must be > 0, got {rigid_tol!r}", "static")
     if method not in ("newton", "energy"):

@@ -138,10 +138,28 @@ def _receptance_matrix(rotor: Rotor, w, dofs, speed):
     return h.response[:, rows, :], h
 
 
+_TURN_SIGN = {"ux": -1.0, "uy": 1.0, "uz": -1.0, "rx": -1.0, "ry": 1.0, "rz": -1.0}
+"""Turning the rotor end for end (rotation by pi about y: x -> -x, z -> -z) maps each DOF to
+itself at the mirrored node with these signs, and spin at -W to spin at +W."""
+
+
+def _turned_gyroscopic_rotor() -> Rotor:
+    """:func:`gyroscopic_rotor` seen from its other end (node n -> 6 - n); it has no
+    cross-coupled bearing terms, which would change sign."""
+    shaft = [ShaftElement(L=0.2, idl=0.0, odl=0.05, material=steel) for _ in range(6)]
+    disks = [DiskElement(n=4, m=15.0, Id=0.1, Ip=0.2), DiskElement(n=1, m=8.0, Id=0.06,
+                                                                    Ip=0.11)]
+    bearings = [BearingElement(n=6, kxx=2e7, kyy=3e7, cxx=400.0, cyy=300.0, kzz=1e7, czz=50.0),
+                BearingElement(n=0, kxx=1e7, cxx=200.0, krr=1e4)]
+    return Rotor(shaft, disks, bearings).with_fixed([(n, "rz") for n in range(7)])
+
+
 def test_reciprocity_non_rotating_and_reversed_spin():
     # Maxwell-Betti reciprocity H_ij = H_ji holds for symmetric M, C, K (W = 0). With spin
     # the skew gyroscopic matrix gives H(W)^T = H(-W) instead (Lund's reciprocity for
     # gyroscopic systems, since (K - w^2 M + i w (C + W G))^T = K - w^2 M + i w (C - W G)).
+    # Speeds are >= 0 by convention, so H(-W) is the receptance of the rotor turned end for
+    # end spinning at +W, with the DOFs mapped back.
     rotor = gyroscopic_rotor()
     dofs = [(2, "ux"), (2, "uy"), (5, "ry"), (3, "rx"), (4, "uz"), (6, "ux")]
     w = np.array([50.0, 400.0, 1500.0])
@@ -149,7 +167,10 @@ def test_reciprocity_non_rotating_and_reversed_spin():
     np.testing.assert_allclose(H0, np.swapaxes(H0, 1, 2), rtol=1e-10,
                                atol=1e-10 * np.abs(H0).max())
     Hp, _ = _receptance_matrix(rotor, w, dofs, 600.0)
-    Hm, _ = _receptance_matrix(rotor, w, dofs, -600.0)
+    turned = [(6 - n, d) for n, d in dofs]
+    sign = np.array([_TURN_SIGN[d] for _, d in dofs])
+    Hm = _receptance_matrix(_turned_gyroscopic_rotor(), w, turned, 600.0)[0] * np.outer(sign,
+                                                                                        sign)
     np.testing.assert_allclose(Hp, np.swapaxes(Hm, 1, 2), rtol=1e-10,
                                atol=1e-10 * np.abs(Hp).max())
     asym = np.abs(Hp - np.swapaxes(Hp, 1, 2)).max() / np.abs(Hp).max()
