@@ -8,6 +8,7 @@ import numpy as np
 import pytest
 
 from rotorsim.analyses.frequency_response import frequency_response, unbalance_response
+from rotorsim.analyses.static import static
 from rotorsim.assembly.system import assemble
 from rotorsim.elements.disk import DiskElement
 from rotorsim.elements.linear_bearing import BearingElement
@@ -212,18 +213,41 @@ def test_speed_dependent_bearings_evaluated_at_each_speed():
 
 
 @pytest.mark.filterwarnings("ignore::scipy.linalg.LinAlgWarning")
-def test_singular_point_raises_or_is_recorded():
-    # Without axial/torsional restraint K is singular at w = 0 (rigid-body motion).
+def test_static_point_with_free_rigid_motions_is_solved_or_refused():
+    # Without axial/torsional restraint K is singular at w = 0 (rigid-body motion). A
+    # lateral load does no work on those motions: the receptance at w = 0 is the static
+    # compliance (issue 12: it used to raise "matrix is singular"). An axial load moves the
+    # free axial translation: the static response is unbounded, raised or recorded.
     shaft = [ShaftElement(L=0.2, idl=0.0, odl=0.05, material=steel) for _ in range(3)]
     rotor = Rotor(shaft, [], [BearingElement(n=0, kxx=1e7), BearingElement(n=3, kxx=1e7)])
-    with pytest.raises(ConvergenceError, match="point 0"):
-        frequency_response(rotor, [0.0, 100.0], [(1, "ux")], speed=0.0)
-    r = frequency_response(rotor, [0.0, 100.0], [(1, "ux")], speed=0.0, on_failure="record")
+    h = frequency_response(rotor, [0.0, 100.0], [(1, "ux")], speed=0.0)
+    static_ux = static(rotor, gravity=None, loads=[(1, "ux", 1.0)]).displacement
+    # one LU solve against another of the same (restrained) matrix: round-off only
+    np.testing.assert_allclose(h.response[0, :, 0].real, static_ux, rtol=1e-9,
+                               atol=1e-12 * np.abs(static_ux).max())
+    assert np.all(h.response[0].imag == 0) and h.status is Status.OK
+    with pytest.raises(ConvergenceError, match=r"point 0.*unbounded.*z \(translation\)"):
+        frequency_response(rotor, [0.0, 100.0], [(1, "uz")], speed=0.0)
+    r = frequency_response(rotor, [0.0, 100.0], [(1, "uz")], speed=0.0, on_failure="record")
     assert r.point_status.tolist() == [Status.FAILED, Status.OK]
     assert np.isnan(r.response[0]).all() and np.isfinite(r.response[1]).all()
     assert r.status is Status.FAILED
     with pytest.raises(TypeError, match="on_failure"):
         frequency_response(rotor, [1.0], [(1, "ux")], on_failure="ignore")
+
+
+def test_unbalance_response_from_zero_speed_with_free_axial_and_torsion():
+    # The unbalance force me W^2 vanishes at W = 0, so the response is exactly zero there;
+    # sweeps starting at 0 are the normal case (issue 12: "matrix is singular" at W = 0).
+    shaft = [ShaftElement(L=0.2, idl=0.0, odl=0.05, material=steel) for _ in range(3)]
+    rotor = Rotor(shaft, [], [BearingElement(n=0, kxx=1e7, cxx=1e3),
+                              BearingElement(n=3, kxx=1e7, cxx=1e3)])
+    speeds = np.array([0.0, 50.0, 100.0])
+    u = unbalance_response(rotor, speeds, [(1, 1e-4, 0.3)])
+    assert u.status is Status.OK and np.all(u.response[0] == 0)
+    later = unbalance_response(rotor, speeds[1:], [(1, 1e-4, 0.3)])
+    np.testing.assert_array_equal(u.response[1:], later.response)  # same solves, same bits
+    assert u.stats["factorizations"] == 2  # no solve where the force is zero
 
 
 @pytest.mark.parametrize(
