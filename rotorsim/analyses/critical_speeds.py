@@ -123,7 +123,7 @@ def critical_speeds(
         Force the sparse or dense eigen solver; default sparse above
         ``DENSE_EIGEN_THRESHOLD`` free DOFs.
     sigma : float, optional
-        Shift [rad^2/s^2] of the eigen solver; default ``-1e-5 w_ref^2`` with ``w_ref^2 =
+        Shift [rad^2/s^2] of the eigen solver; default ``-1e-3 w_ref^2`` with ``w_ref^2 =
         min K_ii / M_ii`` (:func:`~rotorsim.solvers.eigen.default_shift`): slightly negative
         (rigid-body modes) and scaled to the model, unaffected by stiff springs on a few DOFs.
         Rigid-body modes are told apart by a scale-free test per mode (elastic energy at the

@@ -51,7 +51,7 @@ def modal(
     sigma : float, optional
         Real shift [rad/s] of the eigen solver: modes nearest it are found. The default,
         :func:`~rotorsim.solvers.eigen.default_shift`, is slightly negative and scaled to
-        the model (``-1e-5 sqrt(min K_ii / M_ii)``, unaffected by stiff springs on a few
+        the model (``-1e-3 sqrt(min K_ii / M_ii)``, unaffected by stiff springs on a few
         DOFs): it finds the lowest modes and keeps the solve regular when the model has
         rigid-body modes.
     sparse : bool, optional

