@@ -61,7 +61,7 @@ def test_stiff_supports_agree_with_exact_constraints(k_support, sparse):
     """Penalty springs against the same shaft with ux, uy fixed: they differ by the penalty
     error ``~ k_shaft / k_support <= 1e-11``; the tolerance 5e-9 is the eigen-solver
     accuracy (ARPACK tol 1e-11 on ``mu``, amplified by the non-normal first-order operator:
-    observed up to 7.2e-12 here, 5e-10 on other models)."""
+    observed up to 7.2e-12)."""
     bearings = [rs.BearingElement(n=0, kxx=k_support), rs.BearingElement(n=N_EL, kxx=k_support)]
     springs = rs.modal(rs.Rotor(_shaft(), [], bearings), 300.0, 8, sparse=sparse)
     fixed = [(n, d) for n in (0, N_EL) for d in ("ux", "uy")]
