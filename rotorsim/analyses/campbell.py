@@ -16,7 +16,11 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from scipy.optimize import linear_sum_assignment
 
-from rotorsim.analyses.linear_checks import NEGATIVE_SPEED_HINT, check_num_modes
+from rotorsim.analyses.linear_checks import (
+    NEGATIVE_SPEED_HINT,
+    check_num_modes,
+    check_sparse,
+)
 from rotorsim.analyses.modal import modal
 from rotorsim.analyses.mode_shapes import mac
 from rotorsim.analyses.system_input import as_system
@@ -117,6 +121,7 @@ def campbell(
     ((3, 4), ['forward', 'backward'])
     """
     grid = _check_inputs(speeds, num_modes, on_failure)
+    sparse = check_sparse(sparse, "campbell")
     system = as_system(rotor)
     stats = Stats()
     n_speeds = grid.size

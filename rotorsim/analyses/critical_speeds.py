@@ -24,7 +24,7 @@ import scipy.sparse.linalg as spl
 from numpy.typing import ArrayLike, NDArray
 from scipy.optimize import brentq
 
-from rotorsim.analyses.linear_checks import check_num_modes
+from rotorsim.analyses.linear_checks import check_num_modes, check_sparse
 from rotorsim.analyses.mode_shapes import circularize, clusters, mode_kind, whirl_of
 from rotorsim.analyses.system_input import as_system
 from rotorsim.assembly.system import RotorSystem
@@ -187,6 +187,7 @@ def solve_critical_speeds(system: RotorSystem, harmonic: float, num_modes: int,
     k = check_harmonic(harmonic, "critical_speeds")
     check_whirl_filter(whirl, "critical_speeds")
     check_num_modes(num_modes, "critical_speeds")
+    sparse = check_sparse(sparse, "critical_speeds")
     if sigma is not None and not np.isfinite(sigma):
         raise ModelError(f"sigma must be finite or None, got {sigma!r}", "critical_speeds")
 

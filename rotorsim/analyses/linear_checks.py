@@ -60,3 +60,11 @@ def check_speed(speed: object, where: str, name: str = "speed") -> float:
         raise ModelError(f"{name} must be >= 0 rad/s, got {speed!r}: {NEGATIVE_SPEED_HINT}",
                          where)
     return value
+
+
+def check_sparse(sparse: object, where: str) -> bool | None:
+    """``sparse`` is ``None`` (choose by size), ``True`` or ``False``; a string such as
+    ``"no"`` would otherwise be read as true."""
+    if sparse is not None and not isinstance(sparse, bool | np.bool_):
+        raise ModelError(f"sparse must be None, True or False, got {sparse!r}", where)
+    return None if sparse is None else bool(sparse)

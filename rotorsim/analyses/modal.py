@@ -7,7 +7,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from rotorsim.analyses.linear_checks import check_num_modes, check_speed
+from rotorsim.analyses.linear_checks import check_num_modes, check_sparse, check_speed
 from rotorsim.analyses.mode_shapes import circularize, clusters, mode_kind, whirl_of
 from rotorsim.analyses.system_input import as_system
 from rotorsim.assembly.system import RotorSystem
@@ -86,6 +86,7 @@ def modal(
     """
     check_num_modes(num_modes, "modal")
     speed = check_speed(speed, "modal")
+    sparse = check_sparse(sparse, "modal")
     if sigma is not None and not np.isfinite(sigma):
         raise ModelError(f"sigma must be finite or None, got {sigma!r}", "modal")
     system = as_system(rotor)

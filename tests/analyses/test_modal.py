@@ -130,3 +130,13 @@ def test_absurdly_soft_material_is_solved_at_its_own_scale(sparse):
     np.testing.assert_allclose(got.wn, ref.wn * np.sqrt(1.0 / steel.E), rtol=1e-8)
     assert got.rigid_body_modes == ref.rigid_body_modes == 2
     assert abs(got.options["sigma"]) < 0.1 * got.wn[0]  # the shift follows the model scale
+
+
+@pytest.mark.parametrize("verb", ["modal", "campbell", "critical_speeds"])
+def test_sparse_flag_must_be_a_bool_or_none(verb):
+    # "no" used to be read as true and chose ARPACK
+    calls = {"modal": lambda: rs.modal(small_rotor(), 0.0, 2, sparse="no"),
+             "campbell": lambda: rs.campbell(small_rotor(), [0.0], 2, sparse="no"),
+             "critical_speeds": lambda: critical_speeds(small_rotor(), 1, 2, sparse="no")}
+    with pytest.raises(ModelError, match=f"{verb}: sparse must be None, True or False"):
+        calls[verb]()
