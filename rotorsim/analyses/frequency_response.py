@@ -244,7 +244,7 @@ def _solve_point(system: RotorSystem, Z: sp.csr_matrix, load: ComplexArray, w: f
         if w != 0.0:
             raise
     K = sp.csr_matrix(Z.real)
-    rigid = free_rigid_motions(system, K)
+    rigid = free_rigid_motions(system, K, scaled=True)
     work = np.abs(rigid.fields.T @ load)
     scale = np.linalg.norm(rigid.fields, axis=0)[:, None] * np.linalg.norm(load, axis=0)
     moved = [rigid.labels[j] for j in np.flatnonzero(np.any(work > 1e-9 * scale, axis=1))]

@@ -139,7 +139,7 @@ def static(
     stats = Stats()
     K = system.matrices(float(speed)).K
     f, f_all = _applied_load(system, model, g, unit, loads)
-    rigid = free_rigid_motions(system, K, rigid_tol)
+    rigid = free_rigid_motions(system, K, rigid_tol, scaled=True)
     _check_equilibrium(rigid, f)
     q_free, held = _solve_restrained(K, f, rigid, stats)
     residual = float(np.linalg.norm(K @ q_free - f)) / max(float(np.linalg.norm(f)), 1e-300)
@@ -222,22 +222,26 @@ def rigid_body_fields(system: RotorSystem) -> FloatArray:
     return fields.reshape(-1, 6)
 
 
-def free_rigid_motions(system: RotorSystem, K: sp.spmatrix, rigid_tol: float = 1e-10
-                       ) -> RigidMotions:
+def free_rigid_motions(system: RotorSystem, K: sp.spmatrix, rigid_tol: float = 1e-10,
+                       *, scaled: bool = False) -> RigidMotions:
     """Rigid-body motions ``r`` of the whole rotor that ``K`` does not restrain.
 
-    The test is scale-aware: with ``S = diag(|K_ii|^-1/2)`` (1 where ``K_ii = 0``), a
-    motion is free when ``||S K r|| <= rigid_tol ||S K S||_F ||S^-1 r||``, i.e. on the
-    diagonally scaled stiffness, whose entries are all of order 1 or less. A thrust bearing
-    of 1e8 N/m therefore restrains the axial motion even beside 1e20 N/m radial (pinned)
-    supports, which an unscaled test against ``||K||`` would count as absent. The test is
-    made on the orthonormalised span of :func:`rigid_body_fields` (restricted to the free
-    DOFs), so combinations such as a rotation about a single bearing are found. The basis
-    returned is in reduced row-echelon form over the named motions (rotations first), which
-    turns it into pure translations and rotations about a pivot.
+    Unscaled (default), a motion is free when ``||K r|| <= rigid_tol ||K||_F ||r||``: a
+    restraint weaker than ``rigid_tol`` times the stiffest entry counts as absent, which is
+    what the nonlinear analyses want of placeholder ("ghost") shafts of ``E = 1 Pa`` under
+    rigid rotors. ``scaled=True`` (linear :func:`static` and the frequency response) makes
+    the test independent of the stiffest spring: with ``S = diag(|K_ii|^-1/2)`` (1 where
+    ``K_ii = 0``), ``r`` is free when ``||S K r|| <= rigid_tol ||S K S||_F ||S^-1 r||``, so a
+    1e8 N/m thrust bearing restrains the axial motion even beside 1e20 N/m radial (pinned)
+    supports. The test is made on the orthonormalised span of :func:`rigid_body_fields`
+    (restricted to the free DOFs), so combinations such as a rotation about a single bearing
+    are found. The basis returned is in reduced row-echelon form over the named motions
+    (rotations first), which turns it into pure translations and rotations about a pivot.
     """
     diag = np.abs(np.asarray(K.diagonal(), dtype=float))
-    scale = np.where(diag > 0, 1.0 / np.sqrt(np.where(diag > 0, diag, 1.0)), 1.0)
+    scale = np.ones(diag.size)
+    if scaled:
+        scale = np.where(diag > 0, 1.0 / np.sqrt(np.where(diag > 0, diag, 1.0)), 1.0)
     S = sp.diags(scale)
     Ks = sp.csr_matrix(S @ K @ S)
     R = rigid_body_fields(system)[system.dof_map.free]
