@@ -17,6 +17,11 @@ from numpy.typing import ArrayLike, NDArray
 from scipy.optimize import linear_sum_assignment
 
 from rotorsim.analyses.keyword_check import checked_keywords
+from rotorsim.analyses.linear_checks import (
+    NEGATIVE_SPEED_HINT,
+    check_num_modes,
+    check_sparse,
+)
 from rotorsim.analyses.modal import modal
 from rotorsim.analyses.mode_shapes import mac
 from rotorsim.analyses.system_input import as_system
@@ -52,7 +57,7 @@ def campbell(
     num_modes: int = 12,
     *,
     sparse: bool | None = None,
-    sigma: float = -1.0,
+    sigma: float | None = None,
     on_failure: Literal["raise", "record"] = "raise",
     progress: bool = False,
 ) -> CampbellResult:
@@ -78,13 +83,16 @@ def campbell(
         The model.
     speeds : array_like (S,)
         Spin speeds [rad/s]: finite, non-negative (spin is about +z by convention; a
-        reverse-spinning rotor is its mirror image) and strictly increasing.
+        reverse-spinning rotor is the same rotor seen from its other end, see
+        :mod:`rotorsim.analyses.linear_checks`) and strictly increasing.
     num_modes : int
-        Number of tracks (elastic modes of all kinds; conjugate pairs count once).
+        Number of tracks (elastic modes of all kinds; conjugate pairs count once), a
+        positive integer. Tracks beyond the modes the model has hold ``NaN``, and
+        ``notes`` says so.
     sparse : bool, optional
         Force the sparse (ARPACK) or dense eigen solver; default by model size.
-    sigma : float
-        Real shift [rad/s] of the eigen solver (see ``modal``).
+    sigma : float, optional
+        Real shift [rad/s] of the eigen solver; default scale-aware (see ``modal``).
     on_failure : {"raise", "record"}
         On a failed modal solve, raise :class:`~rotorsim.errors.ConvergenceError`, or
         record the speed's status and leave ``NaN`` in its row.
@@ -115,6 +123,7 @@ def campbell(
     ((3, 4), ['forward', 'backward'])
     """
     grid = _check_inputs(speeds, num_modes, on_failure)
+    sparse = check_sparse(sparse, "campbell")
     system = as_system(rotor)
     stats = Stats()
     n_speeds = grid.size
@@ -123,6 +132,7 @@ def campbell(
     kind = np.full((n_speeds, num_modes), "", dtype="<U9")
     status = np.full(n_speeds, int(Status.OK), dtype=np.int64)
     previous: tuple[ComplexArray, ComplexArray] | None = None
+    fewest = num_modes
     for i in _progress(range(n_speeds), progress):
         try:
             cand = _candidates(system, float(grid[i]), num_modes, sparse, sigma, stats)
@@ -133,6 +143,7 @@ def campbell(
             status[i] = int(Status.NOT_CONVERGED if isinstance(exc, ConvergenceError)
                             else Status.FAILED)
             continue
+        fewest = min(fewest, cand.eigenvalues.size)
         take, quality = _assign(previous, cand, num_modes)
         cols = np.flatnonzero(take >= 0)
         picked = take[cols]
@@ -154,18 +165,19 @@ def campbell(
         "tracking": "Hungarian assignment on (1 - MAC) + relative eigenvalue change; "
                     "degenerate clusters split into circular forward/backward modes",
     }
+    notes = () if fewest >= num_modes else (
+        f"num_modes = {num_modes} asked, but the model has only {fewest} elastic modes at "
+        "some speeds: the other tracks hold NaN there",)
     return CampbellResult(speeds=grid, whirl=whirl, kind=kind, status=status,
                           options=options, stats=stats.finish(), summary=system.summary,
-                          **out)
+                          notes=notes, **out)
 
 
 def _check_inputs(speeds: ArrayLike, num_modes: int, on_failure: str) -> FloatArray:
     where = "campbell"
     if on_failure not in ("raise", "record"):
         raise ModelError(f"on_failure must be 'raise' or 'record', got {on_failure!r}", where)
-    if isinstance(num_modes, bool) or not isinstance(num_modes, int | np.integer) \
-            or num_modes < 1:
-        raise ModelError(f"num_modes must be an integer >= 1, got {num_modes!r}", where)
+    check_num_modes(num_modes, where)
     try:
         grid = np.atleast_1d(np.asarray(speeds, dtype=float))
     except (TypeError, ValueError) as exc:
@@ -175,7 +187,8 @@ def _check_inputs(speeds: ArrayLike, num_modes: int, on_failure: str) -> FloatAr
     if not np.all(np.isfinite(grid)):
         raise ModelError(f"speeds must be finite; got {grid[~np.isfinite(grid)][:3]}", where)
     if np.any(grid < 0):
-        raise ModelError("speeds must be >= 0 (spin about +z)", where)
+        raise ModelError(f"speeds must be >= 0 rad/s, got {grid[grid < 0][0]!r}: "
+                         f"{NEGATIVE_SPEED_HINT}", where)
     if np.any(np.diff(grid) <= 0):
         raise ModelError("speeds must be strictly increasing", where)
     return grid
@@ -190,7 +203,7 @@ def _progress(items: range, show: bool) -> Iterable[int]:
 
 
 def _candidates(system: RotorSystem, speed: float, num_modes: int, sparse: bool | None,
-                sigma: float, stats: Stats) -> _Candidates:
+                sigma: float | None, stats: Stats) -> _Candidates:
     res = modal(system, speed, num_modes + EXTRA_CANDIDATES, sigma=sigma, sparse=sparse,
                 stats=stats)
     shapes = res.mode_shapes

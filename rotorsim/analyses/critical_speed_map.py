@@ -13,6 +13,7 @@ from scipy.optimize import brentq
 
 from rotorsim.analyses.critical_speeds import solve_critical_speeds
 from rotorsim.analyses.keyword_check import checked_keywords
+from rotorsim.analyses.linear_checks import NEGATIVE_SPEED_HINT, check_num_modes
 from rotorsim.analyses.system_input import require_linear
 from rotorsim.assembly.system import assemble
 from rotorsim.elements.base import as_float_array
@@ -74,8 +75,8 @@ def critical_speed_map(
     gyroscopic : bool
         Include the gyroscopic coupling (forward synchronous critical speeds).
     speeds : array_like (Q,), optional
-        Spin speeds [rad/s] for the bearing curves; default 201 points from 0 to 1.5 x
-        the highest critical speed found.
+        Spin speeds [rad/s] for the bearing curves, >= 0; default 201 points from 0 to
+        1.5 x the highest critical speed found.
     on_failure : {"raise", "record"}
         Raise on a failed point, or record its status and leave NaN.
 
@@ -101,6 +102,8 @@ def critical_speed_map(
     require_linear(rotor)
     if on_failure not in ("raise", "record"):
         raise ModelError(f"on_failure must be 'raise' or 'record', got {on_failure!r}", where)
+    check_num_modes(num_modes, where)
+    given_speeds = _check_speeds(speeds)
     grid = _stiffness_grid(stiffness, num_points, stiffness_range)
     mapped = _bearing_indices(rotor, bearings)
     stats = Stats()
@@ -111,7 +114,7 @@ def critical_speed_map(
                for i, b in enumerate(rotor.bearing_elements)]
         try:
             res = solve_critical_speeds(assemble(rotor.with_bearings(new)), harmonic, num_modes,
-                                   "forward", gyroscopic, None, -1.0, stats)
+                                   "forward", gyroscopic, None, None, stats)
         except ConvergenceError:
             if on_failure == "raise":
                 raise
@@ -119,7 +122,7 @@ def critical_speed_map(
             continue
         table[p, : len(res)] = res.speed
     curves = [i for i in mapped if rotor.bearing_elements[i].speed_dependent]
-    sample = _curve_speeds(speeds, table, curves, rotor)
+    sample = _curve_speeds(given_speeds, table, curves, rotor)
     kxx, kyy = (np.array([rotor.bearing_elements[i].coefficient(c, sample) for i in curves])
                 .reshape(len(curves), sample.size) for c in ("kxx", "kyy"))
     crossings = _intersections(rotor, grid, table, curves, sample)
@@ -180,16 +183,29 @@ def _support(bearing: BearingElement, stiffness: float) -> BearingElement:
                           tag=bearing.tag)
 
 
-def _curve_speeds(speeds: ArrayLike | None, table: FloatArray, curves: list[int],
+def _check_speeds(speeds: ArrayLike | None) -> FloatArray | None:
+    """The given curve speeds [rad/s] as an array, checked before any solve."""
+    if speeds is None:
+        return None
+    where = "critical_speed_map"
+    try:
+        sample = np.atleast_1d(np.asarray(speeds, dtype=float))
+    except (TypeError, ValueError) as exc:
+        raise ModelError(f"speeds must be numbers [rad/s], got {speeds!r}", where) from exc
+    if sample.ndim != 1 or sample.size < 2 or not np.all(np.isfinite(sample)) \
+            or np.any(np.diff(sample) <= 0):
+        raise ModelError("speeds must be finite, increasing, at least 2 values", where)
+    if sample[0] < 0:
+        raise ModelError(f"speeds must be >= 0 rad/s, got {sample[0]!r}: "
+                         f"{NEGATIVE_SPEED_HINT}", where)
+    return sample
+
+
+def _curve_speeds(sample: FloatArray | None, table: FloatArray, curves: list[int],
                   rotor: Rotor) -> FloatArray:
     if not curves:
         return np.zeros(0)
-    if speeds is not None:
-        sample = np.atleast_1d(np.asarray(speeds, dtype=float))
-        if sample.ndim != 1 or sample.size < 2 or not np.all(np.isfinite(sample)) \
-                or np.any(np.diff(sample) <= 0):
-            raise ModelError("speeds must be finite, increasing, at least 2 values",
-                             "critical_speed_map")
+    if sample is not None:
         return sample
     top = np.nanmax(table) if np.any(np.isfinite(table)) else max(
         float(rotor.bearing_elements[i].frequency[-1]) for i in curves  # type: ignore[index]

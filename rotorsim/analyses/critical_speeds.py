@@ -25,6 +25,7 @@ from numpy.typing import ArrayLike, NDArray
 from scipy.optimize import brentq
 
 from rotorsim.analyses.keyword_check import checked_keywords
+from rotorsim.analyses.linear_checks import check_num_modes, check_sparse
 from rotorsim.analyses.mode_shapes import circularize, clusters, mode_kind, whirl_of
 from rotorsim.analyses.system_input import as_system
 from rotorsim.assembly.system import RotorSystem
@@ -36,7 +37,15 @@ from rotorsim.results.critical_speeds import (
     check_harmonic,
     check_whirl_filter,
 )
-from rotorsim.solvers.eigen import DENSE_EIGEN_THRESHOLD, start_vector
+from rotorsim.solvers.eigen import (
+    DENSE_EIGEN_THRESHOLD,
+    DENSE_SHIFT_FRACTION,
+    RESOLUTION,
+    SHIFT_FRACTION,
+    default_shift,
+    rounding_energy,
+    start_vector,
+)
 from rotorsim.solvers.linear import factorize
 from rotorsim.solvers.stats import Stats
 
@@ -74,7 +83,7 @@ def critical_speeds(
     *,
     whirl: Literal["forward", "backward"] | None = None,
     sparse: bool | None = None,
-    sigma: float = -1.0,
+    sigma: float | None = None,
 ) -> CriticalSpeeds:
     """Exact undamped critical speeds of order ``harmonic``, without a speed grid.
 
@@ -115,8 +124,12 @@ def critical_speeds(
     sparse : bool, optional
         Force the sparse or dense eigen solver; default sparse above
         ``DENSE_EIGEN_THRESHOLD`` free DOFs.
-    sigma : float
-        Shift [rad^2/s^2] of the sparse solver (slightly negative: rigid-body modes).
+    sigma : float, optional
+        Shift [rad^2/s^2] of the eigen solver; default ``-1e-3 w_ref^2`` with ``w_ref^2 =
+        min K_ii / M_ii`` (:func:`~rotorsim.solvers.eigen.default_shift`): slightly negative
+        (rigid-body modes) and scaled to the model, unaffected by stiff springs on a few DOFs.
+        Rigid-body modes are told apart by a scale-free test per mode (elastic energy at the
+        rounding level of ``K x``, :func:`~rotorsim.solvers.eigen.rounding_energy`).
 
     Returns
     -------
@@ -170,15 +183,15 @@ def _direct_only(bearing: BearingElement) -> BearingElement:
 
 def solve_critical_speeds(system: RotorSystem, harmonic: float, num_modes: int,
                           whirl: str | None, gyroscopic: bool, sparse: bool | None,
-                          sigma: float, stats: Stats) -> CriticalSpeeds:
+                          sigma: float | None, stats: Stats) -> CriticalSpeeds:
     """Undamped critical speeds of an assembled system (the engine of :func:`critical_speeds`
     and of the critical-speed map); ``gyroscopic=False`` drops ``G``."""
     k = check_harmonic(harmonic, "critical_speeds")
     check_whirl_filter(whirl, "critical_speeds")
-    if isinstance(num_modes, bool) or not isinstance(num_modes, int | np.integer) \
-            or num_modes < 1:
-        raise ModelError(f"num_modes must be an integer >= 1, got {num_modes!r}",
-                         "critical_speeds")
+    check_num_modes(num_modes, "critical_speeds")
+    sparse = check_sparse(sparse, "critical_speeds")
+    if sigma is not None and not np.isfinite(sigma):
+        raise ModelError(f"sigma must be finite or None, got {sigma!r}", "critical_speeds")
 
     def solve(speed: float) -> _Modes:
         return _lowest(system, speed, k, gyroscopic, num_modes, whirl, sparse, sigma, stats)
@@ -200,7 +213,8 @@ def solve_critical_speeds(system: RotorSystem, harmonic: float, num_modes: int,
 
 
 def _lowest(system: RotorSystem, speed: float, k: float, gyroscopic: bool, count: int,
-            whirl: str | None, sparse: bool | None, sigma: float, stats: Stats) -> _Modes:
+            whirl: str | None, sparse: bool | None, sigma: float | None,
+            stats: Stats) -> _Modes:
     """The ``count`` lowest synchronous modes passing the whirl filter (coefficients at
     ``speed``); more eigenvalues are requested until enough are found or none is left."""
     n = system.n_free
@@ -225,31 +239,54 @@ def _lowest(system: RotorSystem, speed: float, k: float, gyroscopic: bool, count
 
 
 def _frozen_modes(system: RotorSystem, speed: float, k: float, gyroscopic: bool,
-                  n_eig: int | None, sigma: float, stats: Stats) -> _Modes:
-    """All real positive eigenvalues (dense, ``n_eig=None``) or those among the ``n_eig``
-    nearest ``sigma`` of ``K x = mu (M - (i/k) G) x``, with classified shapes."""
+                  n_eig: int | None, sigma: float | None, stats: Stats) -> _Modes:
+    """All resolved real positive eigenvalues (dense, ``n_eig=None``) or those among the
+    ``n_eig`` nearest ``sigma`` of ``K x = mu (M - (i/k) G) x``, with classified shapes."""
     mats = system.matrices(speed)
     K = mats.K.astype(complex)
     B = (mats.M - (1j / k) * mats.G) if gyroscopic else mats.M.astype(complex)
     stats.eigen_solves += 1
-    if n_eig is None:
-        mu, vecs = sl.eig(K.toarray(), B.toarray(), check_finite=False)
+    w_shift = default_shift(mats.M, mats.K)
+    if n_eig is None:  # dense: invert about a larger shift, to resolve a wider band
+        pivot = sigma if sigma is not None else -(w_shift * DENSE_SHIFT_FRACTION
+                                                  / SHIFT_FRACTION) ** 2
+        mu, vecs = _dense_shift_invert(K, B, pivot, stats)
         complete = np.ones(mu.size, dtype=bool)
     else:
-        mu, vecs = _shift_invert(K, B, n_eig, sigma, stats)
-        radius = np.abs(mu - sigma)  # a cluster cut at the edge of the window is dropped
+        shift = sigma if sigma is not None else -w_shift**2 / SHIFT_FRACTION
+        mu, vecs = _shift_invert(K, B, n_eig, shift, stats)
+        radius = np.abs(mu - shift)  # a cluster cut at the edge of the window is dropped
         complete = radius < radius.max() * (1.0 - 10 * 1e-6)
-    diag_k, diag_m = np.abs(mats.K.diagonal()), mats.M.diagonal()
-    mu_rigid = (1e-6 * np.sqrt(diag_k.max() / diag_m.max())) ** 2
     finite = np.isfinite(mu)
     real = finite & (np.abs(mu.imag) <= 1e-6 * np.abs(np.where(finite, mu, 0)))
-    keep = np.flatnonzero(real & (mu.real > mu_rigid) & complete)
+    energy = np.abs(mu) * np.abs(np.einsum("ij,ij->j", vecs.conj(), B @ vecs))  # x^H K x
+    elastic = energy > rounding_energy(vecs, mats.K)
+    keep = np.flatnonzero(real & (mu.real > 0) & elastic & complete)
     keep = keep[np.argsort(mu.real[keep], kind="stable")]
-    mu, shapes = mu.real[keep], system.dof_map.expand(vecs[:, keep])
-    shapes = circularize(shapes, clusters(mu))
-    kind = mode_kind(system.dof_map.expand(diag_m), shapes)
+    mu_real, shapes = mu.real[keep], system.dof_map.expand(vecs[:, keep])
+    shapes = circularize(shapes, clusters(mu_real))
+    kind = mode_kind(system.dof_map.expand(mats.M.diagonal()), shapes)
     whirl = np.where(kind == "lateral", whirl_of(shapes)[0], "none").astype("<U9")
-    return _Modes(np.sqrt(mu), shapes, whirl, kind)
+    return _Modes(np.sqrt(mu_real), shapes, whirl, kind)
+
+
+def _dense_shift_invert(K: sp.csr_matrix, B: sp.csr_matrix, sigma: float, stats: Stats
+                        ) -> tuple[ComplexArray, ComplexArray]:
+    """Eigenvalues of ``K x = mu B x``: from the dense ``(K - sigma B)^-1 B`` where it
+    resolves them, each accurate relative to its distance from ``sigma`` whatever the scale
+    of the stiffest spring (see :mod:`rotorsim.solvers.eigen`); above that band, where
+    ``mu`` dominates ``K`` and QZ is accurate, from QZ on ``(K, B)``."""
+    lu = factorize((K - sigma * B).tocsc(), stats=stats, where="critical speeds shift-invert")
+    T = lu.solve(B.toarray())
+    nu, vecs = sl.eig(T, check_finite=False)
+    resolved = np.abs(nu) > RESOLUTION * np.abs(T).sum(axis=0).max()
+    mu, vecs = sigma + 1.0 / nu[resolved], vecs[:, resolved]
+    if resolved.all():
+        return mu, vecs
+    limit = np.min(np.abs(sigma + 1.0 / nu[~resolved & (nu != 0)]), initial=np.inf)
+    high, high_vecs = sl.eig(K.toarray(), B.toarray(), check_finite=False)
+    above = np.isfinite(high) & (np.abs(high) >= limit)
+    return np.concatenate([mu, high[above]]), np.hstack([vecs, high_vecs[:, above]])
 
 
 def _shift_invert(K: sp.csr_matrix, B: sp.csr_matrix, n_eig: int, sigma: float,

@@ -15,6 +15,8 @@ import scipy.sparse as sp
 from numpy.typing import ArrayLike, NDArray
 
 from rotorsim.analyses.keyword_check import checked_keywords
+from rotorsim.analyses.linear_checks import check_speed
+from rotorsim.analyses.static import free_rigid_motions, held_dofs
 from rotorsim.analyses.system_input import as_system
 from rotorsim.assembly.loads import nodal_load, unbalance_amplitudes
 from rotorsim.assembly.system import RotorSystem, SystemMatrices
@@ -57,6 +59,8 @@ def unbalance_response(
     on_failure : {"raise", "record"}
         On a singular dynamic stiffness (undamped resonance hit exactly) raise
         :class:`ConvergenceError`, or record NaN with ``Status.FAILED`` for that point.
+        At ``W = 0`` the unbalance force vanishes and the response is exactly zero, also
+        for a rotor with free axial or torsional motion (no solve is made there).
 
     Returns
     -------
@@ -109,7 +113,9 @@ def frequency_response(
     inputs : list of (node, dof)
         Where each unit force (``ux, uy, uz`` [N]) or moment (``rx, ry, rz`` [N m]) acts.
     speed : float, optional
-        Fixed spin speed W [rad/s]; ``None`` means synchronous excitation (W = w).
+        Fixed spin speed W [rad/s], finite and >= 0 (see
+        :mod:`rotorsim.analyses.linear_checks`); ``None`` means synchronous excitation
+        (W = w).
     progress, on_failure
         As in :func:`unbalance_response`.
 
@@ -134,10 +140,8 @@ def frequency_response(
     w = _frequencies(frequencies, "frequencies")
     if speed is None:
         spins = w
-    elif not np.isfinite(speed):
-        raise ModelError(f"speed must be finite or None, got {speed!r}", "frequency_response")
     else:
-        spins = np.full_like(w, float(speed))
+        spins = np.full_like(w, check_speed(speed, "frequency_response"))
     if isinstance(inputs, str) or not isinstance(inputs, Sequence) or not inputs:
         raise ModelError("give a non-empty list of (node, dof)", "inputs")
     columns = []
@@ -208,15 +212,14 @@ def _harmonic_sweep(
             mats = system.matrices(float(spins[i]))
         where = f"{kind} at w = {w[i]:.6g} rad/s (point {i})"
         try:
-            lu = factorize(_dynamic_stiffness(system, mats, w[i], spins[i]), stats=stats,
-                           where=where)
+            response[i, dof_map.free, :] = _solve_point(
+                system, _dynamic_stiffness(system, mats, w[i], spins[i]), rhs(i), w[i],
+                where, stats)
         except ConvergenceError:
             if on_failure == "raise":
                 raise
             response[i] = np.nan
             status[i] = int(Status.FAILED)
-            continue
-        response[i, dof_map.free, :] = lu.solve(rhs(i))
     failed = bool(np.any(status != Status.OK))
     return FrequencyResponseResult(
         frequencies=w, speeds=np.asarray(spins, dtype=float), response=response,
@@ -225,6 +228,38 @@ def _harmonic_sweep(
         stats=stats.finish(), status=Status.FAILED if failed else Status.OK,
         summary=system.summary,
     )
+
+
+def _solve_point(system: RotorSystem, Z: sp.csr_matrix, load: ComplexArray, w: float,
+                 where: str, stats: Stats) -> ComplexArray:
+    """Response ``Z^-1 load`` at one frequency, on the free DOFs.
+
+    A zero load (unbalance at W = 0) has exactly zero response, with no solve. At ``w = 0``
+    the dynamic stiffness is the stiffness ``K(W)``, singular when the rotor has free rigid
+    motions (axial or torsional, on radial bearings): the static response is then found
+    with those motions held, as in :func:`rotorsim.analyses.static.static`, provided the
+    load does no work on them (otherwise it is unbounded and ConvergenceError says so).
+    """
+    if not np.any(load):
+        return np.zeros(load.shape, dtype=complex)
+    try:
+        return factorize(Z, stats=stats, where=where).solve(load)
+    except ConvergenceError:
+        if w != 0.0:
+            raise
+    K = sp.csr_matrix(Z.real)
+    rigid = free_rigid_motions(system, K, scaled=True)
+    work = np.abs(rigid.fields.T @ load)
+    scale = np.linalg.norm(rigid.fields, axis=0)[:, None] * np.linalg.norm(load, axis=0)
+    moved = [rigid.labels[j] for j in np.flatnonzero(np.any(work > 1e-9 * scale, axis=1))]
+    if moved or not rigid.labels:
+        detail = f"the load moves the free {', '.join(moved)}" if moved else "K is singular"
+        raise ConvergenceError(f"the static (w = 0) response is unbounded: {detail}", where)
+    keep = np.setdiff1d(np.arange(K.shape[0]), held_dofs(rigid))
+    out = np.zeros(load.shape, dtype=complex)
+    out[keep] = factorize(sp.csr_matrix(Z)[keep][:, keep], stats=stats,
+                          where=where).solve(load[keep])
+    return out
 
 
 def _progress(items: Iterable[int], enabled: bool, label: str) -> Iterable[int]:

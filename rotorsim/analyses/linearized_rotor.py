@@ -23,6 +23,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from rotorsim.analyses.linear_checks import check_speed
 from rotorsim.analyses.rolling_rotor_statics import (
     StaticCase,
     bearing_at_load,
@@ -144,7 +145,8 @@ def linearize_rolling_bearings(
     points : sequence of LinearizationPoint, optional
         One per bearing; default all ``"static"``.
     gravity, direction, loads, speed
-        The static load case, as for :func:`rotorsim.analyses.static.static`.
+        The static load case, as for :func:`rotorsim.analyses.static.static` (``speed``
+        finite and >= 0 [rad/s]).
     phi : float
         Shaft angle [rad] that places the rolling elements.
     tol : float
@@ -189,6 +191,10 @@ def linearize_rolling_bearings(
         raise ModelError(f"tol must be a positive number, got {tol!r}", where)
     if isinstance(max_iter, bool) or not isinstance(max_iter, int) or max_iter < 1:
         raise ModelError(f"max_iter must be an integer >= 1, got {max_iter!r}", where)
+    speed = check_speed(speed, where)
+    if isinstance(phi, bool) or not isinstance(phi, int | float | np.floating) \
+            or not math.isfinite(phi):
+        raise ModelError(f"phi must be a finite angle [rad], got {phi!r}", where)
     tags = tuple(str(rb.tag) if rb.tag else str(i) for i, rb in enumerate(rolling))
     stats = Stats()
     fixed = {i: _given_point(rb, p, float(phi), float(speed), tags[i])

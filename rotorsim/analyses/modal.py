@@ -8,6 +8,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from rotorsim.analyses.keyword_check import checked_keywords
+from rotorsim.analyses.linear_checks import check_num_modes, check_sparse, check_speed
 from rotorsim.analyses.mode_shapes import circularize, clusters, mode_kind, whirl_of
 from rotorsim.analyses.system_input import as_system
 from rotorsim.assembly.system import RotorSystem
@@ -15,7 +16,12 @@ from rotorsim.elements.base import as_float_array
 from rotorsim.errors import ConvergenceError, ModelError
 from rotorsim.model.rotor import Rotor
 from rotorsim.results.modal import ModalResult
-from rotorsim.solvers.eigen import DENSE_EIGEN_THRESHOLD, quadratic_eigen
+from rotorsim.solvers.eigen import (
+    DENSE_EIGEN_THRESHOLD,
+    EigenPairs,
+    quadratic_eigen,
+    rounding_energy,
+)
 from rotorsim.solvers.stats import Stats
 
 
@@ -25,7 +31,7 @@ def modal(
     speed: float = 0.0,
     num_modes: int = 12,
     *,
-    sigma: float = -1.0,
+    sigma: float | None = None,
     sparse: bool | None = None,
     rigid_tol: float | None = None,
     stats: Stats | None = None,
@@ -39,22 +45,37 @@ def modal(
     rotor : Rotor or RotorSystem
         The model.
     speed : float
-        Spin speed W [rad/s].
+        Spin speed W [rad/s], finite and >= 0 (spin about +z; see
+        :mod:`rotorsim.analyses.linear_checks` for why negative speeds are refused).
     num_modes : int
-        Number of elastic modes to return (conjugate pairs count once).
-    sigma : float
+        Number of elastic modes to return (conjugate pairs count once), a positive
+        integer. If the model has fewer (resolvable) modes, all are returned and
+        ``notes`` says so.
+    sigma : float, optional
         Real shift [rad/s] of the eigen solver: modes nearest it are found. The default,
-        slightly negative, finds the lowest modes and keeps the solve regular when the
-        model has rigid-body modes.
+        :func:`~rotorsim.solvers.eigen.default_shift`, is slightly negative and scaled to
+        the model (``-1e-3 sqrt(min K_ii / M_ii)``, unaffected by stiff springs on a few
+        DOFs): it finds the lowest modes and keeps the solve regular when the model has
+        rigid-body modes.
     sparse : bool, optional
         Force sparse shift-invert (ARPACK) or dense (LAPACK); default by size.
     rigid_tol : float, optional
-        Eigenvalues with ``|lam|`` below this [rad/s] are rigid-body modes; default
-        ``1e-6 sqrt(max K_ii / max M_ii)``.
+        Eigenvalues with ``|lam|`` below this [rad/s] are rigid-body modes. Default: a
+        scale-free test per mode, ``|lam|^2 x^H M x <= 100 eps |x|^T |K| |x|`` (the
+        elastic energy of the mode is at the rounding level of ``K x``), which does not
+        depend on the stiffest spring of the model.
 
     Returns
     -------
     ModalResult
+
+    Raises
+    ------
+    ModelError
+        ``num_modes`` not a positive integer, a negative or non-finite speed, a non-finite
+        ``sigma``, or a DOF without mass.
+    ConvergenceError
+        No elastic mode found, or the eigen solver failed.
 
     Examples
     --------
@@ -66,32 +87,32 @@ def modal(
     >>> m.rigid_body_modes, m.kind[0]
     (2, 'lateral')
     """
-    if num_modes < 1:
-        raise ModelError(f"num_modes must be >= 1, got {num_modes}", "modal")
-    for name, value in (("speed", speed), ("sigma", sigma)):
-        if not np.isfinite(as_float_array(value, name, "modal")).all() or np.ndim(value):
-            raise ModelError(f"{name} must be finite, got {value!r}", "modal")
+    check_num_modes(num_modes, "modal")
+    speed = check_speed(speed, "modal")
+    sparse = check_sparse(sparse, "modal")
+    if sigma is not None and (np.ndim(sigma) or not np.isfinite(
+            as_float_array(sigma, "sigma", "modal")).all()):
+        raise ModelError(f"sigma must be finite, got {sigma!r}", "modal")
     system = as_system(rotor)
     own_stats = stats is None
     stats = Stats() if stats is None else stats
     mats = system.matrices(speed)
     _check_mass(system, mats.M)
     D = mats.C + speed * mats.G
-    diag_k, diag_m = np.abs(mats.K.diagonal()), mats.M.diagonal()
-    tol = rigid_tol if rigid_tol is not None else 1e-6 * np.sqrt(diag_k.max() / diag_m.max())
 
     n = system.n_free
     extra = 4
     while True:
         k = 2 * num_modes + extra
         pairs = quadratic_eigen(mats.M, D, mats.K, k, sigma=sigma, sparse=sparse, stats=stats)
-        rigid = np.abs(pairs.values) < tol
+        rigid, tol = _rigid(pairs.values, pairs.vectors, mats.M, mats.K, rigid_tol)
         elastic = _elastic_indices(pairs.values, rigid)
-        if elastic.size >= num_modes or pairs.values.size >= 2 * n - 2 or k >= 2 * n:
+        if elastic.size >= num_modes or pairs.values.size < k or k >= 2 * n:
             break
         extra *= 2
     if elastic.size == 0:
         raise ConvergenceError("no elastic mode found", "modal", residual=None)
+    notes = _shortfall(num_modes, elastic.size, pairs)
     elastic = elastic[:num_modes]
     lam = pairs.values[elastic]
     shapes = system.dof_map.expand(pairs.vectors[:, elastic])
@@ -106,16 +127,41 @@ def modal(
     with np.errstate(divide="ignore", invalid="ignore"):
         log_dec = np.where(wd > 0, -2.0 * np.pi * lam.real / wd, np.inf)
     use_sparse = n > DENSE_EIGEN_THRESHOLD if sparse is None else sparse
-    options: dict[str, Any] = {"num_modes": num_modes, "sigma": sigma, "rigid_tol": tol,
-                               "solver": "sparse" if use_sparse else "dense"}
+    options: dict[str, Any] = {"num_modes": num_modes, "sigma": pairs.sigma,
+                               "rigid_tol": tol, "solver": "sparse" if use_sparse else "dense"}
     return ModalResult(
         speed=float(speed), eigenvalues=lam, wn=wn, wd=wd,
         damping_ratio=-lam.real / wn, log_dec=log_dec,
         whirl=whirl, whirl_ratio=ratio, kind=kind, mode_shapes=shapes,
         rigid_body_modes=rigid_shapes.shape[1], rigid_body_shapes=rigid_shapes,
         dof_map=system.dof_map, nodes_pos=system.nodes_pos, options=options,
-        stats=stats.finish() if own_stats else {}, summary=system.summary,
+        stats=stats.finish() if own_stats else {}, summary=system.summary, notes=notes,
     )
+
+
+def _rigid(values: NDArray[np.complex128], vectors: NDArray[np.complex128], M: Any, K: Any,
+           rigid_tol: float | None) -> tuple[NDArray[np.bool_], np.float64]:
+    """Rigid-body mask of the eigenpairs and the threshold [rad/s] (the largest per-mode
+    threshold of :data:`RIGID_ROUNDING` when ``rigid_tol`` is not given)."""
+    if rigid_tol is not None:
+        return np.abs(values) < rigid_tol, np.float64(rigid_tol)
+    if values.size == 0:
+        return np.zeros(0, dtype=bool), np.float64(0.0)
+    kinetic = np.real(np.einsum("ij,ij->j", vectors.conj(), M @ vectors))
+    threshold = np.sqrt(rounding_energy(vectors, K) / kinetic)  # |lam|^2 x^H M x = x^H K x
+    return np.abs(values) <= threshold, np.float64(threshold.max())
+
+
+def _shortfall(num_modes: int, found: int, pairs: EigenPairs) -> tuple[str, ...]:
+    """A note when fewer than ``num_modes`` elastic modes exist or are resolved."""
+    if found >= num_modes:
+        return ()
+    note = f"num_modes = {num_modes} asked, but the model has only {found} elastic modes"
+    if pairs.unresolved:
+        note = (f"num_modes = {num_modes} asked, but only {found} elastic modes are "
+                f"resolved: {pairs.unresolved} eigenvalues of |lam| >= {pairs.limit:.3g} "
+                "rad/s (penalty modes of near-rigid springs or massless DOFs) were left out")
+    return (note,)
 
 
 def _check_mass(system: RotorSystem, M) -> None:

@@ -20,6 +20,7 @@ import scipy.sparse.linalg as spl
 from numpy.typing import ArrayLike, NDArray
 
 from rotorsim.analyses.keyword_check import checked_keywords
+from rotorsim.analyses.linear_checks import check_speed
 from rotorsim.analyses.system_input import as_system
 from rotorsim.assembly.loads import (
     STANDARD_GRAVITY,
@@ -82,10 +83,13 @@ def static(
     loads : list of (node, dof, value)
         Point forces [N] (``ux, uy, uz``) and moments [N m] (``rx, ry, rz``).
     speed : float
-        Spin speed W [rad/s] at which speed-dependent bearing stiffness is evaluated.
+        Spin speed W [rad/s], finite and >= 0, at which speed-dependent bearing stiffness
+        is evaluated (negative speeds are refused: :mod:`rotorsim.analyses.linear_checks`).
     rigid_tol : float
-        A rigid motion ``r`` is free when ``||K r|| <= rigid_tol ||K||_F ||r||``; a support
-        softer than about ``rigid_tol`` times the stiffest entry counts as absent.
+        A rigid motion ``r`` is free when ``||S K r|| <= rigid_tol ||S K S||_F ||S^-1 r||``
+        with ``S = diag(|K_ii|^-1/2)`` (:func:`free_rigid_motions`): a support softer than
+        about ``rigid_tol`` times the stiffness of the shaft DOFs it acts on counts as
+        absent, whatever the stiffest spring elsewhere (e.g. 1e20 N/m pinned supports).
     method : {"newton", "energy"}
         With nonlinear elements: Newton's method with an energy line search, or the
         minimisation of the total potential energy of the rotor and its bearings
@@ -126,8 +130,7 @@ def static(
     >>> bool(np.allclose(s.bearing_forces[:, 1], 9.80665 * rotor.m / 2))
     True
     """
-    if not np.isfinite(speed):
-        raise ModelError(f"speed must be finite, got {speed!r}", "static")
+    speed = check_speed(speed, "static")
     if not np.isfinite(rigid_tol) or rigid_tol <= 0:
         raise ModelError(f"rigid_tol must be > 0, got {rigid_tol!r}", "static")
     if method not in ("newton", "energy"):
@@ -158,7 +161,7 @@ def static(
     stats = Stats()
     K = system.matrices(float(speed)).K
     f, f_all = _applied_load(system, model, g, unit, loads)
-    rigid = free_rigid_motions(system, K, rigid_tol)
+    rigid = free_rigid_motions(system, K, rigid_tol, scaled=True)
     _check_equilibrium(rigid, f)
     q_free, held = _solve_restrained(K, f, rigid, stats)
     residual = float(np.linalg.norm(K @ q_free - f)) / max(float(np.linalg.norm(f)), 1e-300)
@@ -241,26 +244,42 @@ def rigid_body_fields(system: RotorSystem) -> FloatArray:
     return fields.reshape(-1, 6)
 
 
-def free_rigid_motions(system: RotorSystem, K: sp.spmatrix, rigid_tol: float = 1e-10
-                       ) -> RigidMotions:
-    """Rigid-body motions ``r`` of the whole rotor with ``||K r|| <= tol ||K|| ||r||``.
+def free_rigid_motions(system: RotorSystem, K: sp.spmatrix, rigid_tol: float = 1e-10,
+                       *, scaled: bool = False) -> RigidMotions:
+    """Rigid-body motions ``r`` of the whole rotor that ``K`` does not restrain.
 
-    The test is made on the orthonormalised span of :func:`rigid_body_fields` (restricted to
-    the free DOFs), so combinations such as a rotation about a single bearing are found.
-    The basis returned is in reduced row-echelon form over the named motions (rotations
-    first), which turns it into pure translations and rotations about a pivot.
+    Unscaled (default), a motion is free when ``||K r|| <= rigid_tol ||K||_F ||r||``: a
+    restraint weaker than ``rigid_tol`` times the stiffest entry counts as absent, which is
+    what the nonlinear analyses want of placeholder ("ghost") shafts of ``E = 1 Pa`` under
+    rigid rotors. ``scaled=True`` (linear :func:`static` and the frequency response) makes
+    the test independent of the stiffest spring: with ``S = diag(|K_ii|^-1/2)`` (1 where
+    ``K_ii = 0``), ``r`` is free when ``||S K r|| <= rigid_tol ||S K S||_F ||S^-1 r||``, so a
+    1e8 N/m thrust bearing restrains the axial motion even beside 1e20 N/m radial (pinned)
+    supports. The test is made on the orthonormalised span of :func:`rigid_body_fields`
+    (restricted to the free DOFs), so combinations such as a rotation about a single bearing
+    are found. The basis returned is in reduced row-echelon form over the named motions
+    (rotations first), which turns it into pure translations and rotations about a pivot.
     """
+    diag = np.abs(np.asarray(K.diagonal(), dtype=float))
+    scale = np.ones(diag.size)
+    if scaled:
+        scale = np.where(diag > 0, 1.0 / np.sqrt(np.where(diag > 0, diag, 1.0)), 1.0)
+    S = sp.diags(scale)
+    Ks = sp.csr_matrix(S @ K @ S)
     R = rigid_body_fields(system)[system.dof_map.free]
-    U, S, Vt = np.linalg.svd(R, full_matrices=False)
-    keep = S > 1e-12 * S.max()
+    B = R / scale[:, None]  # the motions in scaled coordinates, each normalised below
+    norms = np.linalg.norm(B, axis=0)
+    norms = np.where(norms > 0, norms, 1.0)
+    U, sv, Vt = np.linalg.svd(B / norms, full_matrices=False)
+    keep = sv > 1e-12 * sv.max()
     Q = U[:, keep]
-    both = np.vstack([K @ Q, K.T @ Q])
+    both = np.vstack([Ks @ Q, Ks.T @ Q])
     _, s, wt = np.linalg.svd(both, full_matrices=True)
     s = np.concatenate([s, np.zeros(Q.shape[1] - s.size)])
-    null = wt[s <= rigid_tol * spl.norm(K)].T  # (m, k) in Q coordinates
+    null = wt[s <= rigid_tol * spl.norm(Ks)].T  # (m, k) in Q coordinates
     if null.shape[1] == 0:
         return RigidMotions(np.zeros((R.shape[0], 0)), ())
-    coef = Vt[keep].T @ (null / S[keep][:, None])  # (6, k) over the named motions
+    coef = Vt[keep].T @ (null / sv[keep][:, None]) / norms[:, None]  # (6, k), named motions
     coef = _reduced_echelon(coef.T).T
     labels = tuple(_label(c) for c in coef.T)
     return RigidMotions(R @ coef, labels)

@@ -45,8 +45,9 @@ def modal_summary(result: Any, units: str = "Hz") -> str:
              result.kind[i]) for i in range(result.n_modes)]
     head = (f"modes at {result.speed * f:.4g} {units}; rigid-body modes: "
             f"{result.rigid_body_modes}")
-    return head + "\n" + table(rows, ("mode", f"wn [{units}]", f"wd [{units}]", "zeta",
+    body = head + "\n" + table(rows, ("mode", f"wn [{units}]", f"wd [{units}]", "zeta",
                                       "log dec", "whirl", "kind"))
+    return "\n".join([body, *(f"note: {n}" for n in getattr(result, "notes", ()))])
 
 
 def critical_speeds_summary(crit: Any, units: str = "rpm", title: str = "") -> str:
@@ -81,7 +82,7 @@ def campbell_summary(result: Any, units: str = "rpm",
         parts.append(critical_speeds_summary(
             result.critical_speeds(harmonic=k), units,
             f"{k:g}X critical speeds (damped, Campbell crossings)"))
-    return "\n".join(parts)
+    return "\n".join(parts + [f"note: {n}" for n in getattr(result, "notes", ())])
 
 
 def response_summary(result: Any, units: str = "rpm", amplitude_units: str = "um",

@@ -58,6 +58,13 @@ class ModelInfo(Table):
     description: str = ""
 
 
+PLAUSIBLE_MODULUS = (1e6, 1.2e12)
+"""Young's moduli [Pa] a model file accepts: soft rubber (about 1 MPa) to diamond (about
+1.2 TPa). Outside it is a unit slip (``"1 Pa"`` for ``"1 GPa"``), which would give natural
+frequencies near 0 and a useless run; placeholder materials of the API (e.g. a ghost shaft
+with ``E = 1``) are not affected."""
+
+
 class MaterialTable(Table):
     name: Name
     E: Modulus
@@ -67,6 +74,11 @@ class MaterialTable(Table):
 
     @model_validator(mode="after")
     def _g_or_nu(self) -> "MaterialTable":
+        lo, hi = PLAUSIBLE_MODULUS
+        if not lo <= self.E <= hi:
+            raise fail(f"{fmt(self.E, 'modulus')} is outside the range of solid materials, "
+                       f"{fmt(lo, 'modulus')} (soft rubber) to {fmt(hi, 'modulus')} "
+                       "(diamond): check the unit, e.g. E = \"211 GPa\"", ".E")
         if self.G_s is None and self.nu is None:
             raise fail("give G_s or nu")
         if self.nu is not None and not -1.0 < self.nu < 0.5:

@@ -48,6 +48,9 @@ class CampbellResult:
         the first row): values well below 1 flag a doubtful match (grid too coarse).
     status : int array (S,)
         :class:`~rotorsim.errors.Status` of every speed.
+    notes : tuple of str
+        Remarks on the result, e.g. fewer modes than ``num_modes`` at some speeds (their
+        columns hold ``NaN`` there).
 
     Examples
     --------
@@ -75,6 +78,7 @@ class CampbellResult:
     options: dict[str, Any] = field(default_factory=dict)
     stats: dict[str, float] = field(default_factory=dict)
     summary: dict[str, Any] = field(default_factory=dict)
+    notes: tuple[str, ...] = ()
 
     @property
     def n_modes(self) -> int:

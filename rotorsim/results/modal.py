@@ -49,6 +49,8 @@ class ModalResult:
         Number of independent rigid-body modes found.
     rigid_body_shapes : array (ndof, rigid_body_modes)
         Orthonormal basis of the rigid-body modes.
+    notes : tuple of str
+        Remarks on the solution, e.g. fewer modes than ``num_modes`` asked for.
     """
 
     speed: float
@@ -69,6 +71,7 @@ class ModalResult:
     stats: dict[str, float] = field(default_factory=dict)
     status: Status = Status.OK
     summary: dict[str, Any] = field(default_factory=dict)
+    notes: tuple[str, ...] = ()
 
     @property
     def n_modes(self) -> int:

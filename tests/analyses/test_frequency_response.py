@@ -8,6 +8,7 @@ import numpy as np
 import pytest
 
 from rotorsim.analyses.frequency_response import frequency_response, unbalance_response
+from rotorsim.analyses.static import static
 from rotorsim.assembly.system import assemble
 from rotorsim.elements.disk import DiskElement
 from rotorsim.elements.linear_bearing import BearingElement
@@ -148,10 +149,28 @@ def _receptance_matrix(rotor: Rotor, w, dofs, speed):
     return h.response[:, rows, :], h
 
 
+_TURN_SIGN = {"ux": -1.0, "uy": 1.0, "uz": -1.0, "rx": -1.0, "ry": 1.0, "rz": -1.0}
+"""Turning the rotor end for end (rotation by pi about y: x -> -x, z -> -z) maps each DOF to
+itself at the mirrored node with these signs, and spin at -W to spin at +W."""
+
+
+def _turned_gyroscopic_rotor() -> Rotor:
+    """:func:`gyroscopic_rotor` seen from its other end (node n -> 6 - n); it has no
+    cross-coupled bearing terms, which would change sign."""
+    shaft = [ShaftElement(L=0.2, idl=0.0, odl=0.05, material=steel) for _ in range(6)]
+    disks = [DiskElement(n=4, m=15.0, Id=0.1, Ip=0.2), DiskElement(n=1, m=8.0, Id=0.06,
+                                                                    Ip=0.11)]
+    bearings = [BearingElement(n=6, kxx=2e7, kyy=3e7, cxx=400.0, cyy=300.0, kzz=1e7, czz=50.0),
+                BearingElement(n=0, kxx=1e7, cxx=200.0, krr=1e4)]
+    return Rotor(shaft, disks, bearings).with_fixed([(n, "rz") for n in range(7)])
+
+
 def test_reciprocity_non_rotating_and_reversed_spin():
     # Maxwell-Betti reciprocity H_ij = H_ji holds for symmetric M, C, K (W = 0). With spin
     # the skew gyroscopic matrix gives H(W)^T = H(-W) instead (Lund's reciprocity for
     # gyroscopic systems, since (K - w^2 M + i w (C + W G))^T = K - w^2 M + i w (C - W G)).
+    # Speeds are >= 0 by convention, so H(-W) is the receptance of the rotor turned end for
+    # end spinning at +W, with the DOFs mapped back.
     rotor = gyroscopic_rotor()
     dofs = [(2, "ux"), (2, "uy"), (5, "ry"), (3, "rx"), (4, "uz"), (6, "ux")]
     w = np.array([50.0, 400.0, 1500.0])
@@ -159,7 +178,10 @@ def test_reciprocity_non_rotating_and_reversed_spin():
     np.testing.assert_allclose(H0, np.swapaxes(H0, 1, 2), rtol=1e-10,
                                atol=1e-10 * np.abs(H0).max())
     Hp, _ = _receptance_matrix(rotor, w, dofs, 600.0)
-    Hm, _ = _receptance_matrix(rotor, w, dofs, -600.0)
+    turned = [(6 - n, d) for n, d in dofs]
+    sign = np.array([_TURN_SIGN[d] for _, d in dofs])
+    Hm = _receptance_matrix(_turned_gyroscopic_rotor(), w, turned, 600.0)[0] * np.outer(sign,
+                                                                                        sign)
     np.testing.assert_allclose(Hp, np.swapaxes(Hm, 1, 2), rtol=1e-10,
                                atol=1e-10 * np.abs(Hp).max())
     asym = np.abs(Hp - np.swapaxes(Hp, 1, 2)).max() / np.abs(Hp).max()
@@ -201,18 +223,41 @@ def test_speed_dependent_bearings_evaluated_at_each_speed():
 
 
 @pytest.mark.filterwarnings("ignore::scipy.linalg.LinAlgWarning")
-def test_singular_point_raises_or_is_recorded():
-    # Without axial/torsional restraint K is singular at w = 0 (rigid-body motion).
+def test_static_point_with_free_rigid_motions_is_solved_or_refused():
+    # Without axial/torsional restraint K is singular at w = 0 (rigid-body motion). A
+    # lateral load does no work on those motions: the receptance at w = 0 is the static
+    # compliance (issue 12: it used to raise "matrix is singular"). An axial load moves the
+    # free axial translation: the static response is unbounded, raised or recorded.
     shaft = [ShaftElement(L=0.2, idl=0.0, odl=0.05, material=steel) for _ in range(3)]
     rotor = Rotor(shaft, [], [BearingElement(n=0, kxx=1e7), BearingElement(n=3, kxx=1e7)])
-    with pytest.raises(ConvergenceError, match="point 0"):
-        frequency_response(rotor, [0.0, 100.0], [(1, "ux")], speed=0.0)
-    r = frequency_response(rotor, [0.0, 100.0], [(1, "ux")], speed=0.0, on_failure="record")
+    h = frequency_response(rotor, [0.0, 100.0], [(1, "ux")], speed=0.0)
+    static_ux = static(rotor, gravity=None, loads=[(1, "ux", 1.0)]).displacement
+    # one LU solve against another of the same (restrained) matrix: round-off only
+    np.testing.assert_allclose(h.response[0, :, 0].real, static_ux, rtol=1e-9,
+                               atol=1e-12 * np.abs(static_ux).max())
+    assert np.all(h.response[0].imag == 0) and h.status is Status.OK
+    with pytest.raises(ConvergenceError, match=r"point 0.*unbounded.*z \(translation\)"):
+        frequency_response(rotor, [0.0, 100.0], [(1, "uz")], speed=0.0)
+    r = frequency_response(rotor, [0.0, 100.0], [(1, "uz")], speed=0.0, on_failure="record")
     assert r.point_status.tolist() == [Status.FAILED, Status.OK]
     assert np.isnan(r.response[0]).all() and np.isfinite(r.response[1]).all()
     assert r.status is Status.FAILED
     with pytest.raises(TypeError, match="on_failure"):
         frequency_response(rotor, [1.0], [(1, "ux")], on_failure="ignore")
+
+
+def test_unbalance_response_from_zero_speed_with_free_axial_and_torsion():
+    # The unbalance force me W^2 vanishes at W = 0, so the response is exactly zero there;
+    # sweeps starting at 0 are the normal case (issue 12: "matrix is singular" at W = 0).
+    shaft = [ShaftElement(L=0.2, idl=0.0, odl=0.05, material=steel) for _ in range(3)]
+    rotor = Rotor(shaft, [], [BearingElement(n=0, kxx=1e7, cxx=1e3),
+                              BearingElement(n=3, kxx=1e7, cxx=1e3)])
+    speeds = np.array([0.0, 50.0, 100.0])
+    u = unbalance_response(rotor, speeds, [(1, 1e-4, 0.3)])
+    assert u.status is Status.OK and np.all(u.response[0] == 0)
+    later = unbalance_response(rotor, speeds[1:], [(1, 1e-4, 0.3)])
+    np.testing.assert_array_equal(u.response[1:], later.response)  # same solves, same bits
+    assert u.stats["factorizations"] == 2  # no solve where the force is zero
 
 
 @pytest.mark.parametrize(

@@ -217,6 +217,12 @@ def test_errors():
         linearize_rolling_bearings(Rotor(shaft), pair(roller, 4), loads=[(2, "uz", -500.0)])
     with pytest.raises(ModelError, match="Rotor"):
         linearize_rolling_bearings(assemble(rotor), pair(ball()))  # type: ignore[arg-type]
+    # issue 12: speed and phi went unchecked (NaN reached the Newton iteration)
+    for speed in (-100.0, float("nan")):
+        with pytest.raises(ModelError, match="linearize_rolling_bearings: speed must be"):
+            linearize_rolling_bearings(rotor, pair(ball()), speed=speed)
+    with pytest.raises(ModelError, match="phi must be a finite angle"):
+        linearize_rolling_bearings(rotor, pair(ball()), phi=float("inf"))
 
 
 def test_load_on_the_housing_node_side():

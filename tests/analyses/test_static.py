@@ -177,3 +177,19 @@ def test_unsupported_directions_and_bad_input_name_the_culprit(bearings, kwargs,
         assert word in str(err.value)
     if not bearings:  # no bearings under gravity: the message carries the weight
         assert f"load resultant {-G0 * rotor.m:.6g} N" in str(err.value)
+
+
+@pytest.mark.parametrize("k_radial", [1e8, 1e20, 1e30])
+def test_thrust_bearing_restrains_axial_motion_beside_penalty_supports(k_radial):
+    # Issue 12: the free-rigid-motion test compared ||K r|| with ||K||, so next to 1e20 N/m
+    # pinned supports a 1e8 N/m thrust bearing counted as absent and an axial load was
+    # refused ("no support in z"). The scaled test judges it against the shaft's own axial
+    # stiffness. Exact: the thrust spring carries the whole load, uz = F / k_thrust at its
+    # node (Euler-Bernoulli bar with one spring; one LU solve, round-off only).
+    shaft = [ShaftElement(L=0.25, idl=0.0, odl=0.05, material=steel) for _ in range(4)]
+    rotor = Rotor(shaft, [], [BearingElement(n=0, kxx=k_radial, kzz=1e8),
+                              BearingElement(n=4, kxx=k_radial)])
+    s = static(rotor, gravity=None, loads=[(2, "uz", 1000.0)])
+    assert s.free_rigid_motions == ("rotation about z",)
+    assert s.deflection("uz")[0] == pytest.approx(1000.0 / 1e8, rel=1e-9)
+    assert s.bearing_forces[0, 2] == pytest.approx(-1000.0, rel=1e-9)

@@ -71,7 +71,7 @@ MODEL_ERRORS = [
     pytest.param(lambda: rs.frequency_response(ROTOR, [1.0, NAN], [(2, "ux")]),
                  r"^frequencies: value nan at index 1", id="frf-frequency-nan"),
     pytest.param(lambda: rs.frequency_response(ROTOR, [1.0, 2.0], [(2, "ux")], speed=NAN),
-                 r"^frequency_response: speed must be finite or None, got nan", id="frf-speed-nan"),
+                 r"^frequency_response: speed must be finite, got nan", id="frf-speed-nan"),
     pytest.param(lambda: rs.frequency_response(ROTOR, [1.0, 2.0], [2]),
                  r"^inputs\[0\]: expected \(node, dof\), got 2", id="frf-input-not-a-pair"),
     # modal and critical speeds

@@ -242,6 +242,11 @@ CORPUS = [
     (_delete(("disks", 0, "z")), "disks[0]", "give node or z"),
     (_set(("disks", 0, "m"), 3.0), "disks[0].width", "give m, Id, Ip or width"),
     (_set(("materials", 0, "nu"), 0.2), "materials[0].nu", "disagrees with G_s"),
+    # issue 12: E = "1 Pa" ran for minutes (ARPACK far from every mode) with no hint
+    (_set(("materials", 0, "E"), "1 Pa"), "materials[0].E",
+     "1 Pa is outside the range of solid materials, 1e+06 Pa (soft rubber) to 1.2e+12 Pa"),
+    (_set(("materials", 0, "E"), "5 TPa"), "materials[0].E",
+     "5e+12 Pa is outside the range of solid materials"),
     (_append(("materials",), {"name": "steel", "E": 1e9, "rho": 1e3, "nu": 0.3}),
      "materials[1].name", "duplicate material 'steel'"),
     (_set(("analyses", "campbell", "type"), "campbel"), "analyses.campbell.type",

@@ -111,7 +111,7 @@ def test_massless_dof_in_modal_is_reported():
 
 def test_modal_arguments_checked():
     rotor = rs.Rotor(_shaft(), [], [rs.BearingElement(n=0, kxx=1e6)])
-    with pytest.raises(rs.ModelError, match="num_modes must be >= 1"):
+    with pytest.raises(rs.ModelError, match="num_modes must be a positive integer"):
         rs.modal(rotor, num_modes=0)
     with pytest.raises(rs.ModelError, match="speed must be finite"):
         rs.modal(rotor, speed=math.nan)
