@@ -261,9 +261,10 @@ def _read_result(group: h5py.Group) -> Any:
                                group.name)
     kinds = json.loads(_str_attr(group, "fields"))
     fields = {f.name: f for f in dataclasses.fields(entry.cls)}
-    if set(kinds) != set(fields):
-        missing = [k for k in fields if k not in kinds]
-        extra = [k for k in kinds if k not in fields]
+    # A field added later with a default (e.g. ``notes``) may be absent from older files.
+    missing = [k for k, f in fields.items() if k not in kinds and not _has_default(f)]
+    extra = [k for k in kinds if k not in fields]
+    if missing or extra:
         raise ResultsFileError(
             f"fields of {name} do not match this rotorsim: missing {missing}, unexpected "
             f"{extra} (file written by another version?)", group.name)
@@ -273,6 +274,11 @@ def _read_result(group: h5py.Group) -> Any:
         if not fields[key].init:  # derived fields: restore exactly what was saved
             object.__setattr__(obj, key, value)
     return obj
+
+
+def _has_default(field: dataclasses.Field[Any]) -> bool:
+    return (field.default is not dataclasses.MISSING
+            or field.default_factory is not dataclasses.MISSING)
 
 
 def _str_attr(group: h5py.Group, key: str) -> str:

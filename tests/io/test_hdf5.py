@@ -456,6 +456,23 @@ def test_bad_files_raise_a_clear_error(results, tmp_path, case):
     assert isinstance(info.value, ModelError)
 
 
+def _drop_notes(f: h5py.File) -> None:
+    """Make the file look as written before ModalResult had ``notes``."""
+    kinds = json.loads(f["result"].attrs["fields"])
+    kinds.pop("notes")
+    f["result"].attrs["fields"] = json.dumps(kinds)
+    if "notes" in f["result"]:
+        del f["result"]["notes"]
+
+
+def test_a_file_without_a_later_defaulted_field_still_loads(results, tmp_path):
+    m = results["modal"]
+    path = _edit(save(dataclasses.replace(m, notes=("a note",)), tmp_path / "m.h5"),
+                 _drop_notes)
+    old = load(path)
+    assert old.notes == () and np.array_equal(old.wn, m.wn)
+
+
 def test_non_hdf5_and_missing_files(tmp_path):
     text = tmp_path / "notes.h5"
     text.write_text("hello")
