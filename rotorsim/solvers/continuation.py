@@ -39,7 +39,7 @@ from rotorsim.solvers.continuation_state import ContinuationCounters, Continuati
 from rotorsim.solvers.continuation_stepper import Continuation
 
 __all__ = ["Branch", "Continuation", "ContinuationCounters", "ContinuationState",
-           "continue_branch"]
+           "continue_branch", "run_config"]
 
 Monitor = Callable[[ContinuationState], "bool | None"]
 """``monitor(state)`` after each point; returning True ends the branch, raising aborts."""
@@ -186,7 +186,7 @@ def continue_branch(residual: ResidualCallback, x0: ArrayLike, lam0: float,
         raise ModelError(f"checkpoint_every must be a positive integer, got "
                          f"{checkpoint_every!r}", "continue_branch")
     x_start = np.array(x0, dtype=float).reshape(-1)
-    config = _run_config(opts, x_start, float(lam0))
+    config = run_config(opts, x_start, float(lam0))
     clock = time.perf_counter()
     if resume is not None:
         state, saved, _ = load_continuation_checkpoint(resume, config=config)
@@ -240,7 +240,7 @@ def _arrays(history: dict[str, list[Any]]) -> dict[str, Any]:
     return out
 
 
-def _run_config(options: Continuation, x0: FloatArray, lam0: float) -> dict[str, Any]:
+def run_config(options: Continuation, x0: FloatArray, lam0: float) -> dict[str, Any]:
     """JSON-able identity of a run, stored in checkpoints and compared on resume."""
     h = hashlib.blake2b(digest_size=8)
     h.update(x0.tobytes())
