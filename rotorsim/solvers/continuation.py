@@ -24,6 +24,7 @@ import os
 import time
 from collections.abc import Callable
 from dataclasses import dataclass
+from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -145,7 +146,8 @@ def continue_branch(residual: ResidualCallback, x0: ArrayLike, lam0: float,
         Starting parameter.
     options : Continuation, optional
     checkpoint : path, optional
-        HDF5 file rewritten atomically every ``checkpoint_every`` points and at the end.
+        HDF5 file rewritten atomically every ``checkpoint_every`` points and at the end
+        (its folder is created; a folder or an uncreatable path is a ModelError).
     resume : path, optional
         Continue from this checkpoint (same options and start, else
         :class:`~rotorsim.time_integration.checkpoint.CheckpointError`); the branch equals
@@ -185,6 +187,8 @@ def continue_branch(residual: ResidualCallback, x0: ArrayLike, lam0: float,
     if int(checkpoint_every) != checkpoint_every or checkpoint_every < 1:
         raise ModelError(f"checkpoint_every must be a positive integer, got "
                          f"{checkpoint_every!r}", "continue_branch")
+    if checkpoint is not None:
+        _prepare_target(Path(checkpoint))
     x_start = np.array(x0, dtype=float).reshape(-1)
     config = run_config(opts, x_start, float(lam0))
     clock = time.perf_counter()
@@ -224,6 +228,19 @@ def continue_branch(residual: ResidualCallback, x0: ArrayLike, lam0: float,
                   stats=_stats(state.counters, len(history["lam"]),
                                time.perf_counter() - clock),
                   options=opts, state=state)
+
+
+def _prepare_target(path: Path) -> None:
+    """Create the checkpoint's folder (as the CLI does for its results folder) before any
+    work, or refuse a path that cannot hold a file."""
+    where = "continue_branch.checkpoint"
+    if path.is_dir():
+        raise ModelError(f"{str(path)!r} is a folder; give a file name", where)
+    try:
+        path.parent.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise ModelError(f"cannot create the folder of {str(path)!r} "
+                         f"({type(exc).__name__}: {exc.strerror or exc})", where) from exc
 
 
 def _record(history: dict[str, list[Any]], state: ContinuationState) -> None:

@@ -159,10 +159,13 @@ class Continuation:
         if not self.lam_min < self.lam_max:
             raise ModelError(f"need lam_min < lam_max, got {self.lam_min}, {self.lam_max}",
                              where)
-        if self.max_points < 2 or self.max_iter < 1 or self.target_iterations < 1 \
-                or self.max_backtracks < 1:
-            raise ModelError("need max_points >= 2, max_iter >= 1, target_iterations >= 1 "
-                             "and max_backtracks >= 1", where)
+        for name, least in (("max_points", 2), ("max_iter", 1), ("target_iterations", 1),
+                            ("max_backtracks", 1)):
+            value = getattr(self, name)
+            if isinstance(value, bool) or not isinstance(value, int | np.integer) \
+                    or value < least:
+                raise ModelError(f"{name} must be an integer >= {least}, got {value!r}",
+                                 where)
         if not (self.tol > 0 and 0 < self.max_angle < math.pi):
             raise ModelError("need tol > 0 and 0 < max_angle < pi", where)
         for name in ("x_scale", "r_scale", "lam_scale"):

@@ -420,3 +420,26 @@ def test_resume_of_a_finished_run_returns_its_result_also_from_the_results_file(
     rs.save(rs.static(linear_rotor()), path)
     with pytest.raises(CheckpointError, match="StaticResult, not a periodic branch"):
         periodic(jeffcott(), start=1200.0, stop=1210.0, resume=path, **kw)
+
+
+@pytest.mark.parametrize("harmonics", [0, 2.5, 10000])
+def test_parameter_branches_check_harmonics_before_any_solve(harmonics, monkeypatch):
+    import rotorsim.harmonic_balance.memory as memory
+    from rotorsim.analyses.periodic_parameter import periodic_parameter
+
+    monkeypatch.setattr(memory, "memory_limit", lambda: 8 * memory.GIB)
+    with pytest.raises(ModelError, match=r"periodic_parameter\.harmonics: (must be a positive "
+                                         r"integer|H = 10000 harmonics)"):
+        periodic_parameter(jeffcott(), "forcing", speed=1250.0, start=0.0, stop=1.0,
+                           unbalance=UNBALANCE, harmonics=harmonics)
+
+
+def test_a_short_parameter_branch_is_not_ok():
+    from rotorsim.analyses.periodic_parameter import periodic_parameter
+
+    res = periodic_parameter(jeffcott(), "forcing", speed=1100.0, start=0.2, stop=1.0,
+                             unbalance=UNBALANCE, harmonics=4, max_points=3, stability=None,
+                             bifurcations=False)
+    assert len(res) == 3 and res.status == rs.Status.NOT_CONVERGED
+    assert res.reason.startswith("incomplete: the branch ended at parameter ")
+    assert "short of its end parameter 1 (max_points reached)" in res.reason
