@@ -108,3 +108,27 @@ def check_memory(harmonics: int, samples: int, nonlinear_dofs: int, dofs: int, *
                          f"the limit of {limit / GIB:.3g} GiB (half the physical memory); "
                          "use fewer harmonics", where)
     return need
+
+
+HILL_COPIES = 6
+"""Complex dense matrices of the size of Hill's pencil alive at once (the two pencil
+matrices, the eigensolver's work copies and the eigenvectors)."""
+
+
+def check_hill_memory(rows: int, where: str = "hill") -> int:
+    """Estimated memory [bytes] of Hill's method with a pencil of ``rows`` rows
+    (``HILL_COPIES`` dense complex matrices), refused above :func:`memory_limit`.
+
+    Raises
+    ------
+    ModelError
+        When the estimate exceeds the limit (figure and limit in GiB).
+    """
+    need = HILL_COPIES * 16 * rows * rows
+    limit = memory_limit()
+    if need > limit:
+        raise ModelError(f"Hill's method with a pencil of {rows} rows needs about "
+                         f"{need / GIB:.3g} GiB, above the limit of {limit / GIB:.3g} GiB (half "
+                         "the physical memory); use stability='hsu', fewer harmonics or "
+                         "stability_modes", where)
+    return need

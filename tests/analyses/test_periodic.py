@@ -443,3 +443,20 @@ def test_a_short_parameter_branch_is_not_ok():
     assert len(res) == 3 and res.status == rs.Status.NOT_CONVERGED
     assert res.reason.startswith("incomplete: the branch ended at parameter ")
     assert "short of its end parameter 1 (max_points reached)" in res.reason
+
+
+def test_hill_on_a_pencil_too_large_for_the_memory_is_refused(monkeypatch):
+    import rotorsim.harmonic_balance.memory as memory
+
+    monkeypatch.setattr(memory, "memory_limit", lambda: memory.GIB // 1024)   # 1 MiB
+    system = assemble(jeffcott())
+    res = make_residual(build_problem(
+        system, plan_excitation(system.nonlinear.elements, unbalance=True, base=None,
+                                varying_compliance=None, fundamental=None,
+                                frequency_parameter=False),
+        speed0=1000.0, fixed_speed=None, phi0=0.0, unbalance=UNBALANCE, gravity=None,
+        direction=(0, -1, 0), loads=[], base=None, stats=Stats()).problem, 6)
+    with pytest.raises(ModelError, match=r"periodic\.stability: Hill's method with a pencil "
+                                         r"of \d+ rows needs about .* GiB"):
+        stability_model(res, "hill", modes=None, omega_max=1000.0)
+    assert stability_model(res, "hsu", modes=None, omega_max=1000.0).method == "hsu"
