@@ -93,7 +93,10 @@ class Evaluation:
 
     def converged(self, tol: float) -> bool:
         """Every ``|R_i / r_i| <= max(tol, floor_i)`` (:data:`ROUNDOFF`)."""
-        return bool(np.all(np.abs(self.rh) <= np.maximum(tol, self.floor())))
+        size = np.abs(self.rh)
+        if not size.size or float(size.max()) <= tol:
+            return True
+        return bool(np.all(size <= np.maximum(tol, self.floor())))
 
 
 @dataclass(frozen=True, eq=False)
