@@ -45,7 +45,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from rotorsim.analyses.keyword_check import checked_keywords
 from rotorsim.analyses.nonlinear_static import start_point
-from rotorsim.analyses.periodic_branch import Stepping, trace_branch
+from rotorsim.analyses.periodic_branch import Stepping, start_branch
 from rotorsim.analyses.periodic_events import floquet_events
 from rotorsim.analyses.periodic_excitation import ExcitationPlan, HarmonicBase, plan_excitation
 from rotorsim.analyses.periodic_folds import ParameterMap
@@ -56,7 +56,12 @@ from rotorsim.analyses.periodic_output import (
     floquet_arrays,
     kept_dofs,
 )
-from rotorsim.analyses.periodic_problem import RotorPeriodicProblem, build_problem
+from rotorsim.analyses.periodic_problem import (
+    RotorPeriodicProblem,
+    build_problem,
+    check_discretization,
+)
+from rotorsim.analyses.periodic_resume import finished_result, resumed
 from rotorsim.analyses.periodic_stability import (
     DEFAULT_TOL,
     StabilityModel,
@@ -132,7 +137,9 @@ def periodic(
     speed : float, optional
         Fixed spin speed [rad/s] for ``parameter="frequency"``.
     harmonics : int
-        ``H`` harmonics of the fundamental.
+        ``H >= 1`` harmonics of the fundamental, at least the harmonic of every forcing
+        (unbalance, base excitation); refused when the estimated memory exceeds half the
+        physical memory (:mod:`rotorsim.harmonic_balance.memory`).
     samples : int, optional
         AFT samples per period (default ``2**ceil(log2(8 H))``; increase for hard
         contacts, check with ``harmonic_balance.sample_convergence``).
@@ -176,7 +183,9 @@ def periodic(
     nodes : sequence of int, optional
         Nodes whose DOFs are kept (default all); the nonlinear DOFs are always kept.
     checkpoint, checkpoint_every, resume, progress
-        As in :func:`~rotorsim.solvers.continuation.continue_branch`.
+        As in :func:`~rotorsim.solvers.continuation.continue_branch`. A finished run
+        resumes to its result, also when its checkpoint was replaced by the results file
+        (``rs.save(result, path)``; :mod:`~.periodic_resume`).
     fold_map : bool or ParameterMap
         Continue every fold of the branch in a second parameter (a jump map,
         :mod:`~.periodic_folds`): ``True`` in the forcing amplitude
@@ -197,7 +206,8 @@ def periodic(
     Raises
     ------
     ModelError
-        For bad input (before any solve), incommensurate forcing with
+        For bad input (before any solve: e.g. ``harmonics`` not a positive integer, below
+        the harmonic of a forcing, or needing too much memory), incommensurate forcing with
         ``varying_compliance=True``, speed-dependent linear bearings with speed
         continuation.
     ConvergenceError
@@ -222,6 +232,7 @@ def periodic(
     plan = plan_excitation(elements, unbalance=bool(unbalance), base=base,
                            varying_compliance=varying_compliance, fundamental=fundamental,
                            frequency_parameter=frequency)
+    check_discretization(harmonics, samples, plan, system, condense, WHERE)
     stats = Stats()
     q0 = start_point(system, x0, f"{WHERE}.x0") if x0 is not None else _static_guess(
         model, nonlinear, system, gravity, direction, loads,
@@ -235,13 +246,17 @@ def periodic(
     recovery = Recovery(residual, *kept_dofs(system, rp, nodes))
     to_lam = _lam_map(plan, frequency)
     stepping = Stepping(step, max_step, max_points, tol, continuation)
-    branch = trace_branch(residual, system, rp, to_lam(start), to_lam(stop), stepping, stats,
-                          checkpoint=checkpoint, checkpoint_every=checkpoint_every,
-                          resume=resume, progress=progress)
+    begun = start_branch(residual, system, rp, to_lam(start), to_lam(stop), stepping, stats)
+    options = _describe(locals())
+    done = None if resume is None else finished_result(resume)
+    if done is not None and resume is not None:
+        return resumed(done, options, resume)
+    branch = begun.trace(unit=_unit(plan, parameter, frequency), checkpoint=checkpoint,
+                         checkpoint_every=checkpoint_every, resume=resume,
+                         progress=progress)
     sm = None if stability is None else stability_model(
         residual, stability, modes=stability_modes, omega_max=float(np.max(branch.lam)),
         tol=stability_tol)
-    options = _describe(locals())
     result = _result(system, rp, recovery, plan, branch, sm, bifurcations, frequency,
                      options, stats, clock)
     if fold_map is not False and result.bifurcations:
@@ -330,6 +345,12 @@ def _lam_map(plan: ExcitationPlan, frequency: bool) -> Any:
     return lambda value: float(plan.order * value)
 
 
+def _unit(plan: ExcitationPlan, parameter: str, frequency: bool) -> Any:
+    """``omega -> "speed 123.4 rad/s"`` for messages."""
+    order = 1.0 if frequency else plan.order
+    return lambda lam: f"{parameter} {lam / order:.6g} rad/s"
+
+
 def _result(system: RotorSystem, rp: RotorPeriodicProblem, recovery: Recovery,
             plan: ExcitationPlan, branch: Branch, sm: StabilityModel | None,
             bifurcations: bool, frequency: bool, options: dict[str, Any], stats: Stats,
@@ -384,9 +405,10 @@ def _describe(arguments: dict[str, Any]) -> dict[str, Any]:
         "varying_compliance": a["varying_compliance"], "fundamental": a["fundamental"],
         "moving_elements": a["plan"].moving_elements, "shaft_angle": float(a["shaft_angle"]),
         "condense": bool(a["condense"]),
-        "continuation": dataclasses.asdict(a["branch"].options),
+        "continuation": dataclasses.asdict(a["begun"].options), "run": a["begun"].identity,
         "stability": a["stability"], "stability_modes": a["stability_modes"],
-        "bifurcations": bool(a["bifurcations"]),
+        "stability_tol": float(a["stability_tol"]), "bifurcations": bool(a["bifurcations"]),
+        "fold_map_requested": a["fold_map"] is not False,
         "nodes": None if a["nodes"] is None else [int(n) for n in a["nodes"]],
         "x0_given": a["x0"] is not None,
     }

@@ -4,10 +4,11 @@
 from the static equilibrium (harmonic 0), or, if that fails (a large response near a
 resonance), a continuation of the periodic forcing from zero to its full value at fixed
 frequency (the HB parameter ``p`` removes the fraction ``p`` of the forcing, see
-:class:`~rotorsim.analyses.periodic_problem.PeriodicLoads`). :func:`trace_branch` then
-continues it in ``omega``. Unknowns are scaled per DOF (:func:`unknown_scales`), the
-residual by its Jacobian row norms, and the parameter by its range, so the default steps
-are dimensionless fractions of the range.
+:class:`~rotorsim.analyses.periodic_problem.PeriodicLoads`). :func:`start_branch` then
+prepares its continuation in ``omega`` (:meth:`BranchStart.trace`). Unknowns are scaled
+per DOF (:func:`unknown_scales`), the residual by its Jacobian row norms, and the
+parameter by its range, so the default steps are dimensionless fractions of the range. A
+branch that ends short of its end is not OK (:func:`judged`).
 """
 
 from __future__ import annotations
@@ -21,10 +22,15 @@ import numpy as np
 from rotorsim.analyses.periodic_problem import RotorPeriodicProblem
 from rotorsim.assembly.system import RotorSystem
 from rotorsim.elements.base import DOFS_PER_NODE, FloatArray
-from rotorsim.errors import ConvergenceError
+from rotorsim.errors import ConvergenceError, Status
 from rotorsim.harmonic_balance.residual import HBResidual, continuation_function
 from rotorsim.harmonic_balance.solve import solve_point
-from rotorsim.solvers.continuation import Branch, Continuation, continue_branch
+from rotorsim.solvers.continuation import (
+    Branch,
+    Continuation,
+    continue_branch,
+    run_config,
+)
 from rotorsim.solvers.stats import Stats
 
 WHERE = "periodic"
@@ -81,19 +87,66 @@ def unknown_scales(system: RotorSystem, rp: RotorPeriodicProblem, residual: HBRe
     return np.tile(per_dof, residual.aft.rows)
 
 
-def trace_branch(residual: HBResidual, system: RotorSystem, rp: RotorPeriodicProblem,
-                 lam0: float, lam1: float, stepping: Stepping, stats: Stats,
-                 **driver: Any) -> Branch:
-    """Static start -> first point at ``lam0`` -> continuation towards ``lam1`` (the scales
-    come from the static and the first solution; recomputed identically on resume)."""
+@dataclass(frozen=True, eq=False)
+class BranchStart:
+    """The first point ``x0`` at ``lam0`` of a branch towards ``lam1``, its continuation
+    function and options, and :attr:`identity` of the run (what a checkpoint or a results
+    file of the same run must match)."""
+
+    fun: Any
+    x0: FloatArray
+    lam0: float
+    lam1: float
+    options: Continuation
+
+    @property
+    def identity(self) -> dict[str, Any]:
+        """Size and hash of the start (:func:`~rotorsim.solvers.continuation.run_config`
+        without the options, which the result stores in full)."""
+        config = run_config(self.options, self.x0, self.lam0)
+        return {"m": config["m"], "start": config["start"]}
+
+    def trace(self, unit: Any = None, **driver: Any) -> Branch:
+        """Continue towards ``lam1`` (``driver``: checkpoint, resume, progress, ...); a
+        branch short of ``lam1`` is not OK (:func:`judged`, ``unit`` formats its reason)."""
+        branch = continue_branch(self.fun, self.x0, self.lam0, self.options, **driver)
+        return judged(branch, self.lam1, unit)
+
+
+def start_branch(residual: HBResidual, system: RotorSystem, rp: RotorPeriodicProblem,
+                 lam0: float, lam1: float, stepping: Stepping, stats: Stats) -> BranchStart:
+    """Static start -> first point at ``lam0`` -> continuation options towards ``lam1``
+    (the scales come from the static and the first solution; recomputed identically on
+    resume)."""
     X0 = np.zeros((residual.aft.rows, rp.problem.n))
     X0[0] = rp.static[rp.active]
     x0 = residual.restrict(X0)
     x0 = first_point(residual, lam0, x0, unknown_scales(system, rp, residual), stepping.tol,
                      stats)
     opts = stepping.options(lam0, lam1, unknown_scales(system, rp, residual, x0))
-    fun = continuation_function(residual, "omega", stats=stats)
-    return continue_branch(fun, x0, lam0, opts, **driver)
+    fun = continuation_function(residual, "omega", stats=stats, terms=True)
+    return BranchStart(fun, x0, float(lam0), float(lam1), opts)
+
+
+def reached(branch: Branch, end: float) -> bool:
+    """Whether the branch's last point is on ``end`` (to the corrector's tolerance on the
+    parameter, at least 1e-9 of the range)."""
+    span = abs(end - float(branch.lam[0])) or 1.0
+    return abs(float(branch.lam[-1]) - end) <= max(1e-9, 10.0 * branch.options.tol) * span
+
+
+def judged(branch: Branch, end: float, unit: Any = None) -> Branch:
+    """The branch with an honest status: one that ended short of ``end`` (``max_points``
+    used up, a fold back to the start, a closed loop, a point on the bound that did not
+    converge, a step below ``min_step``) is NOT_CONVERGED (or its failure status) with a
+    reason that says where it stopped; ``unit(lam) -> str`` formats parameter values."""
+    if reached(branch, end):
+        return branch
+    show = unit or (lambda v: f"{v:.6g}")
+    status = Status.NOT_CONVERGED if branch.status == Status.OK else branch.status
+    reason = (f"incomplete: the branch ended at {show(float(branch.lam[-1]))}, short of "
+              f"its end {show(end)} ({branch.reason})")
+    return dataclasses.replace(branch, status=status, reason=reason)
 
 
 def first_point(residual: HBResidual, lam0: float, x0: FloatArray, x_scale: FloatArray,
@@ -122,9 +175,10 @@ def first_point(residual: HBResidual, lam0: float, x0: FloatArray, x_scale: Floa
     homotopy = Continuation(direction=-1, lam_min=0.0, lam_max=1.0, max_step=0.1,
                             max_points=400, tol=tol, x_scale=tuple(x_scale),
                             r_scale=tuple(r_scale))
-    fun = continuation_function(residual, "param", omega=lam0, stats=stats)
+    fun = continuation_function(residual, "param", omega=lam0, stats=stats,
+                                terms=True)
     branch = continue_branch(fun, unforced.x, 1.0, homotopy)
-    if branch.lam[-1] != 0.0:
+    if not reached(branch, 0.0):
         raise ConvergenceError(f"no periodic solution found at the start: Newton from the "
                                f"static solution failed ({failure}) and the forcing "
                                f"homotopy stopped at {1 - branch.lam[-1]:.3g} of the forcing "

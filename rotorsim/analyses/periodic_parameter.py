@@ -30,7 +30,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike
 
-from rotorsim.analyses.periodic_branch import Stepping, first_point, unknown_scales
+from rotorsim.analyses.periodic_branch import Stepping, first_point, judged, unknown_scales
 from rotorsim.analyses.periodic_events import floquet_events
 from rotorsim.analyses.periodic_excitation import plan_excitation
 from rotorsim.analyses.periodic_output import (
@@ -39,7 +39,7 @@ from rotorsim.analyses.periodic_output import (
     branch_arrays,
     kept_dofs,
 )
-from rotorsim.analyses.periodic_problem import build_problem
+from rotorsim.analyses.periodic_problem import build_problem, check_discretization
 from rotorsim.analyses.periodic_stability import DEFAULT_TOL, stability_model
 from rotorsim.analyses.periodic_variation import (
     RotorFamilyResidual,
@@ -153,6 +153,7 @@ def periodic_parameter(
     plan = plan_excitation(system.nonlinear.elements, unbalance=bool(unbalance), base=None,
                            varying_compliance=None, fundamental=None,
                            frequency_parameter=False)
+    check_discretization(harmonics, samples, plan, system, True, WHERE)
     scaled = [(n, d, float(start) * v) for n, d, v in loads] if mode == "loads" else loads
     rp = build_problem(system, plan, speed0=float(speed), fixed_speed=None, phi0=0.0,
                        unbalance=list(unbalance), gravity=gravity, direction=direction,
@@ -177,13 +178,14 @@ def periodic_parameter(
     else:
         residual = parametric_residual(rp, system, vary, harmonics,  # type: ignore[arg-type]
                                        samples, span, float(start))
-    fun = continuation_function(residual, "param", omega=omega, stats=stats)
+    fun = continuation_function(residual, "param", omega=omega, stats=stats, terms=True)
     stepping = Stepping(step, max_step, max_points, tol, None)
     options = stepping.options(to_p(float(start)), to_p(float(stop)),
                                unknown_scales(system, rp, residual, x0))
-    branch = continue_branch(fun, x0, to_p(float(start)), options, checkpoint=checkpoint,
-                             checkpoint_every=checkpoint_every, resume=resume,
-                             progress=progress)
+    branch = judged(continue_branch(fun, x0, to_p(float(start)), options,
+                                    checkpoint=checkpoint, checkpoint_every=checkpoint_every,
+                                    resume=resume, progress=progress),
+                    to_p(float(stop)), lambda p: f"{name} {to_p(p):.6g}")
     recovery = Recovery(_AtOmega(residual, omega),  # type: ignore[arg-type]
                         *kept_dofs(system, rp, nodes))
     lam = np.asarray(to_p(branch.lam.astype(float)), dtype=float)

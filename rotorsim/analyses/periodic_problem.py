@@ -49,6 +49,8 @@ from rotorsim.assembly.nonlinear import NonlinearAssembly
 from rotorsim.assembly.system import RotorSystem
 from rotorsim.elements.base import FloatArray
 from rotorsim.errors import ModelError
+from rotorsim.harmonic_balance.fourier import default_samples, whole
+from rotorsim.harmonic_balance.memory import check_memory
 from rotorsim.harmonic_balance.problem import HBProblem
 from rotorsim.solvers.linear import factorize
 from rotorsim.solvers.stats import Stats
@@ -211,6 +213,32 @@ def build_problem(system: RotorSystem, plan: ExcitationPlan, *, speed0: float,
         plan=plan, speed0=speed0, fixed_speed=fixed_speed, phi0=phi0, unbalance=unbalance,
         gravity=gravity, direction=direction, loads=loads, base=base, stats=stats, held=held))
     return RotorPeriodicProblem(problem, active, held, static, periodic_loads, recipe)
+
+
+def check_discretization(harmonics: Any, samples: Any, plan: ExcitationPlan,
+                         system: RotorSystem, condense: bool, where: str) -> None:
+    """Refuse ``harmonics`` that is not an integer ``>= 1`` or below the harmonic of a
+    forcing (the forcing would be dropped), ``samples`` that is not an integer
+    ``>= 2 H + 1``, and a discretisation whose estimated memory is above the limit of
+    :func:`~rotorsim.harmonic_balance.memory.check_memory` (before any solve)."""
+    if not whole(harmonics, 1):
+        raise ModelError(f"must be a positive integer (harmonics of the fundamental), got "
+                         f"{harmonics!r}", f"{where}.harmonics")
+    for name, h in (("unbalance", plan.unbalance_harmonic),
+                    ("base excitation", plan.base_harmonic)):
+        if h > harmonics:
+            raise ModelError(f"{harmonics} harmonics drop the {name}, which is harmonic {h} "
+                             f"of the fundamental: use harmonics >= {h}", f"{where}.harmonics")
+    if samples is not None and not whole(samples, 2 * harmonics + 1):
+        raise ModelError(f"must be an integer >= 2 H + 1 = {2 * harmonics + 1}, got "
+                         f"{samples!r}", f"{where}.samples")
+    nl = system.nonlinear
+    k = 0 if nl is None else int(nl.dofs.size)
+    balls = 0 if nl is None else sum(int(getattr(el, "n_elements", 0))
+                                     for el in nl.elements)
+    check_memory(int(harmonics), int(samples or default_samples(int(harmonics))), k,
+                 system.n_free, condense=condense and k > 0, rolling_elements=balls,
+                 where=f"{where}.harmonics")
 
 
 def _rebuild(settings: dict[str, Any], system: RotorSystem, **changes: Any

@@ -36,6 +36,7 @@ from rotorsim.assembly.reduction import fixed_interface_modes
 from rotorsim.elements.base import FloatArray
 from rotorsim.errors import ConvergenceError, ModelError
 from rotorsim.harmonic_balance.floquet import FloquetResult, hill
+from rotorsim.harmonic_balance.memory import check_hill_memory
 from rotorsim.harmonic_balance.monodromy import hsu, variational
 from rotorsim.harmonic_balance.problem import HBProblem, as_dense
 from rotorsim.harmonic_balance.residual import HBResidual, make_residual
@@ -127,6 +128,12 @@ def stability_model(main: HBResidual, method: str, *, modes: int | str | None = 
     omega_max : float
         Largest fundamental frequency of the branch [rad/s] (cutoff of "auto").
     tol : float
+
+    Raises
+    ------
+    ModelError
+        For bad options, or Hill's method on a pencil too large for the memory
+        (:func:`~rotorsim.harmonic_balance.memory.check_hill_memory`).
     """
     check_options(method, modes, tol)
     pb = main.problem
@@ -142,8 +149,11 @@ def stability_model(main: HBResidual, method: str, *, modes: int | str | None = 
     else:
         reduced, kept = craig_bampton(pb, count, cutoff)
         residual = make_residual(reduced, main.harmonics, samples=main.samples)
+    rows = 2 * residual.aft.rows * residual.problem.n
     if method == "auto":
-        method = "hill" if 2 * residual.aft.rows * residual.problem.n <= HILL_LIMIT else "hsu"
+        method = "hill" if rows <= HILL_LIMIT else "hsu"
+    if method == "hill":
+        check_hill_memory(rows, where="periodic.stability")
     return StabilityModel(main, residual, method, kept, float(tol))
 
 

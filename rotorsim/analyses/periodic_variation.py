@@ -262,7 +262,7 @@ class RotorFamilyResidual:
             up = self.at(param + h).evaluate(x, omega, 0.0, jacobian=False, stats=stats).r
             down = self.at(param - h).evaluate(x, omega, 0.0, jacobian=False, stats=stats).r
             dp = (up - down) / (2.0 * h)
-        return HBEvaluation(ev.r, ev.jacobian, ev.d_omega, dp)
+        return HBEvaluation(ev.r, ev.jacobian, ev.d_omega, dp, ev.terms)
 
     def expand(self, x: Any, omega: float, param: float = 0.0) -> FloatArray:
         """Coefficients (2H + 1, n) of all DOFs of the rotor at ``p = param``."""

@@ -83,6 +83,9 @@ class HarmonicFactors:
         ``Z_LL,h^-1 Z_LN,h``.
     reduced : array ((2H + 1) k, (2H + 1) k)
         Real block-diagonal form of the Schur complements ``S_h`` (harmonic-major).
+    magnitude : array (H + 1, k, k)
+        ``|Z_NN,h| + |Z_NL,h| |Z_LL,h^-1 Z_LN,h|``: the size of the terms that cancel in
+        ``S_h`` (for the round-off floor of the residual).
     """
 
     omega: float
@@ -90,6 +93,7 @@ class HarmonicFactors:
     coupling: tuple[ComplexArray, ...]
     transfer: ComplexArray
     reduced: FloatArray
+    magnitude: FloatArray
 
 
 @dataclass(frozen=True, eq=False)
@@ -155,7 +159,12 @@ class CondensedResidual:
         F = pb.excitation_coefficients(aft, omega, param)
         nl = nonlinear_harmonics(pb, aft, Y, omega, param, jacobian=jacobian,
                                  d_omega=d_omega)
-        r = fac.reduced @ Y.reshape(-1) + (nl.force - self._schur(F, fac)).reshape(-1)
+        forcing, forcing_terms = self._schur_terms(F, fac)
+        r = fac.reduced @ Y.reshape(-1) + (nl.force - forcing).reshape(-1)
+        Yc = np.abs(to_complex(Y))
+        sizes = np.einsum("hij,hj->hi", fac.magnitude, Yc) + forcing_terms \
+            + force_size(nl.force)
+        terms = np.abs(from_complex(sizes + 1j * sizes)).reshape(-1)
         J = dw = dp = None
         if jacobian:
             assert nl.jacobian is not None
@@ -172,7 +181,7 @@ class CondensedResidual:
                 Rp = -dfp
                 Rp[:, pb.nl_dofs] += nonlinear_param_derivative(pb, aft, Y, omega, param)
                 dp = self._schur(Rp, fac).reshape(-1)
-        return HBEvaluation(r, J, dw, dp)
+        return HBEvaluation(r, J, dw, dp, terms)
 
     def expand(self, x: ArrayLike, omega: float, param: float = 0.0) -> FloatArray:
         """Coefficients (2H + 1, n) of all DOFs recovered from the nonlinear ones."""
@@ -211,8 +220,10 @@ class CondensedResidual:
         couplings: list[ComplexArray] = []
         transfer = np.zeros((H + 1, nL, k), dtype=complex)
         reduced = np.zeros((self.aft.rows * k, self.aft.rows * k))
+        magnitude = np.zeros((H + 1, k, k))
         for h in range(H + 1):
             S = self._dynamic("NN", h, omega)
+            magnitude[h] = np.abs(S)
             couplings.append(self._dynamic("NL", h, omega))
             lu = None
             if nL:
@@ -221,9 +232,11 @@ class CondensedResidual:
                                      f"{omega:.6g} rad/s")
                 transfer[h] = lu.solve(self._dynamic("LN", h, omega))
                 S = S - couplings[h] @ transfer[h]
+                magnitude[h] += np.abs(couplings[h]) @ np.abs(transfer[h])
             lus.append(lu)
             _place(reduced, S, h, k)
-        return HarmonicFactors(omega, tuple(lus), tuple(couplings), transfer, reduced)
+        return HarmonicFactors(omega, tuple(lus), tuple(couplings), transfer, reduced,
+                               magnitude)
 
     def _dynamic(self, part: str, h: int, omega: float) -> Any:
         """Block ``part`` of ``Z_h(omega)`` (dense complex, or sparse for a large LL)."""
@@ -258,14 +271,23 @@ class CondensedResidual:
 
     def _schur(self, R: FloatArray, fac: HarmonicFactors) -> FloatArray:
         """``R_N - Z_NL Z_LL^-1 R_L`` per harmonic for a full-DOF array ``R`` (2H+1, n)."""
+        return self._schur_terms(R, fac)[0]
+
+    def _schur_terms(self, R: FloatArray, fac: HarmonicFactors
+                     ) -> tuple[FloatArray, FloatArray]:
+        """:meth:`_schur` and the size ``|R_N| + |Z_NL| |Z_LL^-1 R_L|`` (H + 1, k) of its
+        terms per harmonic."""
         pb = self.problem
         C = to_complex(R)
         out = C[:, pb.nl_dofs]
+        size = np.abs(out)
         for h, lu in enumerate(fac.lu):
             rhs = C[h, pb.linear_dofs]
             if lu is not None and np.any(rhs):
-                out[h] -= fac.coupling[h] @ lu.solve(rhs)
-        return from_complex(out)
+                solved = lu.solve(rhs)
+                out[h] -= fac.coupling[h] @ solved
+                size[h] += np.abs(fac.coupling[h]) @ np.abs(solved)
+        return from_complex(out), size
 
     def _recover(self, Y: FloatArray, fac: HarmonicFactors, F: FloatArray) -> FloatArray:
         """All coefficients (2H + 1, n) from ``Y`` (2H + 1, k) and the excitation ``F``."""
@@ -280,6 +302,14 @@ class CondensedResidual:
                 XL[h] += lu.solve(rhs)
         Xc[:, pb.linear_dofs] = XL
         return from_complex(Xc)
+
+
+def force_size(force: FloatArray) -> FloatArray:
+    """Size (H + 1, k) of the AFT force terms in each harmonic: the sum of the amplitudes
+    of all harmonics of each DOF, since the FFT spreads the round-off of every time
+    sample over all harmonics."""
+    amplitudes = np.abs(to_complex(force))
+    return np.broadcast_to(amplitudes.sum(axis=0), amplitudes.shape)
 
 
 def _place(reduced: FloatArray, S: ComplexArray, h: int, k: int) -> None:

@@ -227,7 +227,7 @@ def track_folds(residual: TwoParameterResidual, fold: Any, mu0: float,
 
 def _with_mu(residual: ResidualCallback) -> TwoParameterResidual:
     def two(x: FloatArray, lam: float, mu: float) -> tuple[Any, Any, Any, Any]:
-        r, jac, jlam = residual(x, lam)
+        r, jac, jlam = residual(x, lam)[:3]
         return r, jac, jlam, np.zeros(x.size)
 
     return two

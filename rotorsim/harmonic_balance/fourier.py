@@ -43,6 +43,20 @@ ComplexArray = NDArray[np.complex128]
 IntArray = NDArray[np.int64]
 
 
+def whole(value: object, minimum: int) -> bool:
+    """Whether ``value`` is an integer (not a bool) ``>= minimum``.
+
+    >>> whole(3, 1), whole(3.0, 1), whole(2.5, 1), whole(float("inf"), 1), whole(True, 0)
+    (True, True, False, False, False)
+    """
+    if isinstance(value, bool):
+        return False
+    try:
+        return int(value) == value and value >= minimum  # type: ignore[call-overload,operator]
+    except (TypeError, ValueError, OverflowError):
+        return False
+
+
 def default_samples(harmonics: int) -> int:
     """Default number of time samples: ``2**ceil(log2(max(8 H, 16)))``.
 
@@ -162,10 +176,10 @@ class AFT:
 
     def __post_init__(self) -> None:
         H = self.harmonics
-        if int(H) != H or H < 0:
+        if not whole(H, 0):
             raise ModelError(f"harmonics must be an integer >= 0, got {H!r}", "AFT")
         N = default_samples(H) if self.samples == 0 else self.samples
-        if int(N) != N or N < 2 * H + 1:
+        if not whole(N, 2 * H + 1):
             raise ModelError(f"samples must be an integer >= 2 H + 1 = {2 * H + 1}, got "
                              f"{self.samples!r}", "AFT")
         object.__setattr__(self, "harmonics", int(H))

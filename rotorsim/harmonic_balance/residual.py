@@ -54,6 +54,7 @@ from rotorsim.harmonic_balance.fourier import (
     derivative,
     derivative_matrix,
 )
+from rotorsim.harmonic_balance.memory import check_memory
 from rotorsim.harmonic_balance.nonlinear import (
     excitation_derivatives,
     nonlinear_harmonics,
@@ -66,12 +67,15 @@ from rotorsim.solvers.stats import Stats
 @dataclass(frozen=True, eq=False)
 class HBEvaluation:
     """Residual ``r`` (m,) [N] and, when requested, ``jacobian`` (m, m), ``d_omega`` and
-    ``d_param`` (m,)."""
+    ``d_param`` (m,); ``terms`` (m,) [N] is the size of the terms summed in each component
+    of ``r`` (``|K| |x| + |f_nl| + |f|``, before cancellation), from which continuation
+    judges the round-off floor of the residual (None: unknown)."""
 
     r: FloatArray
     jacobian: FloatArray | None = None
     d_omega: FloatArray | None = None
     d_param: FloatArray | None = None
+    terms: FloatArray | None = None
 
 
 class HBResidual(Protocol):
@@ -122,6 +126,12 @@ def make_residual(problem: HBProblem, harmonics: int, *, samples: int | None = N
         Unknowns on the nonlinear DOFs only (exact Schur complement per harmonic, see
         :mod:`~rotorsim.harmonic_balance.condensation`) or on all DOFs.
 
+    Raises
+    ------
+    ModelError
+        For bad ``harmonics`` or ``samples``, or when the discretisation would need more
+        memory than :func:`~rotorsim.harmonic_balance.memory.check_memory` allows.
+
     Examples
     --------
     >>> cubic = lambda q, v, tau, w, p: (q**3, 3 * q[:, :, None]**2, None)
@@ -129,6 +139,9 @@ def make_residual(problem: HBProblem, harmonics: int, *, samples: int | None = N
     >>> make_residual(pb, 3).size, make_residual(pb, 3, condense=False).size
     (7, 14)
     """
+    aft = AFT(harmonics, samples or 0)
+    check_memory(aft.harmonics, aft.samples, problem.k, problem.n, condense=condense,
+                 where="make_residual")
     if condense:
         from rotorsim.harmonic_balance.condensation import CondensedResidual
 
@@ -188,14 +201,18 @@ class HarmonicBalanceResidual:
             stats.residual_evaluations += 1
         nl = nonlinear_harmonics(pb, aft, X[:, pb.nl_dofs], omega, param, jacobian=jacobian,
                                  d_omega=d_omega)
-        R = linear_apply(pb, X, omega) - pb.excitation_coefficients(aft, omega, param)
+        F = pb.excitation_coefficients(aft, omega, param)
+        R = linear_apply(pb, X, omega) - F
         R[:, pb.nl_dofs] += nl.force
-        J = dw = dp = None
+        J = dw = dp = terms = None
         if jacobian:
             assert nl.jacobian is not None
             J = linear_jacobian(pb, self.harmonics, omega)
+            terms = np.abs(J) @ np.abs(X.reshape(-1)) + np.abs(F.reshape(-1))
             idx = self._nl_index
             J[np.ix_(idx, idx)] += nl.jacobian
+            size = np.abs(nl.force).sum(axis=0)     # FFT round-off spreads over harmonics
+            terms[idx] += np.tile(2.0 * size, aft.rows)
         if d_omega or d_param:
             dfw, dfp = excitation_derivatives(pb, aft, omega, param, d_omega=d_omega,
                                               d_param=d_param)
@@ -209,7 +226,7 @@ class HarmonicBalanceResidual:
                 Rp[:, pb.nl_dofs] += nonlinear_param_derivative(pb, aft, X[:, pb.nl_dofs],
                                                                 omega, param)
                 dp = Rp.reshape(-1)
-        return HBEvaluation(R.reshape(-1), J, dw, dp)
+        return HBEvaluation(R.reshape(-1), J, dw, dp, terms)
 
     def expand(self, x: ArrayLike, omega: float, param: float = 0.0) -> FloatArray:
         """Coefficients (2H + 1, n) of all DOFs (a reshape of ``x``)."""
@@ -263,7 +280,8 @@ def linear_jacobian(problem: HBProblem, harmonics: int, omega: float) -> FloatAr
 def continuation_function(
     residual: HBResidual, parameter: Literal["omega", "param"] = "omega", *,
     omega: float | None = None, param: float = 0.0, stats: Stats | None = None,
-) -> Callable[[FloatArray, float], tuple[FloatArray, FloatArray, FloatArray]]:
+    terms: bool = False,
+) -> Callable[[FloatArray, float], tuple[FloatArray, ...]]:
     """``fun(x, lam) -> (r, dr/dx, dr/dlam)`` for continuation in ``omega`` or ``p``.
 
     Parameters
@@ -276,6 +294,11 @@ def continuation_function(
         ``param``).
     stats : Stats, optional
         Counter of residual evaluations.
+    terms : bool
+        Return ``(r, dr/dx, dr/dlam, terms)`` with the size of the terms of ``r``
+        (:class:`HBEvaluation`) when the residual knows it: continuation then judges
+        convergence against the round-off floor of the actual sums
+        (:data:`rotorsim.solvers.continuation_core.ROUNDOFF`).
 
     Examples
     --------
@@ -291,7 +314,7 @@ def continuation_function(
         raise ModelError("give the fixed omega when continuing in param",
                          "continuation_function")
 
-    def fun(x: FloatArray, lam: float) -> tuple[FloatArray, FloatArray, FloatArray]:
+    def fun(x: FloatArray, lam: float) -> tuple[FloatArray, ...]:
         if parameter == "omega":
             ev = residual.evaluate(x, lam, param, d_omega=True, stats=stats)
             r_lam = ev.d_omega
@@ -300,6 +323,8 @@ def continuation_function(
             ev = residual.evaluate(x, omega, lam, d_param=True, stats=stats)
             r_lam = ev.d_param
         assert ev.jacobian is not None and r_lam is not None
+        if terms and ev.terms is not None:
+            return ev.r, ev.jacobian, r_lam, ev.terms
         return ev.r, ev.jacobian, r_lam
 
     return fun

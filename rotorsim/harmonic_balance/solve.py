@@ -26,6 +26,7 @@ from numpy.typing import ArrayLike
 from rotorsim.errors import Status
 from rotorsim.harmonic_balance.fourier import AFT, FloatArray
 from rotorsim.harmonic_balance.residual import HBResidual, as_unknowns
+from rotorsim.solvers.continuation_core import ROUNDOFF
 from rotorsim.solvers.newton import Newton, ResidualProblem
 from rotorsim.solvers.stats import Stats
 
@@ -96,7 +97,9 @@ def solve_point(residual: HBResidual, omega: float, x0: ArrayLike | None = None,
     param : float
         Continuation parameter value.
     tol, max_iter : float, int
-        Stop when ``max |r / r_scale| <= tol``; fail after ``max_iter`` iterations.
+        Stop when ``max |r / r_scale| <= tol``, or below the round-off floor of the
+        residual at ``x0`` where that is above ``tol`` (:func:`_floor`); fail after
+        ``max_iter`` iterations.
     x_scale, r_scale : float or array (residual.size,), optional
         Scales of the unknowns and residuals (see the module docstring).
     newton : Newton, optional
@@ -126,8 +129,10 @@ def solve_point(residual: HBResidual, omega: float, x0: ArrayLike | None = None,
     F = residual.problem.excitation_coefficients(residual.aft, omega, param)
     r_default = float(np.abs(F).max()) or 1.0
     x_default = float(np.abs(x_start).max()) or 1.0
+    r_s = np.asarray(r_default if r_scale is None else r_scale, dtype=float)
     solver = newton if newton is not None else Newton(
-        tol=tol, max_iter=max_iter, where=f"harmonic balance at omega = {omega:.6g} rad/s")
+        tol=max(tol, _floor(residual, x_start, omega, param, r_s)), max_iter=max_iter,
+        where=f"harmonic balance at omega = {omega:.6g} rad/s")
 
     def fun(x: FloatArray) -> tuple[FloatArray, FloatArray]:
         ev = residual.evaluate(x, omega, param, stats=stats)
@@ -173,6 +178,17 @@ def sample_convergence(residual: HBResidual, x: ArrayLike, omega: float,
         F = residual.problem.excitation_coefficients(residual.aft, omega, param)
         r_scale = float(np.abs(F).max()) or 1.0
     return float(np.abs(r2 - r).max()) / r_scale
+
+
+def _floor(residual: HBResidual, x: FloatArray, omega: float, param: float,
+           r_scale: FloatArray) -> float:
+    """Round-off floor of ``max |r / r_scale|`` near ``x``: ``ROUNDOFF eps`` times the
+    largest scaled size of the terms of the residual (the rule of
+    :data:`rotorsim.solvers.continuation_core.ROUNDOFF`)."""
+    terms = residual.evaluate(x, omega, param).terms
+    if terms is None:
+        return 0.0
+    return ROUNDOFF * float(np.finfo(float).eps) * float(np.max(terms / r_scale, initial=0.0))
 
 
 def _merge(evaluations: Stats, newton: Stats) -> dict[str, float]:

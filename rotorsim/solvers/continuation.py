@@ -24,6 +24,7 @@ import os
 import time
 from collections.abc import Callable
 from dataclasses import dataclass
+from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -39,7 +40,7 @@ from rotorsim.solvers.continuation_state import ContinuationCounters, Continuati
 from rotorsim.solvers.continuation_stepper import Continuation
 
 __all__ = ["Branch", "Continuation", "ContinuationCounters", "ContinuationState",
-           "continue_branch"]
+           "continue_branch", "run_config"]
 
 Monitor = Callable[[ContinuationState], "bool | None"]
 """``monitor(state)`` after each point; returning True ends the branch, raising aborts."""
@@ -145,7 +146,8 @@ def continue_branch(residual: ResidualCallback, x0: ArrayLike, lam0: float,
         Starting parameter.
     options : Continuation, optional
     checkpoint : path, optional
-        HDF5 file rewritten atomically every ``checkpoint_every`` points and at the end.
+        HDF5 file rewritten atomically every ``checkpoint_every`` points and at the end
+        (its folder is created; a folder or an uncreatable path is a ModelError).
     resume : path, optional
         Continue from this checkpoint (same options and start, else
         :class:`~rotorsim.time_integration.checkpoint.CheckpointError`); the branch equals
@@ -185,8 +187,10 @@ def continue_branch(residual: ResidualCallback, x0: ArrayLike, lam0: float,
     if int(checkpoint_every) != checkpoint_every or checkpoint_every < 1:
         raise ModelError(f"checkpoint_every must be a positive integer, got "
                          f"{checkpoint_every!r}", "continue_branch")
+    if checkpoint is not None:
+        _prepare_target(Path(checkpoint))
     x_start = np.array(x0, dtype=float).reshape(-1)
-    config = _run_config(opts, x_start, float(lam0))
+    config = run_config(opts, x_start, float(lam0))
     clock = time.perf_counter()
     if resume is not None:
         state, saved, _ = load_continuation_checkpoint(resume, config=config)
@@ -226,6 +230,19 @@ def continue_branch(residual: ResidualCallback, x0: ArrayLike, lam0: float,
                   options=opts, state=state)
 
 
+def _prepare_target(path: Path) -> None:
+    """Create the checkpoint's folder (as the CLI does for its results folder) before any
+    work, or refuse a path that cannot hold a file."""
+    where = "continue_branch.checkpoint"
+    if path.is_dir():
+        raise ModelError(f"{str(path)!r} is a folder; give a file name", where)
+    try:
+        path.parent.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise ModelError(f"cannot create the folder of {str(path)!r} "
+                         f"({type(exc).__name__}: {exc.strerror or exc})", where) from exc
+
+
 def _record(history: dict[str, list[Any]], state: ContinuationState) -> None:
     row = (state.lam, state.x, state.tangent, state.last_step, state.iterations,
            state.det_sign, state.log_det, state.smooth, state.residual)
@@ -240,7 +257,7 @@ def _arrays(history: dict[str, list[Any]]) -> dict[str, Any]:
     return out
 
 
-def _run_config(options: Continuation, x0: FloatArray, lam0: float) -> dict[str, Any]:
+def run_config(options: Continuation, x0: FloatArray, lam0: float) -> dict[str, Any]:
     """JSON-able identity of a run, stored in checkpoints and compared on resume."""
     h = hashlib.blake2b(digest_size=8)
     h.update(x0.tobytes())

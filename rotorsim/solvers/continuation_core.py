@@ -34,7 +34,7 @@ from typing import Any
 
 import numpy as np
 import scipy.sparse as sp
-from numpy.typing import ArrayLike, NDArray
+from numpy.typing import NDArray
 
 from rotorsim.errors import ConvergenceError, InconsistentModelError, RotorsimError
 from rotorsim.solvers.linear import Factorization, factorize
@@ -44,8 +44,10 @@ FloatArray = NDArray[np.float64]
 Matrix = Any
 """A NumPy array or a scipy sparse matrix."""
 
-ResidualCallback = Callable[[FloatArray, float], "tuple[ArrayLike, Matrix, ArrayLike]"]
-"""``residual(x, lam) -> (R (m,), dR/dx (m, m) dense or sparse, dR/dlam (m,))``."""
+ResidualCallback = Callable[[FloatArray, float], "tuple[Any, ...]"]
+"""``residual(x, lam) -> (R (m,), dR/dx (m, m) dense or sparse, dR/dlam (m,))``,
+optionally with a fourth item ``terms`` (m,): the size of the terms summed in each ``R_i``
+(for the round-off floor, :data:`ROUNDOFF`; default ``|dR/dx| |x| + |dR/dlam| |lam|``)."""
 
 EVALUATION_ERRORS: tuple[type[BaseException], ...] = (
     RotorsimError, ArithmeticError, ValueError, np.linalg.LinAlgError)
@@ -54,19 +56,47 @@ rather than a programming error (anything else propagates, and so does an
 :class:`~rotorsim.errors.InconsistentModelError`)."""
 
 
+ROUNDOFF = 64.0
+"""Convergence is judged against the floor that floating point can reach. Component ``i``
+of the scaled residual sums terms of total size
+``s_i = sum_j |dR_i/dy_j| |y_j| + |dR_i/dlam_hat| |lam_hat|`` (scaled units; e.g.
+``|K| |x| + |f|`` for ``R = K x + r(x) - f(lam)``), so evaluating it carries an error of a
+few ``eps s_i``, more after condensation or FFTs. The corrector accepts
+``|R_i / r_i| <= max(tol, ROUNDOFF eps s_i)`` (and ``|b . y - target| <= max(tol,
+ROUNDOFF eps |b| . |y|)``): a requested ``tol`` below round-off is met as well as it can
+be instead of stopping the branch on a miss at round-off level."""
+
+
 @dataclass(frozen=True, eq=False)
 class Evaluation:
-    """Scaled residual ``rh`` (m,), Jacobians ``jh`` (m, m) and ``jlh`` (m,) at ``y``."""
+    """Scaled residual ``rh`` (m,), Jacobians ``jh`` (m, m) and ``jlh`` (m,) at ``y``, and
+    the scaled size of the terms of ``rh`` when the callback gave it."""
 
     y: FloatArray
     rh: FloatArray
     jh: Matrix
     jlh: FloatArray
+    terms: FloatArray | None = None
 
     @property
     def residual(self) -> float:
         """``max |R / r_scale|``."""
         return float(np.max(np.abs(self.rh))) if self.rh.size else 0.0
+
+    def floor(self) -> FloatArray:
+        """Round-off floor of each scaled residual component (m,) (:data:`ROUNDOFF`)."""
+        y = np.abs(self.y)
+        terms = abs(self.jh) @ y[:-1] + np.abs(self.jlh) * y[-1]
+        if self.terms is not None:
+            terms = np.maximum(terms, self.terms)
+        return ROUNDOFF * np.finfo(float).eps * np.asarray(terms).reshape(-1)
+
+    def converged(self, tol: float) -> bool:
+        """Every ``|R_i / r_i| <= max(tol, floor_i)`` (:data:`ROUNDOFF`)."""
+        size = np.abs(self.rh)
+        if not size.size or float(size.max()) <= tol:
+            return True
+        return bool(np.all(size <= np.maximum(tol, self.floor())))
 
 
 @dataclass(frozen=True, eq=False)
@@ -113,7 +143,7 @@ class ScaledSystem:
         stats.residual_evaluations += 1
         x, lam = self.from_y(y)
         try:
-            r, jac, jlam = self.residual(x, lam)
+            r, jac, jlam, *extra = self.residual(x, lam)
         except EVALUATION_ERRORS as exc:
             if isinstance(exc, InconsistentModelError):
                 raise
@@ -137,7 +167,12 @@ class ScaledSystem:
                 and np.all(np.isfinite(values))):
             raise ConvergenceError(f"residual or Jacobian not finite at lam = {lam:.6g}",
                                    "continuation")
-        return Evaluation(y, rh, jh, jlh)
+        terms = None
+        if extra:
+            terms = np.abs(np.asarray(extra[0], dtype=float).reshape(-1)) / self.r_scale
+            if terms.shape != (m,) or not np.all(np.isfinite(terms)):
+                terms = None
+        return Evaluation(y, rh, jh, jlh, terms)
 
 
 BORDER_WEIGHT = 1e-8
@@ -240,8 +275,9 @@ def correct(system: ScaledSystem, y_start: FloatArray, border: FloatArray, targe
             options: CorrectorOptions, stats: Stats) -> Correction:
     """Newton with backtracking on ``R(y) = 0, border . y = target`` (seed 002 eq 3.42).
 
-    Converged when ``max |R / r_scale| <= tol`` and ``|border . y - target| <= tol`` (and,
-    with ``options.step_tol``, when the last Newton correction is below it too). Each
+    Converged when ``max |R / r_scale| <= tol`` and ``|border . y - target| <= tol``, or
+    within the round-off floor where that is above ``tol`` (:data:`ROUNDOFF`), and, with
+    ``options.step_tol``, when the last Newton correction is below it too. Each
     iteration factorises the bordered Jacobian once; the trial points of the line search
     satisfy the Armijo condition ``m(a) <= (1 - 2 c a) m(0)`` on the merit
     ``m = |F|^2 / 2`` (the Newton direction has slope ``-2 m(0)``). Once the residual is
@@ -255,7 +291,8 @@ def correct(system: ScaledSystem, y_start: FloatArray, border: FloatArray, targe
     last_step = math.inf
     for iteration in range(options.max_iter + 1):
         g = float(border @ y) - target
-        small = max(ev.residual, abs(g)) <= options.tol
+        g_floor = ROUNDOFF * np.finfo(float).eps * float(np.abs(border) @ np.abs(y))
+        small = ev.converged(options.tol) and abs(g) <= max(options.tol, g_floor)
         if small and (options.step_tol is None or last_step <= options.step_tol):
             return Correction(y, ev, iteration, True)
         if iteration == options.max_iter:
@@ -283,12 +320,23 @@ def correct(system: ScaledSystem, y_start: FloatArray, border: FloatArray, targe
                                                     options, stats)
         if accepted is None:
             return Correction(y, ev, iteration + 1, False,
-                              message or "line search failed to reduce the residual",
-                              evaluation_failed=bool(message))
+                              message or "line search failed to reduce the residual "
+                              f"({_miss(ev, options.tol)})", evaluation_failed=bool(message))
         y, ev = trial, accepted
     return Correction(y, ev, options.max_iter, False,
                       f"corrector did not converge in {options.max_iter} iterations "
-                      f"(residual {ev.residual:.3e})")
+                      f"({_miss(ev, options.tol)})")
+
+
+def _miss(ev: Evaluation, tol: float) -> str:
+    """``residual .. against tol .. (round-off floor ..)`` of the component that misses
+    its limit by the largest factor."""
+    if not ev.rh.size:
+        return "no residual"
+    floor = ev.floor()
+    i = int(np.argmax(np.abs(ev.rh) / np.maximum(tol, floor)))
+    return (f"residual {abs(ev.rh[i]):.3e} against tol {tol:.3g}, round-off floor "
+            f"{floor[i]:.3g}")
 
 
 def _line_search(system: ScaledSystem, y: FloatArray, step: FloatArray, merit0: float,

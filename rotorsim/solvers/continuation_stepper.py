@@ -21,9 +21,12 @@ One step (seed 002 eqs 3.40-3.42):
 4. the next ``ds`` grows (at most x2) when the corrector needed fewer than
    ``target_iterations`` iterations and the tangent turned little, and shrinks otherwise.
 
-A point beyond ``lam_min``/``lam_max`` is replaced by the point on the bound and ends the
-branch (status OK), as does a branch that closes on its starting point. When the step
-falls below ``min_step`` the branch stops with a failure status and keeps its points.
+A point beyond ``lam_min``/``lam_max`` is replaced by the point on the bound (its ``lam``
+exactly the bound) and ends the branch (status OK; NOT_CONVERGED when that point does not
+converge), as does a branch that closes on its starting point. When the step falls below
+``min_step`` the branch stops with a failure status and keeps its points. The corrector
+judges convergence against the round-off floor where that is above ``tol``
+(:data:`~.continuation_core.ROUNDOFF`).
 
 References
 ----------
@@ -156,10 +159,13 @@ class Continuation:
         if not self.lam_min < self.lam_max:
             raise ModelError(f"need lam_min < lam_max, got {self.lam_min}, {self.lam_max}",
                              where)
-        if self.max_points < 2 or self.max_iter < 1 or self.target_iterations < 1 \
-                or self.max_backtracks < 1:
-            raise ModelError("need max_points >= 2, max_iter >= 1, target_iterations >= 1 "
-                             "and max_backtracks >= 1", where)
+        for name, least in (("max_points", 2), ("max_iter", 1), ("target_iterations", 1),
+                            ("max_backtracks", 1)):
+            value = getattr(self, name)
+            if isinstance(value, bool) or not isinstance(value, int | np.integer) \
+                    or value < least:
+                raise ModelError(f"{name} must be an integer >= {least}, got {value!r}",
+                                 where)
         if not (self.tol > 0 and 0 < self.max_angle < math.pi):
             raise ModelError("need tol > 0 and 0 < max_angle < pi", where)
         for name in ("x_scale", "r_scale", "lam_scale"):
@@ -306,13 +312,15 @@ class Continuation:
         if ev is None or tan is None:
             return dataclasses.replace(
                 done, counters=state.counters.plus(stats, rejected=rejected),
-                reason=f"{reason} (the point on the bound did not converge: "
-                       f"{corr.message or 'singular'})")
+                status=int(Status.NOT_CONVERGED),
+                reason=f"{name} = {bound:g} not reached: the point on the bound did not "
+                       f"converge ({corr.message or 'singular'})")
         landed = _Accepted(corr.y, tan, acc.iterations + corr.iterations, ev.residual,
                            float(np.linalg.norm(corr.y - y0)), _angle(state.predictor, tan.t),
                            False)
         new = self._accept(system, state, y0, landed, stats, rejected)
-        return dataclasses.replace(new, finished=True, reason=reason)
+        # exactly on the bound (the constraint holds to tol; the bound itself is exact)
+        return dataclasses.replace(new, lam=float(bound), finished=True, reason=reason)
 
 
 def _angle(a: FloatArray, b: FloatArray) -> float:

@@ -234,6 +234,19 @@ def test_stability_is_refused_when_not_computed():
     ({"stability_modes": -3}, ModelError, "stability_modes|integer"),
     ({"nodes": [99]}, ModelError, "outside"),
     ({"varying_compliance": True}, ModelError, "quasi-periodic"),
+    # issue 12: H = 0 has no unbalance response; H must be a positive integer that carries
+    # every forcing (unbalance at harmonic 2 of a period-2 fundamental needs H >= 2)
+    ({"harmonics": 0}, ModelError, "periodic.harmonics: must be a positive integer"),
+    ({"harmonics": -1}, ModelError, "periodic.harmonics: must be a positive integer"),
+    ({"harmonics": 2.5}, ModelError, "periodic.harmonics: must be a positive integer"),
+    ({"harmonics": True}, ModelError, "periodic.harmonics: must be a positive integer"),
+    ({"harmonics": None}, ModelError, "periodic.harmonics: must be a positive integer"),
+    ({"harmonics": float("inf")}, ModelError, "periodic.harmonics: must be a positive"),
+    ({"harmonics": "4"}, ModelError, "periodic.harmonics: must be a positive integer"),
+    ({"harmonics": 1, "fundamental": 0.5, "varying_compliance": False}, ModelError,
+     "1 harmonics drop the unbalance, which is harmonic 2"),
+    ({"harmonics": 2, "samples": 3}, ModelError, r"periodic.samples: must be an integer >= 2 H"),
+    ({"samples": float("nan")}, ModelError, "periodic.samples"),
 ])
 def test_bad_input_is_rejected_before_the_branch(kwargs, error, match):
     rotor = jeffcott("rotating")
@@ -342,3 +355,108 @@ def test_parameter_branch_resumes_from_its_checkpoint(tmp_path):
     again = periodic_parameter(jeffcott().linear_part(), vary, resume=path, **kw)
     np.testing.assert_array_equal(again.parameter, full.parameter)
     np.testing.assert_array_equal(again.coefficients, full.coefficients)
+
+
+# ----------------------------------------------------------------------------- issue 12
+def test_harmonics_beyond_the_memory_limit_are_refused_with_the_figure(monkeypatch):
+    """H = 10000 used to raise MemoryError after asking numpy for 429 GiB (the dense
+    Jacobian of (2H + 1) k unknowns). The estimate comes first and names the figure and
+    the limit; the limit is pinned here so that the test does not depend on the machine."""
+    import rotorsim.harmonic_balance.memory as memory
+
+    monkeypatch.setattr(memory, "memory_limit", lambda: 8 * memory.GIB)
+    system = assemble(jeffcott())
+    k = int(system.nonlinear.dofs.size)
+    need = memory.estimate_bytes(10000, 131072, k, system.n_free)
+    assert need >= 8 * (20001 * k) ** 2             # at least one dense Jacobian
+    with pytest.raises(ModelError, match=r"periodic.harmonics: H = 10000 harmonics .* need "
+                                         r"about .* GiB .* above the limit of 8 GiB"):
+        periodic(jeffcott(), start=1000.0, stop=1100.0, unbalance=UNBALANCE, harmonics=10000)
+    # an ordinary H is far below any limit
+    assert memory.estimate_bytes(10, 128, k, system.n_free) < 2**27
+
+
+def test_a_branch_short_of_its_end_is_not_ok_and_says_where_it_stopped(branch):
+    assert branch.status == rs.Status.OK and branch.parameter[-1] == 1280.0
+    short = periodic(jeffcott(), start=1220.0, stop=1280.0, unbalance=UNBALANCE,
+                     max_points=4, stability=None, bifurcations=False, **FAST)
+    assert len(short) == 4 and short.parameter[-1] < 1280.0
+    assert short.status == rs.Status.NOT_CONVERGED
+    assert short.reason.startswith(f"incomplete: the branch ended at speed "
+                                   f"{short.parameter[-1]:.6g} rad/s, short of its end speed "
+                                   "1280 rad/s (max_points reached)")
+
+
+def test_a_tolerance_below_round_off_is_met_at_the_round_off_floor():
+    """tol = 1e-17 is below what floating point can reach: with tol = 1e-15 this branch
+    used to stop at 1104.9 rad/s ("line search failed to reduce the residual"). Judged
+    against the round-off floor of the residual's terms it reaches its end, and the
+    residuals stay at round-off level (measured 3e-15), not at a loosened tolerance."""
+    res = periodic(jeffcott(), start=1100.0, stop=1150.0, unbalance=UNBALANCE, harmonics=4,
+                   tol=1e-17, nodes=[1], stability=None, bifurcations=False, max_step=0.1)
+    assert res.status == rs.Status.OK and res.parameter[-1] == 1150.0
+    assert np.max(res.residuals) < 1e-13
+
+
+def test_resume_of_a_finished_run_returns_its_result_also_from_the_results_file(tmp_path):
+    """As for transients, resuming a finished run computes nothing more. Saving the result
+    under the checkpoint's name replaces the checkpoint; resuming from that results file
+    returns the stored result when the run is the same, and names what differs if not."""
+    from rotorsim.time_integration.checkpoint import CheckpointError
+
+    kw = {"unbalance": UNBALANCE, "stability": None, "bifurcations": False, **FAST}
+    path = tmp_path / "branch.h5"
+    done = periodic(jeffcott(), start=1200.0, stop=1210.0, checkpoint=path, **kw)
+    assert done.status == rs.Status.OK
+    again = periodic(jeffcott(), start=1200.0, stop=1210.0, resume=path, **kw)
+    np.testing.assert_array_equal(again.coefficients, done.coefficients)  # same machine
+    rs.save(done, path)
+    stored = periodic(jeffcott(), start=1200.0, stop=1210.0, resume=path, **kw)
+    np.testing.assert_array_equal(stored.coefficients, done.coefficients)
+    assert stored.status == done.status and stored.options == done.options
+    with pytest.raises(CheckpointError, match=r"different run .*stop: checkpoint 1210\.0, "
+                                              r"this run 1220\.0"):
+        periodic(jeffcott(), start=1200.0, stop=1220.0, resume=path, **kw)
+    rs.save(rs.static(linear_rotor()), path)
+    with pytest.raises(CheckpointError, match="StaticResult, not a periodic branch"):
+        periodic(jeffcott(), start=1200.0, stop=1210.0, resume=path, **kw)
+
+
+@pytest.mark.parametrize("harmonics", [0, 2.5, 10000])
+def test_parameter_branches_check_harmonics_before_any_solve(harmonics, monkeypatch):
+    import rotorsim.harmonic_balance.memory as memory
+    from rotorsim.analyses.periodic_parameter import periodic_parameter
+
+    monkeypatch.setattr(memory, "memory_limit", lambda: 8 * memory.GIB)
+    with pytest.raises(ModelError, match=r"periodic_parameter\.harmonics: (must be a positive "
+                                         r"integer|H = 10000 harmonics)"):
+        periodic_parameter(jeffcott(), "forcing", speed=1250.0, start=0.0, stop=1.0,
+                           unbalance=UNBALANCE, harmonics=harmonics)
+
+
+def test_a_short_parameter_branch_is_not_ok():
+    from rotorsim.analyses.periodic_parameter import periodic_parameter
+
+    res = periodic_parameter(jeffcott(), "forcing", speed=1100.0, start=0.2, stop=1.0,
+                             unbalance=UNBALANCE, harmonics=4, max_points=3, stability=None,
+                             bifurcations=False)
+    assert len(res) == 3 and res.status == rs.Status.NOT_CONVERGED
+    assert res.reason.startswith("incomplete: the branch ended at parameter ")
+    assert "short of its end parameter 1 (max_points reached)" in res.reason
+
+
+def test_hill_on_a_pencil_too_large_for_the_memory_is_refused(monkeypatch):
+    import rotorsim.harmonic_balance.memory as memory
+
+    monkeypatch.setattr(memory, "memory_limit", lambda: memory.GIB // 1024)   # 1 MiB
+    system = assemble(jeffcott())
+    res = make_residual(build_problem(
+        system, plan_excitation(system.nonlinear.elements, unbalance=True, base=None,
+                                varying_compliance=None, fundamental=None,
+                                frequency_parameter=False),
+        speed0=1000.0, fixed_speed=None, phi0=0.0, unbalance=UNBALANCE, gravity=None,
+        direction=(0, -1, 0), loads=[], base=None, stats=Stats()).problem, 6)
+    with pytest.raises(ModelError, match=r"periodic\.stability: Hill's method with a pencil "
+                                         r"of \d+ rows needs about .* GiB"):
+        stability_model(res, "hill", modes=None, omega_max=1000.0)
+    assert stability_model(res, "hsu", modes=None, omega_max=1000.0).method == "hsu"

@@ -57,7 +57,12 @@ def test_every_named_analysis_runs(name, analysis):
     spec = model.analyses[analysis]
     result = run_analysis(model, analysis, fast=True)
     assert isinstance(result, RESULT_TYPES[spec.type])
-    assert np.all(np.asarray(result.status) == Status.OK)
+    if isinstance(result, PeriodicResult) and len(result) == min(spec.max_points, 10):
+        # fast=True caps a branch at 10 points: short of its end, it says so (issue 12)
+        assert result.status in (Status.OK, Status.NOT_CONVERGED)
+        assert result.status == Status.OK or "(max_points reached)" in result.reason
+    else:
+        assert np.all(np.asarray(result.status) == Status.OK)
     if isinstance(result, CampbellResult):
         assert 2 <= result.speeds.size <= FAST_POINTS
     if isinstance(result, FrequencyResponseResult):

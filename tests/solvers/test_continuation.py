@@ -142,7 +142,9 @@ def test_branch_that_cannot_continue_keeps_its_points(failure):
     # the last point is within about two minimal steps of the edge (scaled step along the
     # tangent (1, 1)/sqrt 2 moves lam by ds / sqrt 2)
     assert 0.5 - b.lam[-1] < 2e-6
-    np.testing.assert_array_equal(b.x[:, 0], b.lam)
+    # R = x - lam holds to the corrector tolerance (1e-10), not to the last bit of the
+    # LU solve of the bordered system
+    np.testing.assert_allclose(b.x[:, 0], b.lam, rtol=0, atol=1e-10)
     assert b.stats["rejected_steps"] >= 10
 
 
@@ -194,3 +196,13 @@ def test_sparse_problem_matches_dense_one():
     np.testing.assert_allclose(sparse.x, dense.x, atol=1e-9)
     np.testing.assert_array_equal(sparse.det_sign, dense.det_sign)
     assert np.count_nonzero(np.diff(np.sign(sparse.tangents[:, -1]))) == 1  # the Bratu fold
+
+
+@pytest.mark.parametrize(("name", "value"), [("max_points", 2.5), ("max_points", 1),
+                                             ("max_points", float("inf")), ("max_iter", 0),
+                                             ("max_iter", True), ("max_backtracks", 1.5),
+                                             ("target_iterations", "4")])
+def test_integer_options_must_be_integers(name, value):
+    """Issue 12: max_points = inf used to trace forever and 2.5 passed unnoticed."""
+    with pytest.raises(ModelError, match=f"Continuation: {name} must be an integer"):
+        Continuation(**{name: value})

@@ -79,3 +79,19 @@ def test_resume_refuses_other_run_and_damaged_file(tmp_path):
                         resume=path)
     with pytest.raises(FileNotFoundError):
         load_continuation_checkpoint(tmp_path / "missing.h5")
+
+
+def test_checkpoint_folder_is_created_and_a_folder_path_is_refused(tmp_path):
+    """Issue 12: a missing folder used to raise FileNotFoundError at the first checkpoint,
+    after the work; now it is created before the run, and impossible paths are refused
+    before any work with a named error."""
+    from rotorsim.errors import ModelError
+
+    path = tmp_path / "new" / "deeper" / "branch.h5"
+    b = continue_branch(two_dof, [-1.5, 1.1], 1.5, OPTS, checkpoint=path, checkpoint_every=5)
+    assert path.is_file() and len(b) > 1
+    with pytest.raises(ModelError, match=r"continue_branch\.checkpoint: .* is a folder"):
+        continue_branch(two_dof, [-1.5, 1.1], 1.5, OPTS, checkpoint=tmp_path)
+    (tmp_path / "file").write_text("")
+    with pytest.raises(ModelError, match=r"continue_branch\.checkpoint: cannot create"):
+        continue_branch(two_dof, [-1.5, 1.1], 1.5, OPTS, checkpoint=tmp_path / "file" / "b.h5")

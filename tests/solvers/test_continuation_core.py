@@ -59,3 +59,44 @@ def test_large_sparse_branch_cost():
     assert b.stats["factorizations"] <= 2 * len(b) and b.stats["rejected_steps"] == 0
     assert np.count_nonzero(np.diff(np.sign(b.tangents[:, -1]))) == 1  # passed the fold
     assert b.stats["wall_time"] < 60.0  # ~2 s on one core when this test was written
+
+
+# ---------------------------------------------------------------- round-off floor (issue 12)
+BIG = 1e10   # constant terms of R that cancel: R carries an error of ~eps * BIG = 2e-6
+
+
+def _cancelling(x, lam):
+    """``R = (x + BIG) - BIG - lam`` (root ``x = lam``), evaluated as written: round-off of
+    ~2e-6, far above tol = 1e-10, wherever ``x`` is."""
+    return np.array([(x[0] + BIG) - BIG - lam]), np.eye(1), -np.ones(1)
+
+
+def _cancelling_with_terms(x, lam):
+    r, jac, jlam = _cancelling(x, lam)
+    return r, jac, jlam, np.array([abs(x[0]) + 2 * BIG + abs(lam)])
+
+
+OPTS_FLOOR = Continuation(initial_step=0.1, max_step=0.2, lam_min=0.0, lam_max=1.0,
+                          tol=1e-10)
+
+
+def test_convergence_is_judged_against_the_reachable_round_off_floor():
+    """With the size of the terms given (4th item), a residual at round-off level counts
+    as converged: the branch reaches its bound. The accepted points solve the problem to
+    the floor ROUNDOFF * eps * 2e10 = 2.8e-4 (the residual itself, not a tolerance choice)."""
+    from rotorsim.solvers.continuation_core import ROUNDOFF
+
+    b = continue_branch(_cancelling_with_terms, [0.0], 0.0, OPTS_FLOOR)
+    assert b.status.name == "OK" and b.reason == "lam_max = 1 reached"
+    floor = ROUNDOFF * np.finfo(float).eps * (2 * BIG + 2.0)
+    assert np.all(b.residuals <= floor)
+    np.testing.assert_allclose(b.x[:, 0], b.lam, rtol=0, atol=floor)
+
+
+def test_a_miss_above_tol_without_the_term_sizes_stops_and_says_why():
+    """Without the term sizes the floor is estimated from |dR/dx| |x| + |dR/dlam| |lam|,
+    which does not see the cancelling constants: the branch stops, not OK, and the
+    message gives the residual, the tolerance and the floor."""
+    b = continue_branch(_cancelling, [0.0], 0.0, OPTS_FLOOR)
+    assert b.status.name == "NOT_CONVERGED" and b.lam[-1] < 0.5   # far from lam_max = 1
+    assert "against tol 1e-10, round-off floor" in b.reason
