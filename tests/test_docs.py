@@ -215,7 +215,10 @@ def test_cli_examples_run(workdir: Path) -> None:
     for args in commands:
         command = next(a for a in args if not a.startswith("-"))
         extra = [] if command == "info" else ["--fast", "--no-plots", "--out", "runs"]
-        assert main([*args, *extra]) == 0, f"rotorsim {shlex.join(args)}"
+        # --fast caps a periodic branch at 10 points: it honestly ends short of its end
+        # (exit 3, results written); every other example must finish with exit 0
+        ok = {0, 3} if command.startswith("periodic") else {0}
+        assert main([*args, *extra]) in ok, f"rotorsim {shlex.join(args)}"
 
 
 def _subcommands() -> list[str]:

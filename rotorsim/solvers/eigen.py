@@ -84,18 +84,25 @@ class EigenPairs:
     limit: float = np.inf
 
 
+ROUNDING_STIFFNESS = 1e-10
+"""Diagonal stiffnesses below this fraction of the median one are taken as round-off."""
+
+
 def default_shift(M: sp.spmatrix, K: sp.spmatrix) -> float:
     """Scale-aware shift ``-SHIFT_FRACTION * w_ref`` [rad/s], ``w_ref^2 = min K_ii / M_ii``.
 
     ``K_ii / M_ii`` is the Rayleigh quotient of a unit vector on DOF ``i``, so ``w_ref``
     bounds the lowest elastic frequency from above; the minimum is taken over the DOFs with
     ``K_ii > 0`` and ``M_ii > 0``, so stiff springs on a few DOFs (pinned supports) do not
-    change it. ``-1`` when no DOF has both.
+    change it, and entries below ``ROUNDING_STIFFNESS`` times the median ``K_ii`` (round-off
+    of a linearisation) are skipped. ``-1`` when no DOF has both.
 
     Examples
     --------
     >>> import scipy.sparse as sp
     >>> default_shift(sp.identity(2), sp.diags([1e20, 4e10]))  # -1e-3 sqrt(4e10)
+    -200.0
+    >>> default_shift(sp.identity(2), sp.diags([8e-25, 4e10]))  # 8e-25: round-off
     -200.0
     """
     k_ii = np.asarray(K.diagonal(), dtype=float).real
@@ -103,6 +110,9 @@ def default_shift(M: sp.spmatrix, K: sp.spmatrix) -> float:
     ok = (k_ii > 0) & (m_ii > 0) & np.isfinite(k_ii) & np.isfinite(m_ii)
     if not np.any(ok):
         return -1.0
+    # a stiffness at the rounding level (a direction a linearised bearing does not hold,
+    # 1e-25 N/m beside 1e7) is no reference either: drop entries far below the median
+    ok &= k_ii > ROUNDING_STIFFNESS * float(np.median(k_ii[ok]))
     return -SHIFT_FRACTION * float(np.sqrt(np.min(k_ii[ok] / m_ii[ok])))
 
 
