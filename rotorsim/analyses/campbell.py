@@ -24,6 +24,7 @@ from rotorsim.errors import ConvergenceError, ModelError, Status
 from rotorsim.model.rotor import Rotor
 from rotorsim.results.campbell import CampbellResult
 from rotorsim.solvers.stats import Stats
+from rotorsim.solvers.threads import one_blas_thread
 
 FloatArray = NDArray[np.float64]
 ComplexArray = NDArray[np.complex128]
@@ -44,6 +45,7 @@ class _Candidates:
     kind: NDArray[np.str_]
 
 
+@one_blas_thread()
 def campbell(
     rotor: Rotor | RotorSystem,
     speeds: ArrayLike,

@@ -38,6 +38,7 @@ from rotorsim.results.critical_speeds import (
 from rotorsim.solvers.eigen import DENSE_EIGEN_THRESHOLD, start_vector
 from rotorsim.solvers.linear import factorize
 from rotorsim.solvers.stats import Stats
+from rotorsim.solvers.threads import one_blas_thread
 
 FloatArray = NDArray[np.float64]
 ComplexArray = NDArray[np.complex128]
@@ -65,6 +66,7 @@ class _Modes:
                         for f in ("w", "shapes", "whirl", "kind")))
 
 
+@one_blas_thread()
 def critical_speeds(
     rotor: Rotor | RotorSystem,
     harmonic: float = 1,

@@ -15,8 +15,10 @@ from rotorsim.model.rotor import Rotor
 from rotorsim.results.modal import ModalResult
 from rotorsim.solvers.eigen import DENSE_EIGEN_THRESHOLD, quadratic_eigen
 from rotorsim.solvers.stats import Stats
+from rotorsim.solvers.threads import one_blas_thread
 
 
+@one_blas_thread()
 def modal(
     rotor: Rotor | RotorSystem,
     speed: float = 0.0,
