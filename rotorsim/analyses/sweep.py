@@ -83,6 +83,7 @@ def evaluate_point(definition: SweepDefinition, index: int, params: Params) -> P
     return PointRecord(index, arrays, Status.OK, "", time.perf_counter() - t0)
 
 
+@one_blas_thread()  # serial and threaded workers: the cap is set once per sweep
 def sweep(
     rotor: Rotor,
     space: Grid | Sample,

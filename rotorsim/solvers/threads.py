@@ -24,6 +24,7 @@ from __future__ import annotations
 
 import functools
 import os
+import sys
 import threading
 from collections.abc import Callable
 from contextlib import AbstractContextManager, ContextDecorator, nullcontext
@@ -55,14 +56,24 @@ class _Cap:
         self.lock = threading.Lock()
         self.depth = 0
         self.limiter: Any = None
+        self.blas: Any = None
+        self.modules_seen = -1
+
+    def controller(self) -> Any:
+        """threadpoolctl's view of the loaded BLAS libraries, found again (about 1 ms)
+        only after new modules were imported, since a new BLAS library arrives with one."""
+        if self.blas is None or len(sys.modules) != self.modules_seen:
+            from threadpoolctl import ThreadpoolController
+
+            self.blas = ThreadpoolController().select(user_api="blas")
+            self.modules_seen = len(sys.modules)
+        return self.blas
 
     def enter(self) -> None:
         with self.lock:
             if self.depth == 0:
-                from threadpoolctl import threadpool_limits
-
                 _release_control()
-                self.limiter = threadpool_limits(limits=1, user_api="blas")
+                self.limiter = self.controller().limit(limits=1)
                 _release_control()
             self.depth += 1
 
