@@ -155,10 +155,13 @@ def main(argv: list[str] | None = None) -> int:
     print(f"cpus {os.cpu_count()}, load average "
           f"{' '.join(f'{x:.2f}' for x in os.getloadavg())}")
     print(f"cost of entering + leaving the outermost cap: {cap_overhead() * 1e3:.3f} ms "
-          "(once per analysis)")
+          "(once per analysis)", flush=True)
     results = {}
     for case in args.cases:
-        times = {s: timed(case, s, args.quick) for s in SETTINGS}
+        times = {}
+        for setting in SETTINGS:
+            times[setting] = timed(case, setting, args.quick)
+            print(f"  {case} {setting}: {times[setting]:.2f} s", flush=True)
         results[case] = report(case, times)
     if args.json is not None:
         args.json.write_text(json.dumps(results, indent=2))
