@@ -153,3 +153,18 @@ def test_import_rotorsim_does_not_import_threadpoolctl():
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
                          check=True)
     assert out.stdout.strip() == "False"
+
+
+def test_the_limit_is_set_once_per_analysis_not_per_speed(monkeypatch):
+    from rotorsim.solvers import threads
+
+    lookups: list[int] = []
+    original = threads._CAP.controller
+
+    def counting_controller():
+        lookups.append(1)
+        return original()
+
+    monkeypatch.setattr(threads._CAP, "controller", counting_controller)
+    campbell(steel_rotor(10), [0.0, 100.0, 200.0, 300.0], num_modes=2)
+    assert len(lookups) == 1   # campbell's entry; modal at each speed only counts
