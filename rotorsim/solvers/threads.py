@@ -4,7 +4,7 @@ Time stepping, ARPACK, Campbell speeds, frequency sweeps and harmonic-balance Ne
 iterations make thousands of small BLAS calls (matrix-vector products, small dense
 solves). A threaded BLAS splits each call over its threads and waits for all of them; on
 a machine busy with other work one of them is often descheduled, and every call then
-waits a scheduler time slice. Measured on 2 cores next to one busy process, the default
+waits a scheduler time slice. Issue 12 reported, on 2 cores next to one busy process, the default
 model's run-up went from 3.9 s to 44-53 s and a 50-speed Campbell of 606 DOFs from
 0.41 s to 3.75 s (``benchmarks/under_load.py``, ``docs/benchmarks.md``).
 
