@@ -30,6 +30,7 @@ from rotorsim.errors import ConvergenceError, ModelError, Status
 from rotorsim.model.rotor import Rotor
 from rotorsim.results.campbell import CampbellResult
 from rotorsim.solvers.stats import Stats
+from rotorsim.solvers.threads import one_blas_thread
 
 FloatArray = NDArray[np.float64]
 ComplexArray = NDArray[np.complex128]
@@ -51,6 +52,7 @@ class _Candidates:
 
 
 @checked_keywords
+@one_blas_thread()
 def campbell(
     rotor: Rotor | RotorSystem,
     speeds: ArrayLike,

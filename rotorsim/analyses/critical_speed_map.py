@@ -22,11 +22,13 @@ from rotorsim.errors import ConvergenceError, ModelError, Status
 from rotorsim.model.rotor import Rotor
 from rotorsim.results.critical_speeds import CriticalSpeedMapResult, MapIntersections
 from rotorsim.solvers.stats import Stats
+from rotorsim.solvers.threads import one_blas_thread
 
 FloatArray = NDArray[np.float64]
 
 
 @checked_keywords
+@one_blas_thread()
 def critical_speed_map(
     rotor: Rotor,
     stiffness_range: tuple[float, float] = (1e5, 1e10),

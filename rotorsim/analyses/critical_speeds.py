@@ -48,6 +48,7 @@ from rotorsim.solvers.eigen import (
 )
 from rotorsim.solvers.linear import factorize
 from rotorsim.solvers.stats import Stats
+from rotorsim.solvers.threads import one_blas_thread
 
 FloatArray = NDArray[np.float64]
 ComplexArray = NDArray[np.complex128]
@@ -76,6 +77,7 @@ class _Modes:
 
 
 @checked_keywords
+@one_blas_thread()
 def critical_speeds(
     rotor: Rotor | RotorSystem,
     harmonic: float = 1,

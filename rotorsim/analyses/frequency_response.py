@@ -26,6 +26,7 @@ from rotorsim.model.rotor import Rotor
 from rotorsim.results.frequency_response import FrequencyResponseResult
 from rotorsim.solvers.linear import factorize
 from rotorsim.solvers.stats import Stats
+from rotorsim.solvers.threads import one_blas_thread
 
 FloatArray = NDArray[np.float64]
 ComplexArray = NDArray[np.complex128]
@@ -185,6 +186,7 @@ def _dynamic_stiffness(
     return system.pattern.matrix(data)
 
 
+@one_blas_thread()
 def _harmonic_sweep(
     system: RotorSystem,
     w: FloatArray,

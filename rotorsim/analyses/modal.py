@@ -23,9 +23,11 @@ from rotorsim.solvers.eigen import (
     rounding_energy,
 )
 from rotorsim.solvers.stats import Stats
+from rotorsim.solvers.threads import one_blas_thread
 
 
 @checked_keywords
+@one_blas_thread()
 def modal(
     rotor: Rotor | RotorSystem,
     speed: float = 0.0,

@@ -26,6 +26,7 @@ from rotorsim.errors import ConvergenceError, ModelError, Status
 from rotorsim.io.sweep_store import StoreHeader, content_hash, describe_callable, open_store
 from rotorsim.model.rotor import Rotor
 from rotorsim.results.sweep import Grid, Normal, PointRecord, Sample, SweepResult, Uniform
+from rotorsim.solvers.threads import one_blas_thread
 
 __all__ = [
     "Grid", "Normal", "Sample", "SweepResult", "Uniform", "chain", "critical_speeds_eval",
@@ -59,6 +60,7 @@ class SweepDefinition:
     on_failure: str
 
 
+@one_blas_thread()  # each sweep worker runs its points with one BLAS thread
 def evaluate_point(definition: SweepDefinition, index: int, params: Params) -> PointRecord:
     """Build and evaluate the model of one point; record model and convergence failures."""
     t0 = time.perf_counter()
@@ -81,6 +83,7 @@ def evaluate_point(definition: SweepDefinition, index: int, params: Params) -> P
     return PointRecord(index, arrays, Status.OK, "", time.perf_counter() - t0)
 
 
+@one_blas_thread()  # serial and threaded workers: the cap is set once per sweep
 def sweep(
     rotor: Rotor,
     space: Grid | Sample,

@@ -29,6 +29,7 @@ from rotorsim.harmonic_balance.residual import HBResidual, as_unknowns
 from rotorsim.solvers.continuation_core import ROUNDOFF
 from rotorsim.solvers.newton import Newton, ResidualProblem
 from rotorsim.solvers.stats import Stats
+from rotorsim.solvers.threads import capped_by_size
 
 
 @dataclass(frozen=True, eq=False)
@@ -80,6 +81,7 @@ class PeriodicSolution:
         return 0.5 * float(q.max() - q.min())
 
 
+@capped_by_size(lambda residual, *_, **__: residual.size)
 def solve_point(residual: HBResidual, omega: float, x0: ArrayLike | None = None, *,
                 param: float = 0.0, tol: float = 1e-10, max_iter: int = 50,
                 x_scale: ArrayLike | None = None, r_scale: ArrayLike | None = None,

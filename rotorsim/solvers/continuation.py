@@ -38,6 +38,7 @@ from rotorsim.solvers.continuation_checkpoint import (
 from rotorsim.solvers.continuation_core import FloatArray, ResidualCallback
 from rotorsim.solvers.continuation_state import ContinuationCounters, ContinuationState
 from rotorsim.solvers.continuation_stepper import Continuation
+from rotorsim.solvers.threads import capped_by_size
 
 __all__ = ["Branch", "Continuation", "ContinuationCounters", "ContinuationState",
            "continue_branch", "run_config"]
@@ -126,6 +127,7 @@ class Branch:
         return dataclasses.replace(self, events=tuple(events))
 
 
+@capped_by_size(lambda residual, x0, *_, **__: np.size(x0))
 def continue_branch(residual: ResidualCallback, x0: ArrayLike, lam0: float,
                     options: Continuation | None = None, *,
                     checkpoint: str | os.PathLike[str] | None = None,

@@ -21,6 +21,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from rotorsim.errors import ConvergenceError, ModelError, Status
+from rotorsim.solvers.threads import one_blas_thread
 from rotorsim.time_integration.base import FloatArray, IntArray, State, TimeStepper
 from rotorsim.time_integration.checkpoint import load_checkpoint, save_checkpoint
 from rotorsim.time_integration.output import OutputRecorder, OutputSpec
@@ -72,6 +73,7 @@ class IntegrationResult:
     message: str = ""
 
 
+@one_blas_thread()
 def integrate(problem: SecondOrderProblem, stepper: TimeStepper, t_span: Sequence[float],
               q0: ArrayLike, v0: ArrayLike, *, dt: float, output: OutputSpec | None = None,
               a0: ArrayLike | None = None, checkpoint: str | os.PathLike[str] | None = None,
