@@ -17,8 +17,8 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from multiplier_matching import matched
 from scipy.integrate import solve_ivp
-from scipy.optimize import linear_sum_assignment
 
 from rotorsim.harmonic_balance.floquet import hill
 from rotorsim.harmonic_balance.fourier import resize
@@ -161,10 +161,10 @@ def test_floquet_methods_agree_on_the_three_branches(h7, reference):
         fh = hill(res, sol.x, OMEGA)
         fs = hsu(res, sol.x, OMEGA, samples=1024)
         # Hill at H = 7: spectral, measured 3e-14 to 2e-10 from the ODE reference.
-        assert _matched(fh.multipliers, ref) == pytest.approx(ref, abs=1e-8)
+        assert matched(fh.multipliers, ref) == pytest.approx(ref, abs=1e-8)
         # Hsu, trapezoidal average over 1024 steps: second order, measured 1e-6 to 6e-5
         # (test_floquet.py checks the order itself).
-        assert _matched(fs.multipliers, ref) == pytest.approx(ref, abs=1.5e-4)
+        assert matched(fs.multipliers, ref) == pytest.approx(ref, abs=1.5e-4)
         assert fh.stable == fs.stable == (b != 1)
         # Liouville: exact for Hsu with exact exponentials, to truncation for Hill
         assert np.prod(fs.multipliers).real == pytest.approx(np.exp(-2 * ZETA * T), rel=1e-12)
@@ -174,17 +174,8 @@ def test_floquet_methods_agree_on_the_three_branches(h7, reference):
     # Newmark on the variational equations, 1000 steps (second order): measured 1e-6
     fv = variational(res, sols[1].x, OMEGA, steps=1000)
     ref = saddle[0].multipliers
-    assert _matched(fv.multipliers, ref) == pytest.approx(ref, abs=1e-4)
+    assert matched(fv.multipliers, ref) == pytest.approx(ref, abs=1e-4)
     assert not fv.stable and fv.kind == "fold"
-
-
-def _matched(mu, ref):
-    """``mu`` reordered to pair each entry with the nearest entry of ``ref`` (an optimal
-    assignment). Sorting instead would order a complex-conjugate pair by the last bits of
-    their real parts, which differ between BLAS kernels."""
-    mu, ref = np.asarray(mu), np.asarray(ref)
-    _, cols = linear_sum_assignment(np.abs(ref[:, None] - mu[None, :]))
-    return mu[cols]
 
 
 def _sorted(mu):

@@ -14,23 +14,14 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from multiplier_matching import matched
 from scipy.integrate import solve_ivp
-from scipy.optimize import linear_sum_assignment
 
 from rotorsim.harmonic_balance.floquet import classify, hill
 from rotorsim.harmonic_balance.monodromy import hsu, ordered_product, variational
 from rotorsim.harmonic_balance.problem import HBProblem
 from rotorsim.harmonic_balance.residual import make_residual
 from rotorsim.harmonic_balance.solve import solve_point
-
-
-def _matched(mu, ref):
-    """``mu`` reordered to pair each entry with the nearest entry of ``ref`` (an optimal
-    assignment). Sorting instead would order a complex-conjugate pair by the last bits of
-    their real parts, which differ between BLAS kernels."""
-    mu, ref = np.asarray(mu), np.asarray(ref)
-    _, cols = linear_sum_assignment(np.abs(ref[:, None] - mu[None, :]))
-    return mu[cols]
 
 
 def _sorted(mu):
@@ -103,13 +94,13 @@ def test_hill_eigenvector_selection_returns_the_exact_lti_eigenvalues():
     shifted = np.sort(np.abs(w - np.minimum(np.round(w / omega), 4) * omega))
     assert np.sort(np.abs(fi.exponents.imag))[::2] == pytest.approx(shifted, abs=1e-9)
     ref = fe.multipliers
-    assert _matched(fi.multipliers, ref) == pytest.approx(ref, abs=1e-9)
+    assert matched(fi.multipliers, ref) == pytest.approx(ref, abs=1e-9)
     # with H omega above every natural frequency (H = 22: 66 rad/s) all copies are central
     res = make_residual(pb, 22, condense=False)
     fi = hill(res, np.zeros(res.size), omega, selection="imaginary")
     assert np.abs(fi.exponents.imag).max() <= omega / 2 + 1e-9
     ref = fe.multipliers
-    assert _matched(fi.multipliers, ref) == pytest.approx(ref, abs=1e-9)
+    assert matched(fi.multipliers, ref) == pytest.approx(ref, abs=1e-9)
 
 
 def test_negative_damping_is_a_neimark_sacker_instability():
@@ -154,8 +145,8 @@ def test_mathieu_tongues(delta, eps, stable, kind):
     fh, fs = hill(res, x, 1.0), hsu(res, x, 1.0, samples=2048)
     for fl in (fh, fs):
         assert (fl.stable, fl.kind) == (stable, kind), fl.method
-    assert _matched(fh.multipliers, ref) == pytest.approx(ref, abs=1e-9)     # spectral in H
-    assert _matched(fs.multipliers, ref) == pytest.approx(ref, abs=1e-5)     # O(N^-2): 2048
+    assert matched(fh.multipliers, ref) == pytest.approx(ref, abs=1e-9)     # spectral in H
+    assert matched(fs.multipliers, ref) == pytest.approx(ref, abs=1e-5)     # O(N^-2): 2048
 
 
 @pytest.mark.parametrize(("rule", "order"), [("average", 2), ("midpoint", 2), ("left", 2)])
@@ -213,11 +204,11 @@ def test_floquet_methods_agree_on_a_gyroscopic_rotor_with_nonlinear_damping():
     full = make_residual(pb, 5, condense=False)
     fh = hill(res, sol.x, omega)
     full_mu = hill(full, full.restrict(sol.coefficients), omega).multipliers
-    assert _matched(full_mu, fh.multipliers) == pytest.approx(fh.multipliers, abs=1e-12)
+    assert matched(full_mu, fh.multipliers) == pytest.approx(fh.multipliers, abs=1e-12)
     fs = hsu(res, sol.x, omega, samples=2048)
     fv = variational(res, sol.x, omega, steps=800)
     # Hsu (2048 steps) and Newmark (800 steps) are second order: measured 4e-6 and 2e-5
     ref = fh.multipliers
-    assert _matched(fs.multipliers, ref) == pytest.approx(ref, abs=1e-4)
-    assert _matched(fv.multipliers, ref) == pytest.approx(ref, abs=1e-4)
+    assert matched(fs.multipliers, ref) == pytest.approx(ref, abs=1e-4)
+    assert matched(fv.multipliers, ref) == pytest.approx(ref, abs=1e-4)
     assert fh.stable and fs.stable and fv.stable
