@@ -13,8 +13,8 @@ Each case is timed in a fresh process, in five settings:
 * ``alone-1``: alone, one BLAS thread (the reference);
 * ``alone-old`` / ``alone-new``: alone, default threading, caps off / on;
 * ``loaded-1``: next to one busy process (a numpy matmul loop with the default BLAS
-  threads), one BLAS thread throughout: what is left is the CPU the neighbour takes, which
-  no thread setting can give back;
+  threads, or with one thread: ``--neighbour single``), one BLAS thread throughout: what
+  is left is the CPU the neighbour takes, which no thread setting can give back;
 * ``loaded-old`` / ``loaded-new``: next to the busy process, default threading, caps off /
   on.
 
@@ -23,7 +23,8 @@ Each case is timed in a fresh process, in five settings:
 set (the point is the default threading); the script removes them from its child
 processes and says so.
 
-Run: ``.venv/bin/python benchmarks/under_load.py [--quick] [--cases runup campbell]``.
+Run: ``.venv/bin/python benchmarks/under_load.py [--quick] [--cases runup campbell]
+[--neighbour blas|single]``.
 """
 
 from __future__ import annotations
@@ -93,12 +94,16 @@ def clean_env(setting: str) -> dict[str, str]:
     return env
 
 
-def timed(case: str, setting: str, quick: bool) -> float:
-    """Run one setting in a fresh process, with a busy neighbour when ``loaded``."""
+def timed(case: str, setting: str, quick: bool, neighbour: str = "blas") -> float:
+    """Run one setting in a fresh process, with a busy neighbour when ``loaded``:
+    ``blas`` uses the default BLAS threads (every core), ``single`` one thread (one core)."""
     env = clean_env(setting)
     busy = None
     if setting.startswith("loaded"):
-        busy = subprocess.Popen([sys.executable, "-c", BUSY], env=clean_env("alone"))
+        busy_env = clean_env("alone")
+        if neighbour == "single":
+            busy_env["OPENBLAS_NUM_THREADS"] = busy_env["OMP_NUM_THREADS"] = "1"
+        busy = subprocess.Popen([sys.executable, "-c", BUSY], env=busy_env)
         time.sleep(1.0)
     try:
         cmd = [sys.executable, __file__, "--child", case, setting] + (["--quick"] if quick
@@ -148,6 +153,9 @@ def main(argv: list[str] | None = None) -> int:
                         choices=["runup", "campbell"])
     parser.add_argument("--child", nargs=2, metavar=("CASE", "SETTING"),
                         help=argparse.SUPPRESS)
+    parser.add_argument("--neighbour", choices=["blas", "single"], default="blas",
+                        help="busy neighbour: a matmul loop on the default BLAS threads "
+                             "(every core) or on one thread (one core)")
     parser.add_argument("--json", type=Path, help="write the results to this file")
     args = parser.parse_args(argv)
     if args.child:
@@ -156,7 +164,7 @@ def main(argv: list[str] | None = None) -> int:
     preset = [v for v in THREAD_VARS if v in os.environ]
     if preset:
         print(f"note: {', '.join(preset)} set here; removed for the timed processes")
-    print(f"cpus {os.cpu_count()}, load average "
+    print(f"neighbour: {args.neighbour}; cpus {os.cpu_count()}, load average "
           f"{' '.join(f'{x:.2f}' for x in os.getloadavg())}")
     print(f"cost of entering + leaving the outermost cap: {cap_overhead() * 1e3:.3f} ms "
           "(once per analysis)", flush=True)
@@ -164,7 +172,7 @@ def main(argv: list[str] | None = None) -> int:
     for case in args.cases:
         times = {}
         for setting in SETTINGS:
-            times[setting] = timed(case, setting, args.quick)
+            times[setting] = timed(case, setting, args.quick, args.neighbour)
             print(f"  {case} {setting}: {times[setting]:.2f} s", flush=True)
         results[case] = report(case, times)
     if args.json is not None:

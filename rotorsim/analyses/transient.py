@@ -43,6 +43,7 @@ from rotorsim.elements.base import DOFS_PER_NODE, FloatArray, NonlinearElement
 from rotorsim.errors import ModelError
 from rotorsim.model.rotor import Rotor
 from rotorsim.results.transient import TransientResult
+from rotorsim.solvers.threads import one_blas_thread
 from rotorsim.time_integration.adams import Adams
 from rotorsim.time_integration.adaptive import Adaptive
 from rotorsim.time_integration.base import TimeStepper
@@ -58,6 +59,7 @@ then cost less than scipy.sparse's call overhead."""
 
 
 @checked_keywords
+@one_blas_thread()  # the static start and the reduction too, not only the steps
 def transient(
     model: Rotor | RotorSystem,
     t_end: float | Sequence[float],

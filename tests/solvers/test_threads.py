@@ -168,3 +168,22 @@ def test_the_limit_is_set_once_per_analysis_not_per_speed(monkeypatch):
     monkeypatch.setattr(threads._CAP, "controller", counting_controller)
     campbell(steel_rotor(10), [0.0, 100.0, 200.0, 300.0], num_modes=2)
     assert len(lookups) == 1   # campbell's entry; modal at each speed only counts
+
+
+def test_the_transient_static_start_runs_with_one_blas_thread(monkeypatch):
+    # the static start on the rolling bearings precedes the time steps: capped too (next to
+    # a busy process it was the uncapped part of the default model's run-up)
+    import rotorsim.analyses.transient as transient_module
+
+    seen: list[int] = []
+    original = transient_module.initial_state
+
+    def spy(*args, **kwargs):
+        seen.append(blas_threads())
+        return original(*args, **kwargs)
+
+    monkeypatch.setattr(transient_module, "initial_state", spy)
+    rotor = steel_rotor(4).with_fixed([(n, d) for n in range(5) for d in ("uz", "rz")])
+    rs.transient(rotor, 0.002, 1e-3, speed=100.0)
+    assert seen == [1]
+    assert blas_threads() == 2
