@@ -24,6 +24,7 @@ from typing import Protocol
 import numpy as np
 from numpy.typing import ArrayLike
 
+from rotorsim.analyses.linear_checks import NEGATIVE_SPEED_HINT
 from rotorsim.elements.base import FloatArray
 from rotorsim.errors import ModelError
 
@@ -52,6 +53,7 @@ class ConstantSpeed:
     def __post_init__(self) -> None:
         _finite(self.value, "ConstantSpeed.value")
         _finite(self.phi0, "ConstantSpeed.phi0")
+        _not_negative(self.value, "ConstantSpeed.value")
 
     def bind(self, t0: float, t_end: float, resolution: int = 0) -> _Ramp:
         return _Ramp(self.value, self.value, t0, t_end, t0, self.phi0, "constant")
@@ -71,6 +73,8 @@ class LinearSpeed:
     def __post_init__(self) -> None:
         for name in ("start", "stop", "t_start", "t_stop", "phi0"):
             _finite(getattr(self, name), f"LinearSpeed.{name}")
+        for name in ("start", "stop"):
+            _not_negative(getattr(self, name), f"LinearSpeed.{name}")
         if not self.t_stop > self.t_start:
             raise ModelError(f"t_stop ({self.t_stop}) must exceed t_start ({self.t_start})",
                              "LinearSpeed")
@@ -120,10 +124,14 @@ def as_speed_profile(speed: float | SpeedProfile | Callable[[float], float]) -> 
     if callable(speed):
         return SpeedFunction(speed)
     try:
-        return ConstantSpeed(float(speed))
+        value = float(speed)
     except (TypeError, ValueError):
+        value = math.nan
+    if not math.isfinite(value):
         raise ModelError(f"give a number [rad/s], a callable W(t) or a speed profile, got "
-                         f"{speed!r}", "speed") from None
+                         f"{speed!r}", "speed")
+    _not_negative(value, "speed")
+    return ConstantSpeed(value)
 
 
 @dataclass(frozen=True)
@@ -214,6 +222,12 @@ def _checked(fn: Callable[[float], float], t: float, name: str = "function") -> 
     if not math.isfinite(value):
         raise ModelError(f"returned {value!r} at t = {float(t):.6g} s", f"SpeedFunction.{name}")
     return value
+
+
+def _not_negative(speed: float, where: str) -> None:
+    """The one rule on the sense of spin, as in the linear analyses."""
+    if speed < 0:
+        raise ModelError(f"must be >= 0 rad/s, got {speed!r}: {NEGATIVE_SPEED_HINT}", where)
 
 
 def _finite(value: ArrayLike, where: str) -> None:

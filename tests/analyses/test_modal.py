@@ -74,13 +74,16 @@ NEGATIVE = {
                                                           speed=-100.0),
     "critical_speed_map": lambda r: critical_speed_map(r, num_points=2, num_modes=1,
                                                        speeds=[-10.0, 10.0]),
+    "transient": lambda r: rs.transient(r, 0.01, 1e-3, speed=-100.0, initial="zero"),
+    "run-down": lambda r: rs.transient(r, 0.01, 1e-3, initial="zero",
+                                       speed=rs.LinearSpeed(100.0, -100.0, 0.0, 0.01)),
 }
 
 
 @pytest.mark.parametrize("verb", sorted(NEGATIVE))
 def test_negative_speeds_are_refused_everywhere(verb):
-    """One rule for the linear analyses: spin is about +z at W >= 0 (issue 12: modal and
-    static accepted negative speeds, Campbell refused them)."""
+    """One rule for every analysis: spin is about +z at W >= 0 (issue 12: modal, static
+    and transients accepted negative speeds, Campbell refused them)."""
     with pytest.raises(ModelError, match=r"must be >= 0.*rotors spin about \+z"):
         NEGATIVE[verb](small_rotor())
 
