@@ -190,7 +190,7 @@ def _with_restart(spec: Any, name: str, args: argparse.Namespace, folder: Path) 
     """The spec with ``--checkpoint``, ``--checkpoint-every`` and ``--resume`` applied
     (transients and periodic branches; ``--resume`` for sweeps, whose results file is their
     store); says where the checkpoint is."""
-    from rotorsim.io.analysis_spec import checkpoint_path
+    from rotorsim.io.restart import checkpoint_path
 
     if spec.type == "sweep":  # its points go to <name>.h5 as they finish
         if getattr(args, "resume", False):

@@ -27,6 +27,7 @@ import numpy as np
 from rotorsim.assembly.loads import STANDARD_GRAVITY
 from rotorsim.elements.base import FloatArray
 from rotorsim.errors import ModelError
+from rotorsim.io.restart import checkpoint_path, restart_options
 
 if TYPE_CHECKING:
     from rotorsim.io.model_file import Model
@@ -307,24 +308,6 @@ class PeriodicParameterSpec(RestartableSpec):
     max_step: float = 0.05
     stability: str = "auto"
     unbalance: Unbalance | None = None
-
-
-def checkpoint_path(folder: str | os.PathLike[str], name: str) -> Path:
-    """Where the command line keeps the checkpoint of analysis ``name``."""
-    return Path(folder) / f"{name}.checkpoint.h5"
-
-
-def restart_options(spec: RestartableSpec, path: Path) -> dict[str, Any]:
-    """``checkpoint``, ``checkpoint_every`` and ``resume`` keywords of the analysis call:
-    resume only from a checkpoint that exists."""
-    out: dict[str, Any] = {}
-    if spec.checkpoint or spec.resume:
-        out["checkpoint"] = path
-        if spec.checkpoint_every is not None:
-            out["checkpoint_every"] = spec.checkpoint_every
-    if spec.resume and path.is_file():
-        out["resume"] = path
-    return out
 
 
 @dataclass(frozen=True, kw_only=True)
