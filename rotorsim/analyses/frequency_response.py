@@ -16,7 +16,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from rotorsim.analyses.keyword_check import checked_keywords
 from rotorsim.analyses.linear_checks import check_speed
-from rotorsim.analyses.static import free_rigid_motions, held_dofs
+from rotorsim.analyses.rigid_motions import free_rigid_motions, held_dofs
 from rotorsim.analyses.system_input import as_system
 from rotorsim.assembly.loads import nodal_load, unbalance_amplitudes
 from rotorsim.assembly.system import RotorSystem, SystemMatrices

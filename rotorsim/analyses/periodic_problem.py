@@ -38,7 +38,7 @@ from rotorsim.analyses.periodic_excitation import (
     HarmonicBase,
     rotating_coefficients,
 )
-from rotorsim.analyses.static import free_rigid_motions, held_dofs
+from rotorsim.analyses.rigid_motions import free_rigid_motions, held_dofs
 from rotorsim.assembly.loads import (
     gravity_load,
     nodal_load,

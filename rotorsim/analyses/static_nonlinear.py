@@ -14,7 +14,8 @@ import numpy as np
 import scipy.sparse as sp
 from numpy.typing import ArrayLike
 
-from rotorsim.analyses.static import _applied_load, free_rigid_motions, held_dofs
+from rotorsim.analyses.rigid_motions import free_rigid_motions, held_dofs
+from rotorsim.analyses.static import _applied_load
 from rotorsim.assembly.loads import unit_direction
 from rotorsim.elements.base import DOFS_PER_NODE, FloatArray
 from rotorsim.model.rotor import Rotor

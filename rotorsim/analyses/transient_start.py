@@ -12,8 +12,8 @@ import scipy.sparse as sp
 from numpy.typing import ArrayLike
 
 from rotorsim.analyses.nonlinear_static import nominal_tangent, nonlinear_equilibrium
+from rotorsim.analyses.rigid_motions import free_rigid_motions, held_dofs
 from rotorsim.analyses.speed_profile import BoundSpeed
-from rotorsim.analyses.static import free_rigid_motions, held_dofs
 from rotorsim.assembly.system import RotorSystem
 from rotorsim.elements.base import FloatArray, NonlinearElement
 from rotorsim.errors import ModelError

@@ -7,7 +7,8 @@ import math
 import numpy as np
 import pytest
 
-from rotorsim.analyses.static import free_rigid_motions, rigid_body_fields, static
+from rotorsim.analyses.rigid_motions import free_rigid_motions, rigid_body_fields
+from rotorsim.analyses.static import static
 from rotorsim.assembly.system import assemble
 from rotorsim.elements.disk import DiskElement
 from rotorsim.elements.linear_bearing import BearingElement
