@@ -46,16 +46,9 @@ from numpy.typing import ArrayLike, NDArray
 from rotorsim.analyses.keyword_check import checked_keywords
 from rotorsim.analyses.nonlinear_static import start_point
 from rotorsim.analyses.periodic_branch import Stepping, start_branch
-from rotorsim.analyses.periodic_events import floquet_events
 from rotorsim.analyses.periodic_excitation import ExcitationPlan, HarmonicBase, plan_excitation
 from rotorsim.analyses.periodic_folds import ParameterMap
-from rotorsim.analyses.periodic_output import (
-    Recovery,
-    bifurcation_records,
-    branch_arrays,
-    floquet_arrays,
-    kept_dofs,
-)
+from rotorsim.analyses.periodic_output import Recovery, kept_dofs, periodic_result
 from rotorsim.analyses.periodic_problem import (
     RotorPeriodicProblem,
     build_problem,
@@ -64,7 +57,6 @@ from rotorsim.analyses.periodic_problem import (
 from rotorsim.analyses.periodic_resume import finished_result, resumed
 from rotorsim.analyses.periodic_stability import (
     DEFAULT_TOL,
-    StabilityModel,
     check_options,
     stability_model,
 )
@@ -257,7 +249,7 @@ def periodic(
     sm = None if stability is None else stability_model(
         residual, stability, modes=stability_modes, omega_max=float(np.max(branch.lam)),
         tol=stability_tol)
-    result = _result(system, rp, recovery, plan, branch, sm, bifurcations, frequency,
+    result = periodic_result(system, rp, recovery, plan, branch, sm, bifurcations, frequency,
                      options, stats, clock)
     if fold_map is not False and result.bifurcations:
         result = _fold_map(result, residual, rp, system, branch, plan, frequency, fold_map,
@@ -349,45 +341,6 @@ def _unit(plan: ExcitationPlan, parameter: str, frequency: bool) -> Any:
     """``omega -> "speed 123.4 rad/s"`` for messages."""
     order = 1.0 if frequency else plan.order
     return lambda lam: f"{parameter} {lam / order:.6g} rad/s"
-
-
-def _result(system: RotorSystem, rp: RotorPeriodicProblem, recovery: Recovery,
-            plan: ExcitationPlan, branch: Branch, sm: StabilityModel | None,
-            bifurcations: bool, frequency: bool, options: dict[str, Any], stats: Stats,
-            clock: float) -> PeriodicResult:
-    residual = recovery.residual
-    multipliers, floquet_time = floquet_arrays(sm, branch)
-    events: list[Any] = []
-    located = time.perf_counter()
-    if bifurcations and len(branch) > 1:
-        fun = continuation_function(residual, "omega")
-        events = list(detect_bifurcations(fun, branch, options=BifurcationOptions(
-            kinds=("fold", "branch_point"))))
-        if sm is not None:
-            events += floquet_events(fun, branch, sm, multipliers)
-    located = time.perf_counter() - located
-    lam = branch.lam.astype(float)
-    speed = np.full(lam.shape, float(options["speed"])) if frequency else lam / plan.order
-    to_parameter = (lambda v: v) if frequency else (lambda v: v / plan.order)
-    run_stats = {**branch.stats, "start_iterations": float(stats.iterations),
-                 "condensation_factorizations": float(stats.factorizations),
-                 "floquet_time": floquet_time, "bifurcation_time": located,
-                 "wall_time": time.perf_counter() - clock}
-    return PeriodicResult(
-        parameter=lam if frequency else speed, parameter_name="frequency" if frequency
-        else "speed", speed=speed, fundamental=lam, order=0.0 if frequency else plan.order,
-        harmonics=residual.harmonics, samples=residual.samples, dofs=recovery.dofs,
-        **branch_arrays(recovery, branch), multipliers=multipliers,
-        stability_method="none" if sm is None else sm.method,
-        stability_tol=DEFAULT_TOL if sm is None else sm.tol,
-        bifurcations=bifurcation_records(events, recovery, to_parameter, sm),
-        iterations=branch.iterations.astype(np.int64), residuals=branch.residuals,
-        approximation=plan.approximation,
-        held_dofs=system.dof_map.free[rp.held].astype(np.int64), dof_map=system.dof_map,
-        nodes_pos=np.asarray(system.nodes_pos, dtype=float),
-        options={**options, "stability_model_modes": None if sm is None else sm.modes},
-        stats=run_stats, status=branch.status, reason=branch.reason,
-        summary=dict(system.summary))
 
 
 def _describe(arguments: dict[str, Any]) -> dict[str, Any]:

@@ -9,6 +9,7 @@ linear DOFs exactly, one factorisation per harmonic and point), placed among ALL
 from __future__ import annotations
 
 import math
+import time
 from collections.abc import Sequence
 from dataclasses import dataclass
 from functools import cached_property
@@ -16,17 +17,23 @@ from typing import Any
 
 import numpy as np
 
-from rotorsim.analyses.periodic_events import FloquetModel
+from rotorsim.analyses.periodic_events import FloquetModel, floquet_events
+from rotorsim.analyses.periodic_excitation import ExcitationPlan
 from rotorsim.analyses.periodic_problem import RotorPeriodicProblem
-from rotorsim.analyses.periodic_stability import StabilityModel
+from rotorsim.analyses.periodic_stability import DEFAULT_TOL, StabilityModel
 from rotorsim.assembly.system import RotorSystem
 from rotorsim.elements.base import DOFS_PER_NODE, FloatArray
 from rotorsim.errors import ConvergenceError, ModelError
-from rotorsim.harmonic_balance.bifurcation import BifurcationEvent
+from rotorsim.harmonic_balance.bifurcation import (
+    BifurcationEvent,
+    BifurcationOptions,
+    detect_bifurcations,
+)
 from rotorsim.harmonic_balance.fourier import AFT
-from rotorsim.harmonic_balance.residual import HBResidual
-from rotorsim.results.periodic import PeriodicBifurcation
+from rotorsim.harmonic_balance.residual import HBResidual, continuation_function
+from rotorsim.results.periodic import PeriodicBifurcation, PeriodicResult
 from rotorsim.solvers.continuation import Branch
+from rotorsim.solvers.stats import Stats
 
 IntArray = np.ndarray
 
@@ -152,3 +159,44 @@ def critical_multiplier(kind: str, mu: Any) -> complex:
         pool = complex_ if complex_.size else m
         return complex(pool[np.argmin(np.abs(np.abs(pool) - 1.0))])
     return complex(m[np.argmin(np.abs(m - 1.0))])
+
+
+def periodic_result(system: RotorSystem, rp: RotorPeriodicProblem, recovery: Recovery,
+            plan: ExcitationPlan, branch: Branch, sm: StabilityModel | None,
+            bifurcations: bool, frequency: bool, options: dict[str, Any], stats: Stats,
+            clock: float) -> PeriodicResult:
+    """The result of a traced branch: bifurcations located on it, recovered arrays,
+    Floquet multipliers, the run's options and statistics (``clock``: its start time)."""
+    residual = recovery.residual
+    multipliers, floquet_time = floquet_arrays(sm, branch)
+    events: list[Any] = []
+    located = time.perf_counter()
+    if bifurcations and len(branch) > 1:
+        fun = continuation_function(residual, "omega")
+        events = list(detect_bifurcations(fun, branch, options=BifurcationOptions(
+            kinds=("fold", "branch_point"))))
+        if sm is not None:
+            events += floquet_events(fun, branch, sm, multipliers)
+    located = time.perf_counter() - located
+    lam = branch.lam.astype(float)
+    speed = np.full(lam.shape, float(options["speed"])) if frequency else lam / plan.order
+    to_parameter = (lambda v: v) if frequency else (lambda v: v / plan.order)
+    run_stats = {**branch.stats, "start_iterations": float(stats.iterations),
+                 "condensation_factorizations": float(stats.factorizations),
+                 "floquet_time": floquet_time, "bifurcation_time": located,
+                 "wall_time": time.perf_counter() - clock}
+    return PeriodicResult(
+        parameter=lam if frequency else speed, parameter_name="frequency" if frequency
+        else "speed", speed=speed, fundamental=lam, order=0.0 if frequency else plan.order,
+        harmonics=residual.harmonics, samples=residual.samples, dofs=recovery.dofs,
+        **branch_arrays(recovery, branch), multipliers=multipliers,
+        stability_method="none" if sm is None else sm.method,
+        stability_tol=DEFAULT_TOL if sm is None else sm.tol,
+        bifurcations=bifurcation_records(events, recovery, to_parameter, sm),
+        iterations=branch.iterations.astype(np.int64), residuals=branch.residuals,
+        approximation=plan.approximation,
+        held_dofs=system.dof_map.free[rp.held].astype(np.int64), dof_map=system.dof_map,
+        nodes_pos=np.asarray(system.nodes_pos, dtype=float),
+        options={**options, "stability_model_modes": None if sm is None else sm.modes},
+        stats=run_stats, status=branch.status, reason=branch.reason,
+        summary=dict(system.summary))
