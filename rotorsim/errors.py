@@ -49,6 +49,13 @@ class InconsistentModelError(ModelError):
     step: it propagates at once."""
 
 
+class ResultsFileError(ModelError):
+    """A results file, or a value to be written to one, does not fit the rotorsim layout.
+
+    ``where`` names the file and HDF5 path (or the field) at fault.
+    """
+
+
 class ConvergenceError(RotorsimError, RuntimeError):
     """A single solve failed to converge.
 

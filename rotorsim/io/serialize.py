@@ -23,7 +23,6 @@ from __future__ import annotations
 
 import dataclasses
 import json
-import math
 from collections.abc import Mapping
 from typing import TYPE_CHECKING, Any
 
@@ -31,7 +30,8 @@ import numpy as np
 
 from rotorsim.assembly.dof_map import DofMap
 from rotorsim.elements.base import DOF_NAMES, DOFS_PER_NODE
-from rotorsim.errors import ModelError, Status
+from rotorsim.errors import ModelError, ResultsFileError, Status
+from rotorsim.io.tagged_json import from_jsonable, plain_dtype, to_jsonable
 
 if TYPE_CHECKING:
     import h5py
@@ -44,15 +44,6 @@ RESERVED_ATTRS = ("type", "fields", "attr_units")
 _INT64 = np.iinfo(np.int64)
 _SCALAR_KINDS = {bool: "bool", int: "int", float: "float", complex: "complex", str: "str"}
 _PY_TYPES = {kind: t for t, kind in _SCALAR_KINDS.items()}
-_JSON_TAGS = ("__tuple__", "__complex__", "__float__", "__numpy__", "__ndarray__",
-              "__dict__", "__status__")
-
-
-class ResultsFileError(ModelError):
-    """A results file, or a value to be written to one, does not fit the rotorsim layout.
-
-    ``where`` names the file and HDF5 path (or the field) at fault.
-    """
 
 
 @dataclasses.dataclass(frozen=True)
@@ -172,7 +163,7 @@ def _write_field(group: h5py.Group, name: str, value: Any, units: str | None,
     if isinstance(value, Status):
         group.attrs[name] = int(value)
         return "status"
-    if isinstance(value, np.generic) and value.dtype.kind in "biufc" and _plain(value.dtype):
+    if isinstance(value, np.generic) and value.dtype.kind in "biufc" and plain_dtype(value.dtype):
         group.attrs[name] = value
         return "numpy"
     kind = _SCALAR_KINDS.get(type(value))
@@ -200,19 +191,13 @@ def _fits_attr(value: bool | int | float | complex | str) -> bool:
     return not isinstance(value, int) or _INT64.min <= value <= _INT64.max
 
 
-def _plain(dtype: np.dtype) -> bool:
-    """Fixed-size numeric dtype that HDF5 and JSON hold exactly (no long double)."""
-    limit = {"f": 8, "c": 16}.get(dtype.kind, 8)
-    return dtype.fields is None and dtype.itemsize <= limit
-
-
 def _write_array(group: h5py.Group, name: str, value: np.ndarray, units: str | None,
                  where: str) -> None:
     if value.dtype.kind == "U":
         if _has_interior_nul(value):
             raise ResultsFileError("cannot store strings containing NUL characters", where)
         ds = _write_strings(group, name, value.astype(object))
-    elif value.dtype.kind == "S" or (value.dtype.kind in "biufc" and _plain(value.dtype)):
+    elif value.dtype.kind == "S" or (value.dtype.kind in "biufc" and plain_dtype(value.dtype)):
         ds = group.create_dataset(name, data=value)
     else:
         raise ResultsFileError(f"cannot store an array of dtype {value.dtype}", where)
@@ -329,92 +314,3 @@ def _read_array(ds: h5py.Dataset) -> np.ndarray:
 
 
 # ---------------------------------------------------------------------------- JSON
-def to_jsonable(value: Any, where: str = "value") -> Any:
-    """Tagged, exact JSON form of ``value`` (standard JSON: no NaN tokens).
-
-    Plain JSON types pass through. Tags (one-key objects, or two or three keys for numpy):
-    ``{"__tuple__": [...]}``, ``{"__complex__": [re, im]}``, ``{"__float__": "nan"}``
-    (also ``"inf"``, ``"-inf"``, or ``"0x..."``, the bit pattern of another NaN),
-    ``{"__status__": int}``, ``{"__numpy__": dtype, "value":
-    v}``, ``{"__ndarray__": dtype, "shape": [...], "data": [flat values]}`` and
-    ``{"__dict__": [[key, value], ...]}`` for dicts with non-str keys or keys starting with
-    ``"__"``. Anything else raises :class:`ResultsFileError` naming the key path.
-
-    Examples
-    --------
-    >>> v = {"loads": [(2, 1e-4, 0.0)], "tol": np.float64(1e-8), "x": float("nan"), 3: None}
-    >>> text = json.dumps(to_jsonable(v), allow_nan=False)
-    >>> back = from_jsonable(json.loads(text))
-    >>> back["loads"], type(back["tol"]).__name__, back[3]
-    ([(2, 0.0001, 0.0)], 'float64', None)
-    """
-    t = type(value)
-    if value is None or t in (bool, int, str):
-        return value
-    if t is float:
-        return value if math.isfinite(value) else {"__float__": _nonfinite_text(value)}
-    if t is complex:
-        return {"__complex__": [to_jsonable(value.real), to_jsonable(value.imag)]}
-    if isinstance(value, Status):
-        return {"__status__": int(value)}
-    if isinstance(value, np.generic | np.ndarray):
-        return _numpy_to_jsonable(value, where)
-    if t is list:
-        return [to_jsonable(v, f"{where}[{i}]") for i, v in enumerate(value)]
-    if t is tuple:
-        return {"__tuple__": [to_jsonable(v, f"{where}[{i}]") for i, v in enumerate(value)]}
-    if t is dict:
-        if all(type(k) is str and not k.startswith("__") for k in value):
-            return {k: to_jsonable(v, f"{where}[{k!r}]") for k, v in value.items()}
-        return {"__dict__": [[to_jsonable(k, where), to_jsonable(v, f"{where}[{k!r}]")]
-                             for k, v in value.items()]}
-    raise ResultsFileError(f"cannot store a value of type {t.__name__}", where)
-
-
-def _nonfinite_text(value: float) -> str:
-    """``"inf"``, ``"-inf"``, ``"nan"`` (the default quiet NaN) or the hex bit pattern of any
-    other NaN, so that the value is restored bit for bit."""
-    bits = int(np.array(value).view(np.uint64))
-    if math.isinf(value) or bits == int(np.array(math.nan).view(np.uint64)):
-        return repr(value)
-    return hex(bits)
-
-
-def _numpy_to_jsonable(value: np.generic | np.ndarray, where: str) -> Any:
-    dtype = value.dtype
-    if not (dtype.kind in "biufcU" and (dtype.kind == "U" or _plain(dtype))):
-        raise ResultsFileError(f"cannot store numpy dtype {dtype}", where)
-    if isinstance(value, np.generic):
-        return {"__numpy__": dtype.str, "value": to_jsonable(value.item(), where)}
-    return {"__ndarray__": dtype.str, "shape": list(value.shape),
-            "data": to_jsonable(value.ravel().tolist(), where)}
-
-
-def from_jsonable(obj: Any) -> Any:
-    """Inverse of :func:`to_jsonable` applied to parsed JSON."""
-    if isinstance(obj, list):
-        return [from_jsonable(v) for v in obj]
-    if not isinstance(obj, dict):
-        return obj
-    tag = next((k for k in obj if k.startswith("__")), None)
-    if tag is None:
-        return {k: from_jsonable(v) for k, v in obj.items()}
-    body = obj[tag]
-    if tag == "__tuple__":
-        return tuple(from_jsonable(v) for v in body)
-    if tag == "__complex__":
-        return complex(from_jsonable(body[0]), from_jsonable(body[1]))
-    if tag == "__float__":
-        if body.startswith("0x"):  # a NaN with a sign or payload: its bit pattern
-            return float(np.array(int(body, 16), dtype=np.uint64).view(np.float64))
-        return float(body)
-    if tag == "__status__":
-        return Status(body)
-    if tag == "__numpy__":
-        value = from_jsonable(obj["value"])
-        return np.dtype(body).type(value)
-    if tag == "__ndarray__":
-        return np.array(from_jsonable(obj["data"]), dtype=body).reshape(obj["shape"])
-    if tag == "__dict__":
-        return {from_jsonable(k): from_jsonable(v) for k, v in body}
-    raise ResultsFileError(f"unknown JSON tag {tag!r}; known: {_JSON_TAGS}", "json")
