@@ -33,9 +33,9 @@ if str(ROOT) not in sys.path:
 import numpy as np  # noqa: E402
 
 from examples import seed000_load_cases as seed  # noqa: E402
-from rotorsim.analyses.bearing_statics import bearing_equilibrium  # noqa: E402
-from rotorsim.elements.rolling.ball import BallBearing  # noqa: E402
-from rotorsim.elements.rolling.roller import RollerBearing  # noqa: E402
+from rotorsim.analyses.statics.bearing_statics import bearing_equilibrium  # noqa: E402
+from rotorsim.elements.rolling.ball.bearing import BallBearing  # noqa: E402
+from rotorsim.elements.rolling.roller.bearing import RollerBearing  # noqa: E402
 
 TARGETS = {"ball": 200_000.0, "roller": 50_000.0, "solve_ms": 5.0, "global_s": 1.0}
 

@@ -9,7 +9,7 @@ Prints:
   small change of the orbit (as in a time step or a harmonic-balance iteration);
   target 20,000 samples/s;
 * the time of one static solve of the seed case
-  (:func:`~rotorsim.analyses.bearing_statics.bearing_equilibrium`, ``F_x = 5000 N``);
+  (:func:`~rotorsim.analyses.statics.bearing_statics.bearing_equilibrium`, ``F_x = 5000 N``);
   target < 50 ms;
 * the inner Newton statistics of these calls.
 
@@ -39,8 +39,8 @@ if str(ROOT) not in sys.path:
 import numpy as np  # noqa: E402
 
 from examples import seed001_flexible_rings as seed  # noqa: E402
-from rotorsim.analyses.bearing_statics import bearing_equilibrium  # noqa: E402
-from rotorsim.elements.rolling.flexible_ring_element import (  # noqa: E402
+from rotorsim.analyses.statics.bearing_statics import bearing_equilibrium  # noqa: E402
+from rotorsim.elements.rolling.flexible_ring.element import (  # noqa: E402
     FlexibleRingBearingElement,
 )
 

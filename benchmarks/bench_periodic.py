@@ -41,9 +41,9 @@ if str(ROOT) not in sys.path:
 import numpy as np  # noqa: E402
 
 import rotorsim as rs  # noqa: E402
-from rotorsim.analyses.periodic import periodic  # noqa: E402
-from rotorsim.analyses.transient import transient  # noqa: E402
-from rotorsim.elements.rolling.ball import BallBearing  # noqa: E402
+from rotorsim.analyses.periodic.periodic import periodic  # noqa: E402
+from rotorsim.analyses.transient.transient import transient  # noqa: E402
+from rotorsim.elements.rolling.ball.bearing import BallBearing  # noqa: E402
 from rotorsim.elements.rolling.element import RollingBearing  # noqa: E402
 from rotorsim.results.periodic import PeriodicResult  # noqa: E402
 

@@ -71,7 +71,7 @@ def assembly_scaling(sizes: tuple[int, ...], repeat: int = 3) -> dict[str, Any]:
 
 def modal_10k(num_modes: int = 20, speed: float = 500.0, repeat: int = 3) -> dict[str, Any]:
     """Time the lowest ``num_modes`` modes of the benchmark rotor with about 10,000 DOFs."""
-    from rotorsim.analyses.modal import modal
+    from rotorsim.analyses.linear.modal import modal
     from rotorsim.assembly.system import assemble
 
     n_elements = 1666  # 1667 nodes x 6 = 10,002 DOFs

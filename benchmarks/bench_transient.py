@@ -37,9 +37,9 @@ import numpy as np  # noqa: E402
 from scipy.integrate import solve_ivp  # noqa: E402
 
 import rotorsim as rs  # noqa: E402
-from rotorsim.analyses.transient import transient  # noqa: E402
+from rotorsim.analyses.transient.transient import transient  # noqa: E402
 from rotorsim.assembly.system import assemble  # noqa: E402
-from rotorsim.elements.rolling.ball import BallBearing  # noqa: E402
+from rotorsim.elements.rolling.ball.bearing import BallBearing  # noqa: E402
 from rotorsim.elements.rolling.element import RollingBearing  # noqa: E402
 
 SPEED = 600.0  # rad/s
@@ -80,9 +80,9 @@ def first_order(t_end: float):
     """``y = [q, v]`` right-hand side and Jacobian with the same force model."""
     rotor, bearings = model()
     system = assemble(rotor, bearings)
-    from rotorsim.analyses.speed_profile import ConstantSpeed
-    from rotorsim.analyses.transient import _problem
-    from rotorsim.analyses.transient_start import initial_state
+    from rotorsim.analyses.transient.speed_profile import ConstantSpeed
+    from rotorsim.analyses.transient.start import initial_state
+    from rotorsim.analyses.transient.transient import _problem
 
     profile = ConstantSpeed(SPEED).bind(0.0, t_end)
     problem, loads = _problem(system, profile, 0.0, UNBALANCE, 9.80665, (0, -1, 0), (),

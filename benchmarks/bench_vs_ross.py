@@ -74,17 +74,17 @@ def run_ross(request: dict[str, Any], timeout: float = 3600.0) -> dict[str, Any]
 def rotorsim_api() -> dict[str, Any]:
     """The rotorsim analysis functions, or the reason each one is unavailable."""
     api: dict[str, Any] = {}
-    from rotorsim.analyses.modal import modal
+    from rotorsim.analyses.linear.modal import modal
 
     api["modal"] = modal
     try:
-        from rotorsim.analyses.campbell import campbell
+        from rotorsim.analyses.linear.campbell import campbell
 
         api["campbell"] = campbell
     except ImportError as exc:
         api["campbell"] = f"unavailable: {exc}"
     try:
-        from rotorsim.analyses.frequency_response import unbalance_response
+        from rotorsim.analyses.linear.frequency_response import unbalance_response
 
         api["unbalance"] = unbalance_response
     except ImportError as exc:

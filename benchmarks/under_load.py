@@ -66,7 +66,7 @@ def run_case(case: str, quick: bool) -> float:
     sys.path.insert(0, str(ROOT / "benchmarks"))
     from bench_model import benchmark_description, build_rotorsim
 
-    from rotorsim.analyses.campbell import campbell
+    from rotorsim.analyses.linear.campbell import campbell
 
     rotor = build_rotorsim(benchmark_description(100))
     clock = time.perf_counter()

@@ -29,8 +29,8 @@ if str(ROOT) not in sys.path:
     sys.path.insert(0, str(ROOT))
 
 from examples.textbook_rotors import friswell_5_9_1  # noqa: E402
-from rotorsim.analyses.critical_speeds import critical_speeds  # noqa: E402
-from rotorsim.analyses.sweep import (  # noqa: E402
+from rotorsim.analyses.linear.critical_speeds import critical_speeds  # noqa: E402
+from rotorsim.analyses.sweep.sweep import (  # noqa: E402
     Normal,
     Sample,
     chain,

@@ -49,12 +49,12 @@ ROOT = Path(__file__).resolve().parents[1]
 if str(ROOT) not in sys.path:
     sys.path.insert(0, str(ROOT))
 
-from rotorsim.analyses.bearing_statics import (  # noqa: E402
+from rotorsim.analyses.statics.bearing_statics import (  # noqa: E402
     bearing_equilibrium,
     stiffness_over_pass,
 )
-from rotorsim.elements.rolling.ball import BallBearing  # noqa: E402
-from rotorsim.elements.rolling.roller import RollerBearing  # noqa: E402
+from rotorsim.elements.rolling.ball.bearing import BallBearing  # noqa: E402
+from rotorsim.elements.rolling.roller.bearing import RollerBearing  # noqa: E402
 from rotorsim.errors import ModelError  # noqa: E402
 from rotorsim.results.bearing import StiffnessVariation  # noqa: E402
 

@@ -1,7 +1,7 @@
 """Seed 001 (Leontiev, Ivannikov, Degtyarev 2017): radial roller bearing with flexible rings.
 
 Reproduces section 3.1 and 3.3 of the seed with
-:class:`~rotorsim.elements.rolling.flexible_rings.FlexibleRingRollerBearing`:
+:class:`~rotorsim.elements.rolling.flexible_ring.bearing.FlexibleRingRollerBearing`:
 
 * Fig. 5: the inner-contact roller loads ``Q_i`` of the bearing with rigid and with
   flexible rings, for the diametral clearances ``g = -40 um`` (preload) and ``g = +10 um``,
@@ -41,8 +41,8 @@ ROOT = Path(__file__).resolve().parents[1]
 if str(ROOT) not in sys.path:
     sys.path.insert(0, str(ROOT))
 
-from rotorsim.analyses.bearing_statics import bearing_equilibrium  # noqa: E402
-from rotorsim.elements.rolling.flexible_rings import FlexibleRingRollerBearing  # noqa: E402
+from rotorsim.analyses.statics.bearing_statics import bearing_equilibrium  # noqa: E402
+from rotorsim.elements.rolling.flexible_ring.bearing import FlexibleRingRollerBearing  # noqa: E402
 
 FIGURES = ROOT / "docs" / "figures" / "seed001"
 SEED = dict(n_rollers=24, pitch_radius=75e-3, roller_radius=6.5e-3, effective_length=16e-3,

@@ -39,7 +39,7 @@ if str(ROOT) not in sys.path:
 
 import rotorsim as rs  # noqa: E402
 from examples.seed001_flexible_rings import SPEED, seed_bearing  # noqa: E402
-from rotorsim.analyses.bearing_statics import bearing_equilibrium  # noqa: E402
+from rotorsim.analyses.statics.bearing_statics import bearing_equilibrium  # noqa: E402
 
 MASS, LINK, OMEGA_C = 2.0, 1.0, 50.0  # kg, m, rad/s (seed section 3.2)
 DAMPER = 2000.0  # N s/m

@@ -1,5 +1,5 @@
 """Seed 002 section 3.5.2: periodic responses of a rigid rotor on a cylindrical roller bearing
-by harmonic balance, with Floquet stability (``rotorsim.analyses.periodic.periodic``).
+by harmonic balance, with Floquet stability (``rotorsim.analyses.periodic.periodic.periodic``).
 
 The seed's system (its Fig. 3.5): a symmetric rigid rotor, 5 DOFs ``x y z theta_y theta_z``
 (its x is the shaft axis), carried at its centre by one cylindrical roller bearing, under
@@ -52,10 +52,10 @@ if str(ROOT) not in sys.path:
     sys.path.insert(0, str(ROOT))
 
 import rotorsim as rs  # noqa: E402
-from rotorsim.analyses.periodic import periodic  # noqa: E402
-from rotorsim.analyses.periodic_excitation import HarmonicBase  # noqa: E402
+from rotorsim.analyses.periodic.excitation import HarmonicBase  # noqa: E402
+from rotorsim.analyses.periodic.periodic import periodic  # noqa: E402
 from rotorsim.elements.rolling.element import RollingBearing  # noqa: E402
-from rotorsim.elements.rolling.roller import RollerBearing  # noqa: E402
+from rotorsim.elements.rolling.roller.bearing import RollerBearing  # noqa: E402
 from rotorsim.results.periodic import PeriodicResult  # noqa: E402
 
 FIGURES = ROOT / "docs" / "figures" / "seed002"

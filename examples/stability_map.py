@@ -34,8 +34,8 @@ if str(ROOT) not in sys.path:
     sys.path.insert(0, str(ROOT))
 
 from examples.textbook_rotors import friswell_two_disk_rotor  # noqa: E402
-from rotorsim.analyses.modal import modal  # noqa: E402
-from rotorsim.analyses.sweep import Grid, min_log_dec, set_bearing_stiffness, sweep  # noqa: E402
+from rotorsim.analyses.linear.modal import modal  # noqa: E402
+from rotorsim.analyses.sweep.sweep import Grid, min_log_dec, set_bearing_stiffness, sweep  # noqa: E402
 from rotorsim.elements.linear_bearing import BearingElement  # noqa: E402
 from rotorsim.model.rotor import Rotor  # noqa: E402
 from rotorsim.results.sweep import SweepResult  # noqa: E402

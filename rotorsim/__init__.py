@@ -25,31 +25,31 @@ All quantities are SI (m, kg, s, N, rad, rad/s). Importing rotorsim pulls in num
 scipy only; plotting imports matplotlib lazily.
 """
 
-from rotorsim.analyses.bearing_statics import bearing_equilibrium, stiffness_over_pass
-from rotorsim.analyses.campbell import campbell
-from rotorsim.analyses.critical_speed_map import critical_speed_map
-from rotorsim.analyses.critical_speeds import critical_speeds
-from rotorsim.analyses.frequency_response import frequency_response, unbalance_response
-from rotorsim.analyses.linearized_rotor import (
+from rotorsim.analyses.linear.campbell import campbell
+from rotorsim.analyses.linear.critical_speed_map import critical_speed_map
+from rotorsim.analyses.linear.critical_speeds import critical_speeds
+from rotorsim.analyses.linear.frequency_response import frequency_response, unbalance_response
+from rotorsim.analyses.linear.modal import modal
+from rotorsim.analyses.periodic.excitation import HarmonicBase
+from rotorsim.analyses.periodic.parameter import periodic_parameter
+from rotorsim.analyses.periodic.periodic import periodic
+from rotorsim.analyses.statics.bearing_statics import bearing_equilibrium, stiffness_over_pass
+from rotorsim.analyses.statics.linearized_rotor import (
     LinearizationPoint,
     LinearizedRotor,
     linearize_rolling_bearings,
 )
-from rotorsim.analyses.modal import modal
-from rotorsim.analyses.periodic import periodic
-from rotorsim.analyses.periodic_excitation import HarmonicBase
-from rotorsim.analyses.periodic_parameter import periodic_parameter
-from rotorsim.analyses.speed_profile import ConstantSpeed, LinearSpeed, SpeedFunction
-from rotorsim.analyses.static import static
-from rotorsim.analyses.sweep import (
+from rotorsim.analyses.statics.static import static
+from rotorsim.analyses.sweep.sweep import (
     Grid,
     Normal,
     Sample,
     Uniform,
     sweep,
 )
-from rotorsim.analyses.transient import transient
-from rotorsim.analyses.transient_loads import BaseExcitation
+from rotorsim.analyses.transient.loads import BaseExcitation
+from rotorsim.analyses.transient.speed_profile import ConstantSpeed, LinearSpeed, SpeedFunction
+from rotorsim.analyses.transient.transient import transient
 from rotorsim.assembly.dof_map import DofMap
 from rotorsim.assembly.system import RotorSystem, SystemMatrices, assemble
 from rotorsim.elements.base import DOF_NAMES, ElementMatrices
@@ -62,8 +62,8 @@ from rotorsim.elements.rolling import (
     RollerBearing,
 )
 from rotorsim.elements.rolling.element import RollingBearing
-from rotorsim.elements.rolling.flexible_ring_element import FlexibleRingBearingElement
-from rotorsim.elements.rolling.flexible_rings import FlexibleRingRollerBearing
+from rotorsim.elements.rolling.flexible_ring.bearing import FlexibleRingRollerBearing
+from rotorsim.elements.rolling.flexible_ring.element import FlexibleRingBearingElement
 from rotorsim.elements.rolling.large_rotation import LargeRotationBearing
 from rotorsim.elements.shaft import ShaftElement, cowper_shear_coefficient
 from rotorsim.errors import (

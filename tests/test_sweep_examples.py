@@ -14,7 +14,7 @@ if str(ROOT) not in sys.path:
 
 from examples import monte_carlo_critical_speeds as monte_carlo  # noqa: E402
 from examples import stability_map  # noqa: E402
-from rotorsim.analyses.sweep import min_log_dec  # noqa: E402
+from rotorsim.analyses.sweep.sweep import min_log_dec  # noqa: E402
 from rotorsim.errors import Status  # noqa: E402
 
 

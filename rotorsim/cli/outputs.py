@@ -89,7 +89,7 @@ def write_bearing_outputs(rolling: Any, equilibrium: Any, tag: str, folder: Path
     ``bearing_<tag>_pass.h5`` (its ``StiffnessVariation`` over one element pass at the same
     load), with their figures as PNG. Returns the paths written.
     """
-    from rotorsim.analyses.bearing_statics import stiffness_over_pass
+    from rotorsim.analyses.statics.bearing_statics import stiffness_over_pass
     from rotorsim.cli.summaries import bearing_summary, stiffness_variation_summary
     from rotorsim.errors import ConvergenceError
 

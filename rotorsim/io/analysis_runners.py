@@ -24,20 +24,20 @@ def _grid(grid: Grid, fast: bool) -> FloatArray:
 
 
 def _modal(rotor: Rotor, model: Model, spec: Any, fast: bool, progress: bool) -> Any:
-    from rotorsim.analyses.modal import modal
+    from rotorsim.analyses.linear.modal import modal
 
     return modal(rotor, speed=spec.speed, num_modes=spec.num_modes)
 
 
 def _campbell(rotor: Rotor, model: Model, spec: Any, fast: bool, progress: bool) -> Any:
-    from rotorsim.analyses.campbell import campbell
+    from rotorsim.analyses.linear.campbell import campbell
 
     return campbell(rotor, _grid(spec.speeds, fast), num_modes=spec.num_modes,
                     progress=progress)
 
 
 def _critical_speeds(rotor: Rotor, model: Model, spec: Any, fast: bool, progress: bool) -> Any:
-    from rotorsim.analyses.critical_speeds import critical_speeds
+    from rotorsim.analyses.linear.critical_speeds import critical_speeds
 
     return critical_speeds(rotor, harmonic=spec.harmonic, num_modes=spec.num_modes,
                            whirl=spec.whirl)
@@ -45,7 +45,7 @@ def _critical_speeds(rotor: Rotor, model: Model, spec: Any, fast: bool, progress
 
 def _critical_speed_map(rotor: Rotor, model: Model, spec: Any, fast: bool,
                         progress: bool) -> Any:
-    from rotorsim.analyses.critical_speed_map import critical_speed_map
+    from rotorsim.analyses.linear.critical_speed_map import critical_speed_map
 
     speeds = None if spec.speeds is None else _grid(spec.speeds, fast)
     return critical_speed_map(rotor, stiffness=_grid(spec.stiffness, fast),
@@ -55,7 +55,7 @@ def _critical_speed_map(rotor: Rotor, model: Model, spec: Any, fast: bool,
 
 
 def _unbalance(rotor: Rotor, model: Model, spec: Any, fast: bool, progress: bool) -> Any:
-    from rotorsim.analyses.frequency_response import unbalance_response
+    from rotorsim.analyses.linear.frequency_response import unbalance_response
 
     unbalance = model.loads.unbalance if spec.unbalance is None else spec.unbalance
     return unbalance_response(rotor, _grid(spec.speeds, fast), list(unbalance),
@@ -64,14 +64,14 @@ def _unbalance(rotor: Rotor, model: Model, spec: Any, fast: bool, progress: bool
 
 def _frequency_response(rotor: Rotor, model: Model, spec: Any, fast: bool,
                         progress: bool) -> Any:
-    from rotorsim.analyses.frequency_response import frequency_response
+    from rotorsim.analyses.linear.frequency_response import frequency_response
 
     return frequency_response(rotor, _grid(spec.frequencies, fast), list(spec.inputs),
                               speed=spec.speed, progress=progress)
 
 
 def _static(rotor: Rotor, model: Model, spec: Any, fast: bool, progress: bool) -> Any:
-    from rotorsim.analyses.static import static
+    from rotorsim.analyses.statics.static import static
 
     loads = model.loads
     return static(rotor, gravity=loads.gravity, direction=loads.gravity_direction,
@@ -80,8 +80,8 @@ def _static(rotor: Rotor, model: Model, spec: Any, fast: bool, progress: bool) -
 
 def _transient(rotor: Rotor, model: Model, spec: Any, fast: bool, progress: bool,
                restart: dict[str, Any]) -> Any:
-    from rotorsim.analyses.speed_profile import LinearSpeed
-    from rotorsim.analyses.transient import transient
+    from rotorsim.analyses.transient.speed_profile import LinearSpeed
+    from rotorsim.analyses.transient.transient import transient
 
     t_end = spec.t_end / 10.0 if fast else spec.t_end
     speed: Any = spec.speed
@@ -99,7 +99,7 @@ def _transient(rotor: Rotor, model: Model, spec: Any, fast: bool, progress: bool
 
 def _periodic(rotor: Rotor, model: Model, spec: Any, fast: bool, progress: bool,
               restart: dict[str, Any]) -> Any:
-    from rotorsim.analyses.periodic import periodic
+    from rotorsim.analyses.periodic.periodic import periodic
 
     unbalance = model.loads.unbalance if spec.unbalance is None else spec.unbalance
     loads = model.loads
@@ -116,7 +116,7 @@ def _periodic(rotor: Rotor, model: Model, spec: Any, fast: bool, progress: bool,
 
 def _periodic_parameter(rotor: Rotor, model: Model, spec: Any, fast: bool,
                         progress: bool, restart: dict[str, Any]) -> Any:
-    from rotorsim.analyses.periodic_parameter import periodic_parameter
+    from rotorsim.analyses.periodic.parameter import periodic_parameter
 
     vary = spec.vary if spec.vary in ("loads", "forcing") else model.parameter(spec.vary)
     unbalance = model.loads.unbalance if spec.unbalance is None else spec.unbalance
@@ -134,13 +134,13 @@ def _periodic_parameter(rotor: Rotor, model: Model, spec: Any, fast: bool,
 
 def _sweep(rotor: Rotor, model: Model, spec: Any, fast: bool, progress: bool, *,
            store: Path | None) -> Any:
-    from rotorsim.analyses.sweep import Grid as SweepGrid
-    from rotorsim.analyses.sweep import sweep
-    from rotorsim.analyses.sweep_functions import (
+    from rotorsim.analyses.sweep.functions import (
         critical_speeds_eval,
         min_log_dec,
         set_bearing_stiffness,
     )
+    from rotorsim.analyses.sweep.sweep import Grid as SweepGrid
+    from rotorsim.analyses.sweep.sweep import sweep
 
     speeds = np.zeros(1) if spec.speeds is None else _grid(spec.speeds, fast)
     space = SweepGrid({"bearing_k": _grid(spec.stiffness, fast), "speed": speeds})

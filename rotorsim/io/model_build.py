@@ -14,14 +14,14 @@ from typing import Any
 
 import numpy as np
 
-from rotorsim.analyses.linearized_rotor import LinearizationPoint
+from rotorsim.analyses.statics.linearized_rotor import LinearizationPoint
 from rotorsim.elements.disk import DiskElement, PointMass
 from rotorsim.elements.linear_bearing import BearingElement
-from rotorsim.elements.rolling.ball import BallBearing
+from rotorsim.elements.rolling.ball.bearing import BallBearing
 from rotorsim.elements.rolling.element import RollingBearing
 from rotorsim.elements.rolling.reversed import ReversedBearing
-from rotorsim.elements.rolling.roller import RollerBearing
-from rotorsim.elements.rolling.roller_profile import (
+from rotorsim.elements.rolling.roller.bearing import RollerBearing
+from rotorsim.elements.rolling.roller.profile import (
     CircularCrown,
     LogarithmicProfile,
     StraightProfile,

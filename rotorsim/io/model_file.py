@@ -69,7 +69,7 @@ from rotorsim.io.analysis_spec import AnalysisSpec, Loads, run_analysis
 from rotorsim.model.rotor import Rotor
 
 if TYPE_CHECKING:
-    from rotorsim.analyses.linearized_rotor import LinearizationPoint, LinearizedRotor
+    from rotorsim.analyses.statics.linearized_rotor import LinearizationPoint, LinearizedRotor
     from rotorsim.elements.rolling.element import RollingBearing
 
 __all__ = ["Model", "load_model", "model_from_dict", "run_analysis", "save_model"]
@@ -144,9 +144,9 @@ class Model:
 
         Static bearings are linearised at the static equilibrium under ``loads`` (gravity
         and point loads) with speed-dependent linear bearings evaluated at ``speed``
-        [rad/s]; see :func:`rotorsim.analyses.linearized_rotor.linearize_rolling_bearings`.
+        [rad/s]; see :func:`rotorsim.analyses.statics.linearized_rotor.linearize_rolling_bearings`.
         """
-        from rotorsim.analyses.linearized_rotor import linearize_rolling_bearings
+        from rotorsim.analyses.statics.linearized_rotor import linearize_rolling_bearings
 
         key = float(speed)
         if key not in self._linearized:

@@ -10,7 +10,7 @@ entry of an array of tables (``[[bearings]]``, ``[[rolling_bearings]]``, ``[[dis
 
 :class:`ModelParameter` rebuilds the model with the value of the path set to a number (in
 SI units) and returns its rotor, for :func:`rotorsim.periodic_parameter` and
-:class:`~rotorsim.analyses.periodic_folds.ParameterMap`; a path into
+:class:`~rotorsim.analyses.periodic.folds.ParameterMap`; a path into
 ``rolling_bearings`` returns only the rolling bearings (the linear part then stays
 assembled once).
 """

@@ -19,13 +19,13 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from rotorsim.analyses.linearized_rotor import LinearizationPoint
+from rotorsim.analyses.statics.linearized_rotor import LinearizationPoint
 from rotorsim.elements.disk import PointMass
 from rotorsim.elements.linear_bearing import COEFFICIENTS, BearingElement
-from rotorsim.elements.rolling.ball import BallBearing
+from rotorsim.elements.rolling.ball.bearing import BallBearing
 from rotorsim.elements.rolling.reversed import ReversedBearing
-from rotorsim.elements.rolling.roller import RollerBearing
-from rotorsim.elements.rolling.roller_profile import (
+from rotorsim.elements.rolling.roller.bearing import RollerBearing
+from rotorsim.elements.rolling.roller.profile import (
     CircularCrown,
     LogarithmicProfile,
     StraightProfile,

@@ -314,7 +314,7 @@ def load_sweep(path: str | os.PathLike[str]) -> SweepResult:
     Parameters
     ----------
     path : str or path
-        The ``.h5`` file written by :func:`rotorsim.analyses.sweep.sweep`.
+        The ``.h5`` file written by :func:`rotorsim.analyses.sweep.sweep.sweep`.
     """
     import h5py
 

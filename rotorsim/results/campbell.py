@@ -26,7 +26,7 @@ class CampbellResult:
     """Damped natural frequencies tracked over spin speed.
 
     Column ``j`` of every ``(S, n_modes)`` array follows one physical mode through
-    crossings and veering (see :func:`rotorsim.analyses.campbell.campbell`). Rows of
+    crossings and veering (see :func:`rotorsim.analyses.linear.campbell.campbell`). Rows of
     speeds whose modal analysis failed hold ``NaN`` (and ``""`` in the string arrays).
 
     Attributes

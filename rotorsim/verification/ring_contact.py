@@ -1,12 +1,12 @@
 """A roller between two raceways: Hertz line contacts in series with its centrifugal force.
 
 The contact law is the one of the rest of the package
-(:mod:`rotorsim.elements.rolling.hertz_line`): a roller squeezed by the total approach
+(:mod:`rotorsim.elements.rolling.contact.hertz_line`): a roller squeezed by the total approach
 ``Delta`` of the two raceways carries ``Q = Kn Delta^n`` with ``n = 10/9`` and the
 whole-roller constant ``Kn`` (ISO/TS 16281 ``c_L = 35948 L^(8/9)`` N/mm^(10/9) by default,
-as :class:`~rotorsim.elements.rolling.roller.RollerBearing`). Each of the two contacts has
+as :class:`~rotorsim.elements.rolling.roller.bearing.RollerBearing`). Each of the two contacts has
 the per-contact constant ``K_c = 2^n Kn`` (two equal contacts in series give back ``Kn``:
-:func:`~rotorsim.elements.rolling.hertz_line.roller_constant_from_contacts`), the same split
+:func:`~rotorsim.elements.rolling.contact.hertz_line.roller_constant_from_contacts`), the same split
 as :mod:`~rotorsim.elements.rolling.centrifugal`.
 
 The roller is a rigid body with one DOF, its radial position. With the raceway deflections
@@ -33,7 +33,10 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from rotorsim.elements.rolling.hertz_line import LINE_EXPONENT, roller_constant_from_contacts
+from rotorsim.elements.rolling.contact.hertz_line import (
+    LINE_EXPONENT,
+    roller_constant_from_contacts,
+)
 from rotorsim.errors import ModelError
 
 FloatArray = NDArray[np.float64]
@@ -112,7 +115,7 @@ class RollerContactLaw:
         Examples
         --------
         >>> law = RollerContactLaw(kn=1.0e9)
-        >>> from rotorsim.elements.rolling.hertz_line import roller_constant_from_contacts
+        >>> from rotorsim.elements.rolling.contact.hertz_line import roller_constant_from_contacts
         >>> k = law.contact_constant
         >>> round(roller_constant_from_contacts(k, k) / 1e9, 12)
         1.0

@@ -22,7 +22,7 @@ reduced to the plane of the rollers, and is independent of the fast flexible-rin
 * **Rollers**: ``Z`` rigid rollers at ``psi_j = psi0 + 2 pi j / Z`` (cage held, statics),
   each between two Hertz line contacts in series, ``Q = Kn Delta^(10/9)`` for the whole
   roller (ISO/TS 16281 constant by default, the law of
-  :mod:`rotorsim.elements.rolling.hertz_line` used by every roller model of the package),
+  :mod:`rotorsim.elements.rolling.contact.hertz_line` used by every roller model of the package),
   diametral clearance ``g`` (negative: preload), centrifugal force
   ``F_c = m omega_c^2 R_p`` (seed 001 eq 18; ``m = rho pi R_b^2 L``,
   ``omega_c = kappa speed``, ``kappa = (1 - R_b/R_p)/2`` for a turning inner and a fixed

@@ -19,8 +19,8 @@ import scipy.sparse as sp
 import skfem
 from numpy.typing import NDArray
 
+from rotorsim.elements.rolling.contact.hertz_line import LINE_EXPONENT, iso_roller_constant
 from rotorsim.elements.rolling.geometry import cage_ratio as kinematic_cage_ratio
-from rotorsim.elements.rolling.hertz_line import LINE_EXPONENT, iso_roller_constant
 from rotorsim.errors import ModelError
 from rotorsim.verification import ring_forms as forms
 from rotorsim.verification.ring_contact import RollerContactLaw

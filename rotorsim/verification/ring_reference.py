@@ -1,12 +1,12 @@
 """Rigid-ring reference of the ring FE model: the same bearing with the package's roller model.
 
 :func:`rigid_ring_bearing` builds the
-:class:`~rotorsim.elements.rolling.roller.RollerBearing` (wrapped in a
+:class:`~rotorsim.elements.rolling.roller.bearing.RollerBearing` (wrapped in a
 :class:`~rotorsim.elements.rolling.centrifugal.CentrifugalBearing` at speed) with the data
 of :func:`~rotorsim.verification.ring_fe.ring_fe_roller_loads`: the same whole-roller
 constant ``Kn``, diametral clearance ``g``, roller angles (cage held), roller mass
 ``rho pi R_b^2 L`` and cage ratio. :func:`rigid_ring_roller_loads` solves its statics with
-:func:`~rotorsim.analyses.bearing_statics.bearing_equilibrium`; with very stiff rings the
+:func:`~rotorsim.analyses.statics.bearing_statics.bearing_equilibrium`; with very stiff rings the
 FE model must reproduce these loads (the rigid-ring limit).
 """
 
@@ -18,10 +18,10 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from rotorsim.analyses.bearing_statics import bearing_equilibrium
+from rotorsim.analyses.statics.bearing_statics import bearing_equilibrium
 from rotorsim.elements.rolling.centrifugal import CentrifugalBearing
 from rotorsim.elements.rolling.geometry import cage_ratio as kinematic_cage_ratio
-from rotorsim.elements.rolling.roller import RollerBearing
+from rotorsim.elements.rolling.roller.bearing import RollerBearing
 from rotorsim.results.bearing import BearingEquilibriumResult
 
 FloatArray = NDArray[np.float64]

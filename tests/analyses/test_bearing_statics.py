@@ -10,13 +10,13 @@ import numpy as np
 import pytest
 from scipy.optimize import brentq
 
-from rotorsim.analyses.bearing_statics import (
+from rotorsim.analyses.statics.bearing_statics import (
     bearing_equilibrium,
     linearized_bearings,
     stiffness_over_pass,
 )
-from rotorsim.elements.rolling.ball import BallBearing
-from rotorsim.elements.rolling.roller import RollerBearing
+from rotorsim.elements.rolling.ball.bearing import BallBearing
+from rotorsim.elements.rolling.roller.bearing import RollerBearing
 from rotorsim.errors import ModelError
 
 # seed 000 Table 1 (see examples/seed000_load_cases.py for the interpretation)

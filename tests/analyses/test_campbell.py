@@ -6,10 +6,10 @@ import numpy as np
 import pytest
 
 import rotorsim as rs
-import rotorsim.analyses.campbell as campbell_module
-from rotorsim.analyses.campbell import campbell
-from rotorsim.analyses.critical_speeds import critical_speeds
-from rotorsim.analyses.mode_shapes import circularize, clusters, mac, whirl_of
+import rotorsim.analyses.linear.campbell as campbell_module
+from rotorsim.analyses.linear.campbell import campbell
+from rotorsim.analyses.linear.critical_speeds import critical_speeds
+from rotorsim.analyses.linear.mode_shapes import circularize, clusters, mac, whirl_of
 from rotorsim.errors import ConvergenceError, ModelError, Status
 
 STEEL = rs.Material(name="steel", E=211e9, G_s=81.2e9, rho=7810)

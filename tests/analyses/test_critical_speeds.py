@@ -8,8 +8,8 @@ import numpy as np
 import pytest
 
 import rotorsim as rs
-from rotorsim.analyses.critical_speed_map import critical_speed_map
-from rotorsim.analyses.critical_speeds import critical_speeds
+from rotorsim.analyses.linear.critical_speed_map import critical_speed_map
+from rotorsim.analyses.linear.critical_speeds import critical_speeds
 from rotorsim.errors import ModelError
 
 STEEL = rs.Material(name="steel", E=211e9, G_s=81.2e9, rho=7810)
@@ -240,7 +240,7 @@ def test_forward_filter_keeps_predominantly_forward_elliptical_modes() -> None:
 
 
 def test_map_keeps_axial_and_tilt_part_of_a_full_bearing_matrix() -> None:
-    import rotorsim.analyses.critical_speed_map as csm
+    import rotorsim.analyses.linear.critical_speed_map as csm
 
     K5 = np.diag([5e7, 6e7, 2e7, 3e4, 4e4])
     K5[2, 3] = K5[3, 2] = 1e5

@@ -7,8 +7,8 @@ import math
 import numpy as np
 import pytest
 
-from rotorsim.analyses.frequency_response import frequency_response, unbalance_response
-from rotorsim.analyses.static import static
+from rotorsim.analyses.linear.frequency_response import frequency_response, unbalance_response
+from rotorsim.analyses.statics.static import static
 from rotorsim.assembly.system import assemble
 from rotorsim.elements.disk import DiskElement
 from rotorsim.elements.linear_bearing import BearingElement

@@ -9,19 +9,19 @@ import math
 import numpy as np
 import pytest
 
-from rotorsim.analyses.bearing_statics import bearing_equilibrium
-from rotorsim.analyses.linearized_rotor import (
+from rotorsim.analyses.linear.modal import modal
+from rotorsim.analyses.statics.bearing_statics import bearing_equilibrium
+from rotorsim.analyses.statics.linearized_rotor import (
     LinearizationPoint,
     linearize_rolling_bearings,
 )
-from rotorsim.analyses.modal import modal
 from rotorsim.assembly.loads import STANDARD_GRAVITY, gravity_load
 from rotorsim.assembly.system import assemble
 from rotorsim.elements.disk import DiskElement
-from rotorsim.elements.rolling.ball import BallBearing
+from rotorsim.elements.rolling.ball.bearing import BallBearing
 from rotorsim.elements.rolling.element import RollingBearing
 from rotorsim.elements.rolling.reversed import ReversedBearing
-from rotorsim.elements.rolling.roller import RollerBearing
+from rotorsim.elements.rolling.roller.bearing import RollerBearing
 from rotorsim.elements.shaft import ShaftElement
 from rotorsim.errors import ConvergenceError, ModelError
 from rotorsim.model.material import Material

@@ -6,8 +6,8 @@ import numpy as np
 import pytest
 
 import rotorsim as rs
-from rotorsim.analyses.critical_speed_map import critical_speed_map
-from rotorsim.analyses.critical_speeds import critical_speeds
+from rotorsim.analyses.linear.critical_speed_map import critical_speed_map
+from rotorsim.analyses.linear.critical_speeds import critical_speeds
 from rotorsim.errors import ModelError
 
 STEEL = rs.Material(name="steel", E=211e9, G_s=81.2e9, rho=7810)

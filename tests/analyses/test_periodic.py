@@ -16,17 +16,17 @@ import numpy as np
 import pytest
 
 import rotorsim as rs
-from rotorsim.analyses.frequency_response import unbalance_response
-from rotorsim.analyses.periodic import periodic
-from rotorsim.analyses.periodic_excitation import (
+from rotorsim.analyses.linear.frequency_response import unbalance_response
+from rotorsim.analyses.periodic.excitation import (
     HarmonicBase,
     fundamental_order,
     plan_excitation,
 )
-from rotorsim.analyses.periodic_problem import build_problem
-from rotorsim.analyses.periodic_stability import stability_model
+from rotorsim.analyses.periodic.periodic import periodic
+from rotorsim.analyses.periodic.problem import build_problem
+from rotorsim.analyses.periodic.stability import stability_model
 from rotorsim.assembly.system import assemble
-from rotorsim.elements.rolling.ball import BallBearing
+from rotorsim.elements.rolling.ball.bearing import BallBearing
 from rotorsim.elements.rolling.element import RollingBearing
 from rotorsim.errors import ModelError
 from rotorsim.harmonic_balance.floquet import hill
@@ -160,7 +160,7 @@ def test_condensed_and_full_harmonic_balance_give_the_same_point():
 
 
 def test_resume_after_an_interruption_equals_the_uninterrupted_branch(tmp_path, monkeypatch):
-    import rotorsim.analyses.periodic_branch as pb
+    import rotorsim.analyses.periodic.branch as pb
 
     kw = {"unbalance": UNBALANCE, "max_points": 9, "stability": None, "bifurcations": False,
           **FAST}
@@ -342,7 +342,7 @@ def test_figures_draw_the_branch_its_stability_and_a_point(branch, tmp_path):
 
 
 def test_parameter_branch_resumes_from_its_checkpoint(tmp_path):
-    from rotorsim.analyses.periodic_parameter import periodic_parameter
+    from rotorsim.analyses.periodic.parameter import periodic_parameter
 
     def vary(c):
         return [RollingBearing(ball("fixed", clearance=c), n=n, tag=f"B{n}") for n in (0, 2)]
@@ -425,7 +425,7 @@ def test_resume_of_a_finished_run_returns_its_result_also_from_the_results_file(
 @pytest.mark.parametrize("harmonics", [0, 2.5, 10000])
 def test_parameter_branches_check_harmonics_before_any_solve(harmonics, monkeypatch):
     import rotorsim.harmonic_balance.memory as memory
-    from rotorsim.analyses.periodic_parameter import periodic_parameter
+    from rotorsim.analyses.periodic.parameter import periodic_parameter
 
     monkeypatch.setattr(memory, "memory_limit", lambda: 8 * memory.GIB)
     with pytest.raises(ModelError, match=r"periodic_parameter\.harmonics: (must be a positive "
@@ -435,7 +435,7 @@ def test_parameter_branches_check_harmonics_before_any_solve(harmonics, monkeypa
 
 
 def test_a_short_parameter_branch_is_not_ok():
-    from rotorsim.analyses.periodic_parameter import periodic_parameter
+    from rotorsim.analyses.periodic.parameter import periodic_parameter
 
     res = periodic_parameter(jeffcott(), "forcing", speed=1100.0, start=0.2, stop=1.0,
                              unbalance=UNBALANCE, harmonics=4, max_points=3, stability=None,

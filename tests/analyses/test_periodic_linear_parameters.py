@@ -23,11 +23,11 @@ import pytest
 from test_periodic import UNBALANCE, ball, jeffcott
 
 import rotorsim as rs
-from rotorsim.analyses.periodic import periodic
-from rotorsim.analyses.periodic_branch import first_point, unknown_scales
-from rotorsim.analyses.periodic_excitation import plan_excitation
-from rotorsim.analyses.periodic_problem import build_problem
-from rotorsim.analyses.periodic_variation import RotorFamilyResidual, parametric_residual
+from rotorsim.analyses.periodic.branch import first_point, unknown_scales
+from rotorsim.analyses.periodic.excitation import plan_excitation
+from rotorsim.analyses.periodic.periodic import periodic
+from rotorsim.analyses.periodic.problem import build_problem
+from rotorsim.analyses.periodic.variation import RotorFamilyResidual, parametric_residual
 from rotorsim.assembly.system import assemble
 from rotorsim.elements.rolling.element import RollingBearing
 from rotorsim.errors import InconsistentModelError, ModelError
@@ -93,7 +93,7 @@ def test_jump_map_in_the_damping_crosses_the_folds_of_the_damping_branch(damping
     continued in the damper coefficient passes 1250 rad/s where the damping branch at
     1250 rad/s folds (two independent continuations, in the speed and in the damping),
     and at 4000 N s/m it matches the fold of a speed branch computed at 4000."""
-    from rotorsim.analyses.periodic_folds import ParameterMap
+    from rotorsim.analyses.periodic.folds import ParameterMap
 
     mapped = periodic(damped(5000.0), start=1190.0, stop=1310.0, unbalance=UNBALANCE,
                       harmonics=6, tol=1e-9, max_step=0.1, stability=None,

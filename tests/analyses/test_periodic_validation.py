@@ -20,9 +20,9 @@ import numpy as np
 import pytest
 from test_periodic import UNBALANCE, jeffcott
 
-from rotorsim.analyses.periodic import periodic
-from rotorsim.analyses.speed_profile import LinearSpeed
-from rotorsim.analyses.transient import transient
+from rotorsim.analyses.periodic.periodic import periodic
+from rotorsim.analyses.transient.speed_profile import LinearSpeed
+from rotorsim.analyses.transient.transient import transient
 
 pytestmark = pytest.mark.verification
 DISK = 1
@@ -183,7 +183,7 @@ def test_clearance_branch_matches_speed_branches_at_fixed_clearances(hb):
     clearances 9 and 8 um; the clearance branch turns at a fold (coexistence ends)."""
     from test_periodic import ball
 
-    from rotorsim.analyses.periodic_parameter import periodic_parameter
+    from rotorsim.analyses.periodic.parameter import periodic_parameter
     from rotorsim.elements.rolling.element import RollingBearing
 
     def vary(c):
@@ -221,7 +221,7 @@ def test_folds_tracked_in_the_clearance_match_a_branch_at_that_clearance():
     independent speed branch computed with 9 um bearings."""
     from test_periodic import ball
 
-    from rotorsim.analyses.periodic_folds import ParameterMap
+    from rotorsim.analyses.periodic.folds import ParameterMap
     from rotorsim.elements.rolling.element import RollingBearing
 
     def vary(c):
@@ -250,7 +250,7 @@ def test_folds_tracked_in_the_clearance_match_a_branch_at_that_clearance():
 def test_forcing_branch_matches_speed_branches_at_reduced_unbalance():
     """rs.periodic_parameter(rotor, "forcing"): the load (unbalance) amplitude as the
     continuation parameter at 1250 rad/s, against rs.periodic with 90 % and 60 % of it."""
-    from rotorsim.analyses.periodic_parameter import periodic_parameter
+    from rotorsim.analyses.periodic.parameter import periodic_parameter
 
     W = 1250.0
     res = periodic_parameter(jeffcott(), "forcing", speed=W, start=1.0, stop=0.3,

@@ -10,10 +10,10 @@ import pytest
 import scipy.sparse as sp
 
 import rotorsim as rs
-from rotorsim.analyses.nonlinear_static import nominal_tangent
 from rotorsim.analyses.rigid_motions import free_rigid_motions, held_dofs
-from rotorsim.analyses.rotor_energy import RotorEnergy, energy_equilibrium
-from rotorsim.analyses.static import _applied_load
+from rotorsim.analyses.statics.nonlinear_static import nominal_tangent
+from rotorsim.analyses.statics.rotor_energy import RotorEnergy, energy_equilibrium
+from rotorsim.analyses.statics.static import _applied_load
 from rotorsim.assembly.loads import unit_direction
 from rotorsim.errors import ModelError
 

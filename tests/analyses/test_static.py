@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from rotorsim.analyses.rigid_motions import free_rigid_motions, rigid_body_fields
-from rotorsim.analyses.static import static
+from rotorsim.analyses.statics.static import static
 from rotorsim.assembly.system import assemble
 from rotorsim.elements.disk import DiskElement
 from rotorsim.elements.linear_bearing import BearingElement

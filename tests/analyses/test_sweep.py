@@ -11,8 +11,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from rotorsim.analyses.critical_speeds import critical_speeds
-from rotorsim.analyses.sweep import (
+from rotorsim.analyses.linear.critical_speeds import critical_speeds
+from rotorsim.analyses.sweep.sweep import (
     Grid,
     Normal,
     Sample,
@@ -292,7 +292,7 @@ def test_dask_records_failures_like_serial(dask_client):
 # ---------------------------------------------------------------------------- resume
 HELPER = """
 import os
-from rotorsim.analyses.sweep import critical_speeds_eval
+from rotorsim.analyses.sweep.sweep import critical_speeds_eval
 
 _CALLS = [0]
 _CRITICAL = critical_speeds_eval(1.0, 2, whirl="forward", sparse=False)
@@ -314,7 +314,7 @@ sys.path.insert(0, {tests!r})
 sys.path.insert(0, {helper!r})
 import sweep_interrupt_helper as helper
 from test_sweep import APPLY, small_rotor, stiffness_grid
-from rotorsim.analyses.sweep import sweep
+from rotorsim.analyses.sweep.sweep import sweep
 
 if __name__ == "__main__":
     sweep(small_rotor(), stiffness_grid(), APPLY, helper.evaluate, store={store!r},
@@ -421,7 +421,7 @@ def test_rs_load_reads_a_sweep_store(tmp_path):
         name="s", E=211e9, G_s=81.2e9, rho=7810.0)) for _ in range(4)], [],
         [rs.BearingElement(n=0, kxx=1e6), rs.BearingElement(n=4, kxx=1e6)])
     space = rs.Grid({"bearing_k": [1e6, 2e6]})
-    from rotorsim.analyses.sweep import critical_speeds_eval, set_bearing_stiffness
+    from rotorsim.analyses.sweep.sweep import critical_speeds_eval, set_bearing_stiffness
 
     result = rs.sweep(rotor, space, set_bearing_stiffness([0, 1]),
                       critical_speeds_eval(num_modes=1, sparse=False), store=tmp_path / "s.h5")

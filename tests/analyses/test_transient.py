@@ -7,10 +7,10 @@ import numpy as np
 import pytest
 
 import rotorsim as rs
-from rotorsim.analyses.frequency_response import unbalance_response
-from rotorsim.analyses.speed_profile import LinearSpeed, SpeedFunction
-from rotorsim.analyses.transient import transient
-from rotorsim.analyses.transient_loads import BaseExcitation
+from rotorsim.analyses.linear.frequency_response import unbalance_response
+from rotorsim.analyses.transient.loads import BaseExcitation
+from rotorsim.analyses.transient.speed_profile import LinearSpeed, SpeedFunction
+from rotorsim.analyses.transient.transient import transient
 from rotorsim.assembly.system import assemble
 from rotorsim.errors import ConvergenceError, ModelError
 from rotorsim.io.model_file import load_model
@@ -71,7 +71,7 @@ def test_unbalance_angular_acceleration_term_is_the_reaction_of_the_eccentric_ma
 
 
 def _loads(system, profile, unbalance):
-    from rotorsim.analyses.transient import _problem
+    from rotorsim.analyses.transient.transient import _problem
 
     bound = profile.bind(0.0, 1.0)
     _, loads = _problem(system, bound, 0.0, unbalance, None, (0, -1, 0), (), None, None)
@@ -109,7 +109,7 @@ def test_local_tangents_give_the_dense_path_result():
     kw = dict(speed=300.0, nodes=[5], unbalance=[(5, 1e-5, 0.0)])
     fast = transient(model.rotor.with_nonlinear(model.rolling_bearings), 0.004, 2e-5, **kw)
     system = assemble(model.rotor, model.rolling_bearings)
-    from rotorsim.analyses import transient_loads
+    from rotorsim.analyses.transient import loads as transient_loads
 
     original = transient_loads.RestoringForce.__call__
 
@@ -179,7 +179,7 @@ def test_resume_equals_uninterrupted(tmp_path, monkeypatch):
     class Stop(Exception):
         pass
 
-    import rotorsim.analyses.transient as module
+    import rotorsim.analyses.transient.transient as module
 
     original = module.integrate
 

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 import rotorsim as rs
-from rotorsim.analyses.nonlinear_static import nominal_tangent
+from rotorsim.analyses.statics.nonlinear_static import nominal_tangent
 from rotorsim.assembly.reduction import accuracy, craig_bampton
 from rotorsim.errors import ModelError
 

@@ -16,12 +16,12 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import rotorsim
-from rotorsim.analyses.campbell import campbell
-from rotorsim.analyses.critical_speed_map import critical_speed_map
-from rotorsim.analyses.critical_speeds import critical_speeds
-from rotorsim.analyses.frequency_response import frequency_response, unbalance_response
-from rotorsim.analyses.modal import modal
-from rotorsim.analyses.static import static
+from rotorsim.analyses.linear.campbell import campbell
+from rotorsim.analyses.linear.critical_speed_map import critical_speed_map
+from rotorsim.analyses.linear.critical_speeds import critical_speeds
+from rotorsim.analyses.linear.frequency_response import frequency_response, unbalance_response
+from rotorsim.analyses.linear.modal import modal
+from rotorsim.analyses.statics.static import static
 from rotorsim.assembly.dof_map import DofMap
 from rotorsim.assembly.system import assemble
 from rotorsim.elements.disk import DiskElement
@@ -124,7 +124,7 @@ def results() -> dict[str, Any]:
 
 
 def _bearing_results() -> dict[str, Any]:
-    from rotorsim.analyses.bearing_statics import bearing_equilibrium, stiffness_over_pass
+    from rotorsim.analyses.statics.bearing_statics import bearing_equilibrium, stiffness_over_pass
     from rotorsim.elements.rolling import BallBearing
 
     bearing = BallBearing(n_balls=10, pitch_diameter=0.05, ball_diameter=0.008, Kn=8e9,

@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 import rotorsim as rs
-from rotorsim.analyses.sweep import Grid, min_log_dec, set_bearing_stiffness, sweep
+from rotorsim.analyses.sweep.sweep import Grid, min_log_dec, set_bearing_stiffness, sweep
 from rotorsim.io.model_file import load_model, save_model
 from rotorsim.time_integration.integrate import integrate
 from rotorsim.time_integration.newmark import Newmark

@@ -17,11 +17,11 @@ import tomli_w
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from rotorsim.elements.rolling.ball import BallBearing
+from rotorsim.elements.rolling.ball.bearing import BallBearing
 from rotorsim.elements.rolling.element import RollingBearing
 from rotorsim.elements.rolling.reversed import ReversedBearing
-from rotorsim.elements.rolling.roller import RollerBearing
-from rotorsim.elements.rolling.roller_profile import (
+from rotorsim.elements.rolling.roller.bearing import RollerBearing
+from rotorsim.elements.rolling.roller.profile import (
     CircularCrown,
     LogarithmicProfile,
     StraightProfile,

@@ -9,7 +9,7 @@ import h5py
 import numpy as np
 import pytest
 
-from rotorsim.analyses.sweep import Grid, Normal, Sample, set_bearing_stiffness, sweep
+from rotorsim.analyses.sweep.sweep import Grid, Normal, Sample, set_bearing_stiffness, sweep
 from rotorsim.elements.linear_bearing import BearingElement
 from rotorsim.elements.shaft import ShaftElement
 from rotorsim.errors import ModelError, Status
@@ -126,7 +126,7 @@ def test_content_hash_sees_every_model_number():
 def test_describe_callable_names_functions_and_bound_arguments():
     apply = set_bearing_stiffness([0, 1], "k")
     text = describe_callable(apply)
-    assert text.startswith("rotorsim.analyses.sweep_functions._change_bearings(")
+    assert text.startswith("rotorsim.analyses.sweep.functions._change_bearings(")
     assert "indices=(0, 1)" in text and "parameter='k'" in text
     assert describe_callable(None) == "none"
     assert describe_callable(functools.partial(outputs)) == f"{__name__}.outputs()"

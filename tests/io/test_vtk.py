@@ -10,11 +10,11 @@ import meshio
 import numpy as np
 import pytest
 
-from rotorsim.analyses.campbell import campbell
-from rotorsim.analyses.critical_speeds import critical_speeds
-from rotorsim.analyses.frequency_response import frequency_response, unbalance_response
-from rotorsim.analyses.modal import modal
-from rotorsim.analyses.static import static
+from rotorsim.analyses.linear.campbell import campbell
+from rotorsim.analyses.linear.critical_speeds import critical_speeds
+from rotorsim.analyses.linear.frequency_response import frequency_response, unbalance_response
+from rotorsim.analyses.linear.modal import modal
+from rotorsim.analyses.statics.static import static
 from rotorsim.elements.disk import DiskElement, PointMass
 from rotorsim.elements.linear_bearing import BearingElement
 from rotorsim.elements.shaft import ShaftElement

@@ -9,8 +9,8 @@ import numpy as np
 import pytest
 from matplotlib.patches import Rectangle
 
-from rotorsim.analyses.bearing_statics import bearing_equilibrium, stiffness_over_pass
-from rotorsim.elements.rolling.ball import BallBearing
+from rotorsim.analyses.statics.bearing_statics import bearing_equilibrium, stiffness_over_pass
+from rotorsim.elements.rolling.ball.bearing import BallBearing
 from rotorsim.plotting import plot
 from rotorsim.plotting.bearing_figures import load_zone_sector, stiffness_variation_figure
 

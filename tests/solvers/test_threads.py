@@ -16,8 +16,8 @@ import pytest
 from threadpoolctl import threadpool_info, threadpool_limits
 
 import rotorsim as rs
-from rotorsim.analyses.campbell import campbell
-from rotorsim.analyses.sweep import Grid, sweep
+from rotorsim.analyses.linear.campbell import campbell
+from rotorsim.analyses.sweep.sweep import Grid, sweep
 from rotorsim.harmonic_balance.problem import HBProblem
 from rotorsim.harmonic_balance.residual import make_residual
 from rotorsim.harmonic_balance.solve import solve_point
@@ -173,7 +173,7 @@ def test_the_limit_is_set_once_per_analysis_not_per_speed(monkeypatch):
 def test_the_transient_static_start_runs_with_one_blas_thread(monkeypatch):
     # the static start on the rolling bearings precedes the time steps: capped too (next to
     # a busy process it was the uncapped part of the default model's run-up)
-    import rotorsim.analyses.transient as transient_module
+    import rotorsim.analyses.transient.transient as transient_module
 
     seen: list[int] = []
     original = transient_module.initial_state

@@ -16,10 +16,10 @@ import numpy as np
 import pytest
 
 from examples import seed000_load_cases as seed
-from rotorsim.analyses.bearing_statics import bearing_equilibrium, stiffness_over_pass
-from rotorsim.elements.rolling.ball import BallBearing
-from rotorsim.elements.rolling.hertz_line import constant_to_si
-from rotorsim.elements.rolling.roller import RollerBearing
+from rotorsim.analyses.statics.bearing_statics import bearing_equilibrium, stiffness_over_pass
+from rotorsim.elements.rolling.ball.bearing import BallBearing
+from rotorsim.elements.rolling.contact.hertz_line import constant_to_si
+from rotorsim.elements.rolling.roller.bearing import RollerBearing
 from rotorsim.errors import ModelError
 
 pytestmark = pytest.mark.validation

@@ -18,7 +18,7 @@ from beam_theory import (
 )
 from modal_matching import relative_error
 
-from rotorsim.analyses.modal import modal
+from rotorsim.analyses.linear.modal import modal
 from rotorsim.elements.shaft import ShaftElement
 from rotorsim.model.material import Material
 from rotorsim.model.rotor import Rotor

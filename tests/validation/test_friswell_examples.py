@@ -26,7 +26,7 @@ from examples.textbook_rotors import (
     friswell_5_9_5,
     friswell_5_9_9,
 )
-from rotorsim.analyses.modal import modal
+from rotorsim.analyses.linear.modal import modal
 
 pytestmark = pytest.mark.validation
 

@@ -18,7 +18,7 @@ import pytest
 from beam_theory import cowper_solid
 from modal_matching import relative_error
 
-from rotorsim.analyses.modal import modal
+from rotorsim.analyses.linear.modal import modal
 from rotorsim.elements.disk import DiskElement
 from rotorsim.elements.linear_bearing import BearingElement
 from rotorsim.elements.shaft import ShaftElement

@@ -18,7 +18,7 @@ from reference_ross import ROSS
 from scipy.integrate import quad
 
 from examples.textbook_rotors import tapered_rotor
-from rotorsim.analyses.modal import modal
+from rotorsim.analyses.linear.modal import modal
 from rotorsim.elements.shaft import ShaftElement
 from rotorsim.model.material import Material
 from rotorsim.model.rotor import Rotor

@@ -15,7 +15,7 @@ import pytest
 from beam_theory import VariableBeam, cowper_solid, shooting_frequencies, simply_supported_frequency
 from modal_matching import relative_error
 
-from rotorsim.analyses.modal import modal
+from rotorsim.analyses.linear.modal import modal
 from rotorsim.elements.shaft import ShaftElement
 from rotorsim.model.material import Material
 from rotorsim.model.rotor import Rotor

@@ -2,7 +2,7 @@
 
 Checks: the contact law and its derivatives, the mesh and the operators, a linear-elastic
 case against Lame's thick-ring solution, equilibrium, mesh convergence, the rigid-ring limit
-against :class:`~rotorsim.elements.rolling.roller.RollerBearing`, and the seed 001 bearing
+against :class:`~rotorsim.elements.rolling.roller.bearing.RollerBearing`, and the seed 001 bearing
 against the statements of its section 3.1. Tests use coarse meshes (the mesh study shows
 they are within 1e-4 of the finest mesh); ``python -m rotorsim.verification.ring_seed001``
 runs the fine ones.
@@ -16,8 +16,8 @@ import meshio
 import numpy as np
 import pytest
 
-from rotorsim.analyses.bearing_statics import bearing_equilibrium
-from rotorsim.elements.rolling.hertz_line import iso_roller_constant
+from rotorsim.analyses.statics.bearing_statics import bearing_equilibrium
+from rotorsim.elements.rolling.contact.hertz_line import iso_roller_constant
 from rotorsim.errors import ModelError
 from rotorsim.solvers.linear import factorize
 from rotorsim.verification import ring_forms as forms

@@ -15,8 +15,8 @@ Model (per element, batched over samples x elements; no loop over either):
   ``K_c = 2^n Kn`` of the whole-element constant ``Kn`` (equal contacts: two of them in
   series give back ``Q = Kn delta^n``), ``n`` the load-deflection exponent;
 * the element's position between the rings is an internal DOF (2 per element, see
-  :mod:`~rotorsim.elements.rolling.ball_centrifugal` and
-  :mod:`~rotorsim.elements.rolling.roller_centrifugal`); its equilibrium minimises the
+  :mod:`~rotorsim.elements.rolling.ball.centrifugal` and
+  :mod:`~rotorsim.elements.rolling.roller.centrifugal`); its equilibrium minimises the
   element potential ``Pi = U_inner + U_outer - (work of Fc)`` with ``Fc`` constant (the
   radius change of the element is neglected against ``d_m / 2``: seed 001 eq 18 linearised,
   dropping a negative stiffness ``m omega_c^2``, below 1e-4 of the contact stiffness);
@@ -28,8 +28,8 @@ Model (per element, batched over samples x elements; no loop over either):
   ``K* = K_ii - K_ir K_rr^-1 K_ri`` (inner and outer contact stiffness in series), so
   ``force = dU*/d delta`` and ``stiffness = d force / d delta`` hold exactly.
 
-:class:`CentrifugalBearing` wraps a :class:`~rotorsim.elements.rolling.ball.BallBearing` or
-:class:`~rotorsim.elements.rolling.roller.RollerBearing` (or a
+:class:`CentrifugalBearing` wraps a :class:`~rotorsim.elements.rolling.ball.bearing.BallBearing` or
+:class:`~rotorsim.elements.rolling.roller.bearing.RollerBearing` (or a
 :class:`~rotorsim.elements.rolling.reversed.ReversedBearing` of one) and adds the element
 mass and the speed; at zero speed it returns the wrapped model's state unchanged.
 
@@ -50,11 +50,11 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from rotorsim.elements.rolling import geometry
-from rotorsim.elements.rolling.ball import BallBearing
-from rotorsim.elements.rolling.ball_centrifugal import ball_state
+from rotorsim.elements.rolling.ball.bearing import BallBearing
+from rotorsim.elements.rolling.ball.centrifugal import ball_state
 from rotorsim.elements.rolling.reversed import ReversedBearing
-from rotorsim.elements.rolling.roller import RollerBearing
-from rotorsim.elements.rolling.roller_centrifugal import roller_state
+from rotorsim.elements.rolling.roller.bearing import RollerBearing
+from rotorsim.elements.rolling.roller.centrifugal import roller_state
 from rotorsim.elements.rolling.state import BearingState, FloatArray
 from rotorsim.errors import ModelError
 

@@ -23,7 +23,7 @@ Layout: the system index is the **last** axis of every array (``grad (a, M)``,
 contiguous vector over the systems.
 
 Everything here is model-agnostic: the flexible-ring roller
-(:mod:`~rotorsim.elements.rolling.flexible_ring_roller`) supplies the potential.
+(:mod:`~rotorsim.elements.rolling.flexible_ring.roller`) supplies the potential.
 """
 
 from __future__ import annotations

@@ -14,7 +14,7 @@ difference of the exact tangent (step 1e-9 m in the scaled displacement; an algo
 tangent, DESIGN section 4).
 
 ``"ehl"``: the lubricated-contact model of seed 002 section 3.2
-(:mod:`~rotorsim.elements.rolling.ehl`): ``F_d = C(delta, W) delta'`` with
+(:mod:`~rotorsim.elements.rolling.lubrication`): ``F_d = C(delta, W) delta'`` with
 ``C = sum_p c_p g_p g_p^T`` from the squeeze-film damping ``c_p`` of every loaded ball or
 roller slice (inner and outer contact in series, eq 3.5 at zero frequency) along its
 unit-load direction ``g_p``; ``C = dF/d delta'`` exactly and ``dF/d delta`` gains the
@@ -44,7 +44,7 @@ from numpy.typing import ArrayLike, NDArray
 from rotorsim.elements.base import ElementForce, frozen_scalar
 from rotorsim.elements.linear_bearing import BearingElement
 from rotorsim.elements.rolling.centrifugal import CentrifugalBearing
-from rotorsim.elements.rolling.ehl import Lubricant, LubricatedContacts
+from rotorsim.elements.rolling.lubrication import Lubricant, LubricatedContacts
 from rotorsim.elements.rolling.reversed import ReversedBearing
 from rotorsim.errors import ModelError
 
@@ -79,8 +79,8 @@ class RollingBearing:
     Parameters
     ----------
     bearing : BallBearing or RollerBearing
-        The rigid-ring model (:mod:`~rotorsim.elements.rolling.ball`,
-        :mod:`~rotorsim.elements.rolling.roller`).
+        The rigid-ring model (:mod:`~rotorsim.elements.rolling.ball.bearing`,
+        :mod:`~rotorsim.elements.rolling.roller.bearing`).
     n : int
         Shaft node of the inner ring.
     n_link : int, optional
@@ -99,7 +99,7 @@ class RollingBearing:
 
     Examples
     --------
-    >>> from rotorsim.elements.rolling.ball import BallBearing
+    >>> from rotorsim.elements.rolling.ball.bearing import BallBearing
     >>> ball = BallBearing(n_balls=8, pitch_diameter=0.04, ball_diameter=0.008, Kn=8e9,
     ...                    f_i=0.52, f_o=0.52)
     >>> rb = RollingBearing(ball, n=0)
@@ -334,7 +334,7 @@ class RollingBearing:
         load : array (5,), optional
             ``[Fx, Fy, Fz, Mx, My]`` on the inner ring [N, N m]: the equilibrium
             displacement is solved first
-            (:func:`~rotorsim.analyses.bearing_statics.bearing_equilibrium`, ``options``
+            (:func:`~rotorsim.analyses.statics.bearing_statics.bearing_equilibrium`, ``options``
             are passed on).
         displacement : array (5,), optional
             Relative displacement ``delta`` instead of a load.
@@ -365,7 +365,7 @@ class RollingBearing:
             else self.bearing
         if load is not None:
             # analyses sit downstream of elements: imported here, at call time
-            from rotorsim.analyses.bearing_statics import bearing_equilibrium
+            from rotorsim.analyses.statics.bearing_statics import bearing_equilibrium
 
             eq = bearing_equilibrium(model, load, phi=phi, **options)
             k5, d = eq.stiffness, np.asarray(eq.displacement, dtype=float).reshape(1, 5)

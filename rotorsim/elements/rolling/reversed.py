@@ -30,7 +30,7 @@ class ReversedBearing:
 
     Examples
     --------
-    >>> from rotorsim.elements.rolling.roller import RollerBearing
+    >>> from rotorsim.elements.rolling.roller.bearing import RollerBearing
     >>> base = RollerBearing(14, 0.0425, 0.0075, 0.01, Kn=3e8, contact_angle=0.3)
     >>> d, psi = [[0.0, 0.0, -5e-6, 0.0, 0.0]], base.element_angles()
     >>> bool(ReversedBearing(base).state(d, psi).force[0, 2] < 0), float(

@@ -8,9 +8,9 @@ import numpy as np
 import pytest
 from scipy.optimize import brentq
 
-from rotorsim.elements.rolling.ball import BallBearing
+from rotorsim.elements.rolling.ball.bearing import BallBearing
+from rotorsim.elements.rolling.contact.hertz_point import ball_bearing_constant
 from rotorsim.elements.rolling.geometry import cage_ratio
-from rotorsim.elements.rolling.hertz_point import ball_bearing_constant
 from rotorsim.errors import ModelError
 
 BEARINGS = {

@@ -14,14 +14,14 @@ import numpy as np
 import pytest
 from scipy.optimize import brentq, fsolve
 
-from rotorsim.analyses.bearing_statics import bearing_equilibrium
-from rotorsim.elements.rolling.ball import BallBearing
+from rotorsim.analyses.statics.bearing_statics import bearing_equilibrium
+from rotorsim.elements.rolling.ball.bearing import BallBearing
 from rotorsim.elements.rolling.centrifugal import CentrifugalBearing
 from rotorsim.elements.rolling.element import RollingBearing
 from rotorsim.elements.rolling.geometry import cage_ratio
 from rotorsim.elements.rolling.reversed import ReversedBearing
-from rotorsim.elements.rolling.roller import RollerBearing
-from rotorsim.elements.rolling.roller_profile import CircularCrown, LogarithmicProfile
+from rotorsim.elements.rolling.roller.bearing import RollerBearing
+from rotorsim.elements.rolling.roller.profile import CircularCrown, LogarithmicProfile
 from rotorsim.errors import ModelError
 
 STEEL = 7850.0  # kg/m^3
@@ -366,7 +366,7 @@ def test_bad_models_states_and_combinations():
         model.state(np.zeros((2, 5)), psi, speed=[1.0, np.nan])
     with pytest.raises(ModelError, match="delta must have shape"):
         model.state(np.zeros((2, 4)), psi, SPEED)
-    from rotorsim.elements.rolling.ehl import Lubricant
+    from rotorsim.elements.rolling.lubrication import Lubricant
 
     with pytest.raises(ModelError, match="not implemented with the centrifugal"):
         RollingBearing(model, n=0, contact_damping="ehl",

@@ -18,8 +18,11 @@ import numpy as np
 import pytest
 from scipy.integrate import quad
 
-from rotorsim.elements.rolling.ball import BallBearing
-from rotorsim.elements.rolling.ehl import (
+from rotorsim.elements.rolling.ball.bearing import BallBearing
+from rotorsim.elements.rolling.contact.hertz_point import race_curvature_radii
+from rotorsim.elements.rolling.element import RollingBearing
+from rotorsim.elements.rolling.geometry import cage_ratio
+from rotorsim.elements.rolling.lubrication import (
     Lubricant,
     LubricatedContacts,
     central_film_line,
@@ -28,11 +31,8 @@ from rotorsim.elements.rolling.ehl import (
     entrainment_speed,
     series_stiffness,
 )
-from rotorsim.elements.rolling.element import RollingBearing
-from rotorsim.elements.rolling.geometry import cage_ratio
-from rotorsim.elements.rolling.hertz_point import race_curvature_radii
-from rotorsim.elements.rolling.roller import RollerBearing
-from rotorsim.elements.rolling.roller_profile import CircularCrown, slice_centres
+from rotorsim.elements.rolling.roller.bearing import RollerBearing
+from rotorsim.elements.rolling.roller.profile import CircularCrown, slice_centres
 from rotorsim.errors import ModelError
 
 OIL = Lubricant(eta0=0.04, alpha=2.0e-8, name="ISO VG 68 at ~40 C")
@@ -447,7 +447,7 @@ def test_linearize_with_ehl():
     load = [900.0, -200.0, 1500.0, 0.0, 0.0]
     lin, lin_soft = element.linearize(load=load, speed=400.0), soft.linearize(load=load,
                                                                                speed=400.0)
-    from rotorsim.analyses.bearing_statics import bearing_equilibrium
+    from rotorsim.analyses.statics.bearing_statics import bearing_equilibrium
 
     eq = bearing_equilibrium(BALL, load)
     ref = LubricatedContacts(BALL, OIL).matrices(eq.displacement[None], BALL.element_angles(),

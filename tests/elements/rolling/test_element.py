@@ -8,15 +8,15 @@ import math
 import numpy as np
 import pytest
 
-from rotorsim.analyses.bearing_statics import bearing_equilibrium, linearized_bearings
-from rotorsim.analyses.critical_speeds import critical_speeds
-from rotorsim.analyses.modal import modal
-from rotorsim.analyses.static import static
+from rotorsim.analyses.linear.critical_speeds import critical_speeds
+from rotorsim.analyses.linear.modal import modal
+from rotorsim.analyses.statics.bearing_statics import bearing_equilibrium, linearized_bearings
+from rotorsim.analyses.statics.static import static
 from rotorsim.elements.disk import DiskElement
 from rotorsim.elements.linear_bearing import BearingElement
-from rotorsim.elements.rolling.ball import BallBearing
+from rotorsim.elements.rolling.ball.bearing import BallBearing
 from rotorsim.elements.rolling.element import ElementForce, RollingBearing
-from rotorsim.elements.rolling.roller import RollerBearing
+from rotorsim.elements.rolling.roller.bearing import RollerBearing
 from rotorsim.elements.shaft import ShaftElement
 from rotorsim.errors import ModelError
 from rotorsim.model.material import Material

@@ -9,10 +9,10 @@ import numpy as np
 import pytest
 from scipy.optimize import brentq
 
-from rotorsim.analyses.bearing_statics import bearing_equilibrium
-from rotorsim.elements.rolling.flexible_rings import FlexibleRingRollerBearing
-from rotorsim.elements.rolling.roller import RollerBearing
-from rotorsim.elements.rolling.roller_profile import LogarithmicProfile
+from rotorsim.analyses.statics.bearing_statics import bearing_equilibrium
+from rotorsim.elements.rolling.flexible_ring.bearing import FlexibleRingRollerBearing
+from rotorsim.elements.rolling.roller.bearing import RollerBearing
+from rotorsim.elements.rolling.roller.profile import LogarithmicProfile
 from rotorsim.errors import ConvergenceError
 
 # seed 001 section 3.1 bearing, 5 slices to keep the tests fast

@@ -8,13 +8,13 @@ import math
 import numpy as np
 import pytest
 
-from rotorsim.analyses.bearing_statics import bearing_equilibrium
+from rotorsim.analyses.statics.bearing_statics import bearing_equilibrium
 from rotorsim.assembly.nonlinear import NonlinearAssembly
 from rotorsim.elements.base import NonlinearElement
 from rotorsim.elements.linear_bearing import BearingElement
-from rotorsim.elements.rolling.flexible_ring_element import FlexibleRingBearingElement
-from rotorsim.elements.rolling.flexible_ring_geometry import RingSection
-from rotorsim.elements.rolling.flexible_rings import FlexibleRingRollerBearing
+from rotorsim.elements.rolling.flexible_ring.bearing import FlexibleRingRollerBearing
+from rotorsim.elements.rolling.flexible_ring.element import FlexibleRingBearingElement
+from rotorsim.elements.rolling.flexible_ring.geometry import RingSection
 from rotorsim.errors import ModelError
 
 SEED = dict(n_rollers=24, pitch_radius=75e-3, roller_radius=6.5e-3, effective_length=16e-3,

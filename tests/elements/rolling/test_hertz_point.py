@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 from scipy.integrate import quad
 
-from rotorsim.elements.rolling.hertz_point import (
+from rotorsim.elements.rolling.contact.hertz_point import (
     ball_bearing_constant,
     contact_constant,
     effective_modulus,

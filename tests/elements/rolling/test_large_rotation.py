@@ -101,7 +101,7 @@ def test_a_bearing_to_ground_is_refused():
 
 
 def test_flexible_ring_element_in_large_rotations_has_an_exact_tangent():
-    from rotorsim.elements.rolling.flexible_rings import FlexibleRingRollerBearing
+    from rotorsim.elements.rolling.flexible_ring.bearing import FlexibleRingRollerBearing
 
     ring = FlexibleRingRollerBearing(n_rollers=24, pitch_radius=75e-3, roller_radius=6.5e-3,
                                      effective_length=16e-3, shaft_radius=54e-3,

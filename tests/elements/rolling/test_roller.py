@@ -9,14 +9,14 @@ import pytest
 from scipy.integrate import quad
 from scipy.optimize import brentq
 
-from rotorsim.elements.rolling.geometry import cage_ratio
-from rotorsim.elements.rolling.hertz_line import (
+from rotorsim.elements.rolling.contact.hertz_line import (
     constant_to_si,
     iso_roller_constant,
     tilted_line_integrals,
 )
-from rotorsim.elements.rolling.roller import RollerBearing
-from rotorsim.elements.rolling.roller_profile import CircularCrown, LogarithmicProfile
+from rotorsim.elements.rolling.geometry import cage_ratio
+from rotorsim.elements.rolling.roller.bearing import RollerBearing
+from rotorsim.elements.rolling.roller.profile import CircularCrown, LogarithmicProfile
 from rotorsim.errors import ModelError
 
 # Seed 000 Table 1 roller bearing (Kn for the whole roller, N/m^(10/9)), L chosen 7.5 mm.

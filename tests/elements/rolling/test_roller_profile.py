@@ -7,7 +7,7 @@ import math
 import numpy as np
 import pytest
 
-from rotorsim.elements.rolling.hertz_line import (
+from rotorsim.elements.rolling.contact.hertz_line import (
     LINE_EXPONENT,
     constant_to_si,
     iso_roller_constant,
@@ -17,7 +17,7 @@ from rotorsim.elements.rolling.hertz_line import (
     roller_constant_from_contacts,
     slice_constant,
 )
-from rotorsim.elements.rolling.roller_profile import (
+from rotorsim.elements.rolling.roller.profile import (
     CircularCrown,
     LogarithmicProfile,
     StraightProfile,

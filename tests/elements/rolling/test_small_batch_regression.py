@@ -40,13 +40,13 @@ import pytest
 from rotorsim.assembly.system import assemble
 from rotorsim.elements.disk import DiskElement, PointMass
 from rotorsim.elements.linear_bearing import BearingElement
-from rotorsim.elements.rolling.ball import BallBearing
+from rotorsim.elements.rolling.ball.bearing import BallBearing
 from rotorsim.elements.rolling.centrifugal import CentrifugalBearing
-from rotorsim.elements.rolling.ehl import Lubricant
 from rotorsim.elements.rolling.element import RollingBearing
+from rotorsim.elements.rolling.lubrication import Lubricant
 from rotorsim.elements.rolling.reversed import ReversedBearing
-from rotorsim.elements.rolling.roller import RollerBearing
-from rotorsim.elements.rolling.roller_profile import CircularCrown
+from rotorsim.elements.rolling.roller.bearing import RollerBearing
+from rotorsim.elements.rolling.roller.profile import CircularCrown
 from rotorsim.elements.shaft import ShaftElement
 from rotorsim.model.material import Material
 from rotorsim.model.rotor import Rotor

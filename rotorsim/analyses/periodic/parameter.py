@@ -1,0 +1,275 @@
+"""Periodic branches over a model parameter at a fixed speed: a parameter of the nonlinear
+elements (clearance, preload, contact law), of the linear part (a damper coefficient, a
+bearing stiffness, a disk), a static point load, or the forcing amplitude.
+
+``periodic_parameter(rotor, vary, speed=W, start=a, stop=b)`` continues the periodic
+response of :func:`rotorsim.periodic` in a scalar ``mu``:
+
+* ``vary(mu)`` returns the nonlinear elements (same nodes and kinds) or a whole
+  :class:`~rotorsim.model.rotor.Rotor` (same nodes, constraints and nonlinear DOFs) for each
+  value; the harmonic-balance residual at ``mu`` is built as described in
+  :mod:`~rotorsim.analyses.periodic.variation` (``d R / d mu`` by central differences);
+* ``vary="loads"``: ``mu`` multiplies the static point loads ``loads`` (gravity stays);
+* ``vary="forcing"``: ``mu`` is the fraction of the periodic forcing (unbalance, housing
+  excitation).
+
+The HB problem is that of ``rs.periodic`` at the speed ``W`` (same unknowns, condensation
+and forcing). The first point comes from ``rs.periodic``'s start (Newton from the static
+solution, or a forcing homotopy) at ``mu = start``; folds and branch points in ``mu`` are
+detected and located, and Floquet multipliers are computed at every point as in
+``rs.periodic`` (on the rotor of each ``mu`` when the linear part varies).
+"""
+
+from __future__ import annotations
+
+import os
+import time
+from collections.abc import Callable, Sequence
+from typing import Any
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from rotorsim.analyses.periodic.branch import Stepping, first_point, judged, unknown_scales
+from rotorsim.analyses.periodic.events import floquet_events
+from rotorsim.analyses.periodic.excitation import plan_excitation
+from rotorsim.analyses.periodic.output import (
+    Recovery,
+    bifurcation_records,
+    branch_arrays,
+    kept_dofs,
+)
+from rotorsim.analyses.periodic.problem import build_problem, check_discretization
+from rotorsim.analyses.periodic.stability import DEFAULT_TOL, stability_model
+from rotorsim.analyses.periodic.variation import (
+    RotorFamilyResidual,
+    parametric_residual,
+    static_load_residual,
+)
+from rotorsim.assembly.loads import STANDARD_GRAVITY
+from rotorsim.assembly.system import assemble
+from rotorsim.errors import ConvergenceError, ModelError
+from rotorsim.harmonic_balance.bifurcation import BifurcationOptions, detect_bifurcations
+from rotorsim.harmonic_balance.residual import continuation_function, make_residual
+from rotorsim.harmonic_balance.solve import solve_point
+from rotorsim.model.rotor import Rotor
+from rotorsim.results.periodic import PeriodicResult
+from rotorsim.solvers.continuation import continue_branch
+from rotorsim.solvers.stats import Stats
+
+WHERE = "periodic_parameter"
+
+
+def periodic_parameter(
+    rotor: Rotor,
+    vary: Callable[[float], Any] | str,
+    *,
+    speed: float,
+    start: float,
+    stop: float,
+    name: str = "parameter",
+    harmonics: int = 10,
+    samples: int | None = None,
+    unbalance: Sequence[tuple[int, float, float]] = (),
+    gravity: float | None = STANDARD_GRAVITY,
+    direction: ArrayLike = (0.0, -1.0, 0.0),
+    loads: Sequence[tuple[int, str, float]] = (),
+    step: float | None = None,
+    max_step: float = 0.05,
+    max_points: int = 200,
+    tol: float = 1e-10,
+    nodes: Sequence[int] | None = None,
+    bifurcations: bool = True,
+    stability: str | None = "auto",
+    checkpoint: str | os.PathLike[str] | None = None,
+    checkpoint_every: int = 25,
+    resume: str | os.PathLike[str] | None = None,
+    progress: bool = False,
+) -> PeriodicResult:
+    """Branch of periodic responses over the model parameter ``mu`` (module docstring).
+
+    Parameters
+    ----------
+    rotor : Rotor
+        The rotor (its nonlinear elements are replaced when ``vary`` returns elements, the
+        whole rotor when it returns a Rotor).
+    vary : callable, "loads" or "forcing"
+        ``vary(mu) -> nonlinear elements`` (same nodes and kinds for every ``mu``),
+        ``vary(mu) -> Rotor`` (any parameter of the linear or nonlinear part; same nodes,
+        constraints and nonlinear DOFs), ``"loads"``: ``mu`` multiplies the point loads
+        ``loads`` (e.g. ``loads=[(node, "uy", -1.0)]`` makes ``mu`` a downward force [N];
+        gravity is not scaled), or ``"forcing"``: ``mu`` is the fraction of the periodic
+        forcing (unbalance, housing excitation; gravity is not scaled).
+    speed : float
+        Fixed spin speed [rad/s].
+    start, stop : float
+        Range of ``mu`` (in its own units).
+    name : str
+        Name of ``mu`` (``result.parameter_name``), e.g. ``"radial clearance [m]"``.
+    harmonics, samples, unbalance, gravity, direction, loads, nodes, bifurcations, progress
+        As in :func:`rotorsim.periodic`.
+    stability : {"auto", "hill", "hsu", "variational"} or None
+        Floquet multipliers at every point (as in :func:`rotorsim.periodic`, with the
+        parameter passed to the force); None skips them.
+    checkpoint, checkpoint_every, resume
+        As in :func:`~rotorsim.solvers.continuation.continue_branch` (the first point is
+        recomputed identically on resume).
+    step, max_step, max_points, tol
+        Continuation in ``mu``: steps in the scaled parameter (range 1), point budget and
+        corrector tolerance.
+
+    Returns
+    -------
+    PeriodicResult
+        ``parameter`` the values of ``mu``; ``speed`` and ``fundamental`` constant;
+        Floquet multipliers unless ``stability=None``.
+
+    Raises
+    ------
+    ModelError
+        Bad input (a ``vary`` that changes nodes, constraints, nonlinear DOFs or
+        varying-compliance orders; a zero range; no forcing; ``"loads"`` without loads).
+    ConvergenceError
+        When the first point does not converge.
+    """
+    clock = time.perf_counter()
+    mode = vary if isinstance(vary, str) else "model"
+    if not isinstance(rotor, Rotor) or mode not in ("model", "loads", "forcing") \
+            or not (mode != "model" or callable(vary)):
+        raise ModelError("needs a Rotor and vary: a callable vary(mu) -> nonlinear elements "
+                         "or Rotor, 'loads' or 'forcing'", WHERE)
+    if not (np.isfinite(speed) and speed > 0 and np.isfinite(start) and np.isfinite(stop)
+            and start != stop):
+        raise ModelError(f"need a positive speed and a range start != stop, got {speed!r}, "
+                         f"{start!r}, {stop!r}", WHERE)
+    if mode == "loads" and not any(float(v) for _, _, v in loads):
+        raise ModelError("vary='loads' needs nonzero point loads (node, dof, value)", WHERE)
+    first = vary(float(start)) if callable(vary) else rotor
+    base_rotor = first if isinstance(first, Rotor) else rotor.with_nonlinear(tuple(first))
+    system = assemble(base_rotor)
+    if system.nonlinear is None:
+        raise ModelError(f"the rotor at {name} = {start!r} has no nonlinear elements", WHERE)
+    stats = Stats()
+    plan = plan_excitation(system.nonlinear.elements, unbalance=bool(unbalance), base=None,
+                           varying_compliance=None, fundamental=None,
+                           frequency_parameter=False)
+    check_discretization(harmonics, samples, plan, system, True, WHERE)
+    scaled = [(n, d, float(start) * v) for n, d, v in loads] if mode == "loads" else loads
+    rp = build_problem(system, plan, speed0=float(speed), fixed_speed=None, phi0=0.0,
+                       unbalance=list(unbalance), gravity=gravity, direction=direction,
+                       loads=list(scaled), base=None, stats=stats)
+    omega = float(plan.order * speed)
+    standard = make_residual(rp.problem, harmonics, samples=samples, condense=True)
+    X0 = np.zeros((standard.aft.rows, rp.problem.n))
+    X0[0] = rp.static[rp.active]
+    x0 = first_point(standard, omega, standard.restrict(X0),
+                     unknown_scales(system, rp, standard), tol, stats)
+    # the HB parameter: mu itself, or p = 1 - mu (the rotor problem scales its forcing by 1 - p)
+    to_p = (lambda mu: 1.0 - mu) if mode == "forcing" else (lambda mu: mu)
+    span = abs(float(stop) - float(start))
+    residual: Any
+    if mode == "forcing":
+        residual = standard
+        if float(start) != 1.0:
+            x0 = solve_point(standard, omega, x0, param=to_p(float(start)), tol=tol).x
+    elif mode == "loads":
+        residual = static_load_residual(rp, system, loads, float(start), harmonics, samples,
+                                        span)
+    else:
+        residual = parametric_residual(rp, system, vary, harmonics,  # type: ignore[arg-type]
+                                       samples, span, float(start))
+    fun = continuation_function(residual, "param", omega=omega, stats=stats, terms=True)
+    stepping = Stepping(step, max_step, max_points, tol, None)
+    options = stepping.options(to_p(float(start)), to_p(float(stop)),
+                               unknown_scales(system, rp, residual, x0))
+    branch = judged(continue_branch(fun, x0, to_p(float(start)), options,
+                                    checkpoint=checkpoint, checkpoint_every=checkpoint_every,
+                                    resume=resume, progress=progress),
+                    to_p(float(stop)), lambda p: f"{name} {to_p(p):.6g}")
+    recovery = Recovery(_AtOmega(residual, omega),  # type: ignore[arg-type]
+                        *kept_dofs(system, rp, nodes))
+    lam = np.asarray(to_p(branch.lam.astype(float)), dtype=float)
+    floquet = ParameterStability(residual, omega, stability) if stability else None
+    multipliers = floquet.at_points(branch) if floquet is not None \
+        else np.zeros((len(branch), 0), dtype=complex)
+    events: list[Any] = []
+    if bifurcations and len(branch) > 1:
+        events = list(detect_bifurcations(fun, branch, options=BifurcationOptions(
+            kinds=("fold", "branch_point"))))
+        if floquet is not None:
+            events += floquet_events(fun, branch, floquet, multipliers)
+    return PeriodicResult(
+        parameter=lam, parameter_name=name, speed=np.full(lam.shape, float(speed)),
+        fundamental=np.full(lam.shape, omega), order=plan.order,
+        harmonics=residual.harmonics, samples=residual.samples, dofs=recovery.dofs,
+        **branch_arrays(recovery, branch), multipliers=multipliers,
+        stability_method=floquet.method if floquet is not None else "none",
+        stability_tol=DEFAULT_TOL,
+        bifurcations=bifurcation_records(events, recovery, to_p, floquet),
+        iterations=branch.iterations.astype(np.int64), residuals=branch.residuals,
+        approximation=plan.approximation, held_dofs=system.dof_map.free[rp.held],
+        dof_map=system.dof_map, nodes_pos=np.asarray(system.nodes_pos, dtype=float),
+        options={"parameter": name, "vary": mode, "start": float(start),
+                 "stop": float(stop), "speed": float(speed), "harmonics": int(harmonics),
+                 "unbalance": [[float(v) for v in u] for u in unbalance]},
+        stats={**branch.stats, "wall_time": time.perf_counter() - clock},
+        status=branch.status, reason=branch.reason, summary=dict(system.summary))
+
+
+class ParameterStability:
+    """Floquet multipliers of the points ``(x, mu)`` of a parameter branch at the fixed
+    fundamental ``omega``: one stability model for a branch over the nonlinear elements, the
+    forcing or the loads (``mu`` reaches the force callback), one per value of ``mu`` when
+    the linear part varies (:class:`RotorFamilyResidual`). Quacks like
+    :class:`~rotorsim.analyses.periodic.stability.StabilityModel` for
+    :func:`~rotorsim.analyses.periodic.events.floquet_events` (``floquet(x, mu)``)."""
+
+    def __init__(self, residual: Any, omega: float, method: str) -> None:
+        self.residual, self.omega, self.tol = residual, float(omega), DEFAULT_TOL
+        self.requested = method
+        family = isinstance(residual, RotorFamilyResidual)
+        self.shared = None if family else self._model(residual)
+        self.method = self.shared.method if self.shared is not None else method
+        self.size = self.shared.size if self.shared is not None else 0
+
+    def _model(self, residual: Any) -> Any:
+        return stability_model(residual, self.requested, modes="auto",
+                               omega_max=self.omega, tol=DEFAULT_TOL)
+
+    def floquet(self, x: Any, mu: float) -> Any:
+        """Floquet result of the point ``x`` at ``mu``."""
+        if self.shared is not None:
+            return self.shared.floquet(x, self.omega, float(mu))
+        model = self._model(self.residual.at(float(mu)))
+        self.method, self.size = model.method, max(self.size, model.size)
+        return model.floquet(x, self.omega, 0.0)
+
+    def at_points(self, branch: Any) -> Any:
+        """Multipliers (P, 2 n_s) of every branch point (NaN where Floquet failed or Hill's
+        selection returned fewer)."""
+        rows: list[Any] = []
+        for x, mu in zip(branch.x, branch.lam, strict=True):
+            try:
+                rows.append(np.asarray(self.floquet(x, float(mu)).multipliers))
+            except (ModelError, ConvergenceError, np.linalg.LinAlgError):
+                rows.append(None)
+        out = np.full((len(branch), self.size), np.nan + 0j)
+        for i, values in enumerate(rows):
+            if values is not None:
+                out[i, : min(values.size, self.size)] = values[: self.size]
+        return out
+
+
+class _AtOmega:
+    """A residual whose ``expand`` is evaluated at the fixed fundamental (recovery of the
+    kept DOFs of a parameter branch)."""
+
+    def __init__(self, residual: Any, omega: float) -> None:
+        self.residual, self.omega = residual, omega
+
+    @property
+    def aft(self) -> Any:
+        return self.residual.aft
+
+    def expand(self, x: Any, lam: float) -> Any:
+        return self.residual.expand(x, self.omega, lam)

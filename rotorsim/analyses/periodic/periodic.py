@@ -1,0 +1,371 @@
+"""Periodic responses of rotors on nonlinear (rolling) bearings: harmonic balance with
+continuation, Floquet stability and bifurcations.
+
+``periodic(model, start=..., stop=...)`` traces the branch of periodic solutions of
+
+    M q'' + (C + W G) q' + K q + r(q, q', phi, W) = f(t)
+
+over the spin speed ``W`` (or, at a fixed speed, the frequency of a housing excitation):
+
+1. the forcing present (unbalance, varying compliance of rolling bearings, housing motion)
+   fixes the fundamental ``omega = f W`` (:mod:`~.periodic_excitation`; unbalance with
+   varying compliance is quasi-periodic: the rolling elements are then frozen and
+   ``result.approximation`` says so);
+2. the rotor becomes a rotor-agnostic :class:`~rotorsim.harmonic_balance.problem.HBProblem`
+   on its active DOFs (:mod:`~.periodic_problem`), discretised by HB-AFT with ``H``
+   harmonics and condensed exactly onto the nonlinear DOFs;
+3. the branch starts from the static equilibrium at ``start`` (harmonic 0), corrected by
+   damped Newton (:func:`~rotorsim.harmonic_balance.solve.solve_point`), and is continued
+   by pseudo-arclength in ``omega`` (:func:`~rotorsim.solvers.continuation.continue_branch`,
+   with checkpoints, resume and a progress bar);
+4. Floquet multipliers at every point (:mod:`~.periodic_stability`: Hill's method for small
+   systems, Hsu's method otherwise, on the full or a Craig-Bampton reduced model) and
+   located folds, branch points, period doublings and Neimark-Sacker points
+   (:func:`~rotorsim.harmonic_balance.bifurcation.detect_bifurcations`);
+5. a :class:`~rotorsim.results.periodic.PeriodicResult` with the coefficients of the kept
+   DOFs recovered from the condensed unknowns (:mod:`~.periodic_output`).
+
+References
+----------
+Seed 002 section 3.5.2 (HB-AFT eqs 3.30-3.36, Floquet eqs 3.37-3.38, arc-length
+continuation eqs 3.39-3.42, housing excitation eq 3.43).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+import os
+import time
+from collections.abc import Sequence
+from typing import Any
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from rotorsim.analyses.keyword_check import checked_keywords
+from rotorsim.analyses.periodic.branch import Stepping, start_branch
+from rotorsim.analyses.periodic.excitation import ExcitationPlan, HarmonicBase, plan_excitation
+from rotorsim.analyses.periodic.folds import ParameterMap
+from rotorsim.analyses.periodic.output import Recovery, kept_dofs, periodic_result
+from rotorsim.analyses.periodic.problem import (
+    RotorPeriodicProblem,
+    build_problem,
+    check_discretization,
+)
+from rotorsim.analyses.periodic.resume import finished_result, resumed
+from rotorsim.analyses.periodic.stability import (
+    DEFAULT_TOL,
+    check_options,
+    stability_model,
+)
+from rotorsim.analyses.statics.linearized_rotor import rolling_start
+from rotorsim.analyses.statics.nonlinear_static import start_point
+from rotorsim.assembly.loads import STANDARD_GRAVITY
+from rotorsim.assembly.system import RotorSystem, assemble
+from rotorsim.elements.base import NonlinearElement
+from rotorsim.errors import ModelError
+from rotorsim.harmonic_balance.bifurcation import BifurcationOptions, detect_bifurcations
+from rotorsim.harmonic_balance.residual import continuation_function, make_residual
+from rotorsim.model.rotor import Rotor
+from rotorsim.results.periodic import PeriodicResult
+from rotorsim.solvers.continuation import Branch, Continuation
+from rotorsim.solvers.stats import Stats
+
+WHERE = "periodic"
+PARAMETERS = ("speed", "frequency")
+
+
+@checked_keywords
+def periodic(
+    model: Rotor | RotorSystem | Any,
+    *,
+    start: float,
+    stop: float,
+    parameter: str = "speed",
+    speed: float | None = None,
+    harmonics: int = 10,
+    samples: int | None = None,
+    nonlinear: Sequence[NonlinearElement] = (),
+    unbalance: Sequence[tuple[int, float, float]] = (),
+    gravity: float | None = STANDARD_GRAVITY,
+    direction: ArrayLike = (0.0, -1.0, 0.0),
+    loads: Sequence[tuple[int, str, float]] = (),
+    base: HarmonicBase | None = None,
+    varying_compliance: bool | None = None,
+    fundamental: float | None = None,
+    shaft_angle: float = 0.0,
+    condense: bool = True,
+    step: float | None = None,
+    max_step: float = 0.02,
+    max_points: int = 500,
+    tol: float = 1e-10,
+    continuation: Continuation | None = None,
+    stability: str | None = "auto",
+    stability_modes: int | str | None = "auto",
+    stability_tol: float = DEFAULT_TOL,
+    bifurcations: bool = True,
+    nodes: Sequence[int] | None = None,
+    checkpoint: str | os.PathLike[str] | None = None,
+    checkpoint_every: int = 25,
+    resume: str | os.PathLike[str] | None = None,
+    progress: bool = False,
+    fold_map: bool | ParameterMap = False,
+    x0: ArrayLike | None = None,
+) -> PeriodicResult:
+    """Branch of periodic responses from ``start`` to ``stop`` (module docstring).
+
+    Parameters
+    ----------
+    model : Rotor, RotorSystem or Model
+        The rotor with its nonlinear elements (rolling bearings), an assembled system, or a
+        loaded model file (its ``rotor`` with its ``rolling_bearings``; loads still come
+        from the arguments below).
+    start, stop : float
+        Range of the parameter [rad/s]; the branch starts at ``start``.
+    parameter : {"speed", "frequency"}
+        Continue in the spin speed ``W``, or (fixed ``speed``) in the frequency of the
+        ``base`` excitation.
+    speed : float, optional
+        Fixed spin speed [rad/s] for ``parameter="frequency"``.
+    harmonics : int
+        ``H >= 1`` harmonics of the fundamental, at least the harmonic of every forcing
+        (unbalance, base excitation); refused when the estimated memory exceeds half the
+        physical memory (:mod:`rotorsim.harmonic_balance.memory`).
+    samples : int, optional
+        AFT samples per period (default ``2**ceil(log2(8 H))``; increase for hard
+        contacts, check with ``harmonic_balance.sample_convergence``).
+    nonlinear : sequence of NonlinearElement
+        More nonlinear elements (with a Rotor).
+    unbalance : list of (node, me, angle)
+        Unbalances [kg m, rad] at order 1.
+    gravity, direction
+        Gravity [m/s^2] (None: none) and its direction (harmonic 0).
+    loads : list of (node, dof, value)
+        Constant point loads [N, N m] (harmonic 0).
+    base : HarmonicBase, optional
+        Housing displacement ``a cos(b phi + phase)`` (seed 002 eq 3.43); with
+        ``parameter="frequency"``, ``a cos(Omega t + phase)`` at the continued ``Omega``.
+    varying_compliance : bool, optional
+        Rolling elements move with their cages (True), are frozen at ``shaft_angle``
+        (False), or (None) move when the response stays periodic and are frozen otherwise
+        (recorded in ``result.approximation``).
+    fundamental : float, optional
+        Order ``f = omega / W`` of the fundamental instead of the automatic one (e.g. half
+        of it for a period-2 branch); every forcing order must be a multiple of it.
+    shaft_angle : float
+        Shaft angle ``phi0`` at ``t = 0`` [rad] (and the frozen angle).
+    condense : bool
+        Exact condensation onto the nonlinear DOFs (the full system is for checks).
+    step, max_step, max_points, tol : float, float, int, float
+        Continuation: first and largest scaled arclength step (the parameter range is 1,
+        each DOF's scale is its typical static displacement), points, corrector tolerance
+        on the scaled residual.
+    continuation : Continuation, optional
+        Full continuation options; its bounds and direction are replaced by ``start`` and
+        ``stop``, its scales kept when not the default 1.
+    stability : {"auto", "hill", "hsu", "variational"} or None
+        Floquet method (:mod:`~.periodic_stability`); None skips stability.
+    stability_modes : "auto", int or None
+        Fixed-interface modes of the stability model (None: full system).
+    stability_tol : float
+        Stable when ``max |mu| < 1 + stability_tol``.
+    bifurcations : bool
+        Detect and locate bifurcations.
+    nodes : sequence of int, optional
+        Nodes whose DOFs are kept (default all); the nonlinear DOFs are always kept.
+    checkpoint, checkpoint_every, resume, progress
+        As in :func:`~rotorsim.solvers.continuation.continue_branch`. A finished run
+        resumes to its result, also when its checkpoint was replaced by the results file
+        (``rs.save(result, path)``; :mod:`~.periodic_resume`).
+    fold_map : bool or ParameterMap
+        Continue every fold of the branch in a second parameter (a jump map,
+        :mod:`~.periodic_folds`): ``True`` in the forcing amplitude
+        (``options["fold_map"]`` lists, per fold, the fold parameter against the forcing
+        fraction from 1 down to the cusp); a :class:`~.periodic_folds.ParameterMap` in a
+        model parameter of the nonlinear elements (e.g. the clearance; key ``"mu"``).
+    x0 : array (ndof,), optional
+        Starting displacement of the static start on all DOFs [m, rad] (e.g. a
+        ``StaticResult.displacement``), as ``x0`` of
+        :func:`~rotorsim.analyses.statics.static.static`.
+        Default: the rolling-bearing statics of ``static`` (robust from the centred position
+        inside a clearance), or the centred start for other nonlinear elements; Newton's
+        method then falls back to the energy minimum when it fails.
+
+    Returns
+    -------
+    PeriodicResult
+
+    Raises
+    ------
+    ModelError
+        For bad input (before any solve: e.g. ``harmonics`` not a positive integer, below
+        the harmonic of a forcing, or needing too much memory), incommensurate forcing with
+        ``varying_compliance=True``, speed-dependent linear bearings with speed
+        continuation.
+    ConvergenceError
+        When the first point does not converge.
+
+    Examples
+    --------
+    >>> from rotorsim.io.model_file import load_model
+    >>> m = load_model("models/rolling_ball.toml")
+    >>> res = periodic(m, start=300.0, stop=320.0, harmonics=4, max_points=4, nodes=[5],
+    ...                stability=None, bifurcations=False)
+    >>> res.parameter_name, round(res.order, 6), res.approximation == ""
+    ('speed', 3.571948, True)
+    >>> bool(res.amplitude(5, "uy", "mean")[0] < 0)      # sags under gravity
+    True
+    """
+    clock = time.perf_counter()
+    system = _system(model, nonlinear)
+    frequency = _check_parameter(parameter, start, stop, speed)
+    check_options(stability, stability_modes, stability_tol)
+    elements = () if system.nonlinear is None else system.nonlinear.elements
+    plan = plan_excitation(elements, unbalance=bool(unbalance), base=base,
+                           varying_compliance=varying_compliance, fundamental=fundamental,
+                           frequency_parameter=frequency)
+    check_discretization(harmonics, samples, plan, system, condense, WHERE)
+    stats = Stats()
+    q0 = start_point(system, x0, f"{WHERE}.x0") if x0 is not None else _static_guess(
+        model, nonlinear, system, gravity, direction, loads,
+        float(speed) if frequency and speed is not None else float(start), float(shaft_angle))
+    rp = build_problem(system, plan, speed0=float(start),
+                       fixed_speed=speed if frequency else None, phi0=float(shaft_angle),
+                       unbalance=list(unbalance), gravity=gravity, direction=direction,
+                       loads=list(loads), base=base, stats=stats, x0=q0)
+    residual = make_residual(rp.problem, harmonics, samples=samples,
+                             condense=condense and rp.problem.k > 0)
+    recovery = Recovery(residual, *kept_dofs(system, rp, nodes))
+    to_lam = _lam_map(plan, frequency)
+    stepping = Stepping(step, max_step, max_points, tol, continuation)
+    begun = start_branch(residual, system, rp, to_lam(start), to_lam(stop), stepping, stats)
+    options = _describe(locals())
+    done = None if resume is None else finished_result(resume)
+    if done is not None and resume is not None:
+        return resumed(done, options, resume)
+    branch = begun.trace(unit=_unit(plan, parameter, frequency), checkpoint=checkpoint,
+                         checkpoint_every=checkpoint_every, resume=resume,
+                         progress=progress)
+    sm = None if stability is None else stability_model(
+        residual, stability, modes=stability_modes, omega_max=float(np.max(branch.lam)),
+        tol=stability_tol)
+    result = periodic_result(system, rp, recovery, plan, branch, sm, bifurcations, frequency,
+                     options, stats, clock)
+    if fold_map is not False and result.bifurcations:
+        result = _fold_map(result, residual, rp, system, branch, plan, frequency, fold_map,
+                           harmonics, samples)
+    return result
+
+
+def _fold_map(result: PeriodicResult, residual: Any, rp: RotorPeriodicProblem,
+              system: RotorSystem, branch: Branch, plan: ExcitationPlan, frequency: bool,
+              fold_map: bool | ParameterMap, harmonics: int, samples: int | None
+              ) -> PeriodicResult:
+    from rotorsim.analyses.periodic.folds import fold_curves
+
+    fun = continuation_function(residual, "omega")
+    folds = [e for e in detect_bifurcations(fun, branch, options=BifurcationOptions(
+        kinds=("fold",))) if e.located]
+    to_parameter = (lambda v: v) if frequency else (lambda v: v / plan.order)
+    if isinstance(fold_map, ParameterMap):
+        from rotorsim.analyses.periodic.variation import parametric_residual
+
+        varied = parametric_residual(rp, system, fold_map.vary, harmonics, samples,
+                                     abs(fold_map.stop - fold_map.start), fold_map.start)
+        curves = fold_curves(varied, branch, folds, to_parameter,
+                             mu_range=(fold_map.start, fold_map.stop),
+                             value=lambda mu: np.asarray(mu), key="mu", max_step=0.5)
+        entry: Any = {"name": fold_map.name, "curves": curves}
+    else:
+        entry = fold_curves(residual, branch, folds, to_parameter)
+    return dataclasses.replace(result, options={**result.options, "fold_map": entry})
+
+
+def _system(model: Any, nonlinear: Sequence[NonlinearElement]) -> RotorSystem:
+    if isinstance(model, RotorSystem):
+        if nonlinear:
+            raise ModelError("give the nonlinear elements to assemble(), or a Rotor here",
+                             WHERE)
+        return model
+    if not isinstance(model, Rotor) and hasattr(model, "rotor"):
+        model = model.rotor.with_nonlinear(tuple(getattr(model, "rolling_bearings", ())))
+    if not isinstance(model, Rotor):
+        raise ModelError(f"expected a Rotor, RotorSystem or Model, got "
+                         f"{type(model).__name__}", WHERE)
+    return assemble(model, nonlinear=tuple(nonlinear))
+
+
+def _static_guess(model: Any, nonlinear: Sequence[NonlinearElement], system: RotorSystem,
+                  gravity: float | None, direction: ArrayLike,
+                  loads: Sequence[tuple[int, str, float]], speed: float, phi: float
+                  ) -> NDArray[np.float64] | None:
+    """Start of the static Newton iteration from the robust rolling-bearing statics (as the
+    transient's static start), or None (an assembled system, other nonlinear elements, or
+    that solve fails): the centred start inside a clearance may have no useful tangent."""
+    if not isinstance(model, Rotor) and hasattr(model, "rotor"):
+        model = model.rotor.with_nonlinear(tuple(getattr(model, "rolling_bearings", ())))
+    if not isinstance(model, Rotor) or system.nonlinear is None:
+        return None
+    return rolling_start(model, nonlinear, system, gravity, direction, list(loads), speed, phi)
+
+
+def _check_parameter(parameter: str, start: float, stop: float,
+                     speed: float | None) -> bool:
+    """True for frequency continuation; ModelError for bad values."""
+    if parameter not in PARAMETERS:
+        raise TypeError(f"unknown parameter {parameter!r}; valid: {', '.join(PARAMETERS)}")
+    for name, value in (("start", start), ("stop", stop)):
+        if not (isinstance(value, int | float) and math.isfinite(value) and value > 0):
+            raise ModelError(f"must be a positive number [rad/s], got {value!r}",
+                             f"{WHERE}.{name}")
+    if start == stop:
+        raise ModelError(f"start and stop are equal ({start})", WHERE)
+    frequency = parameter == "frequency"
+    if frequency and not (isinstance(speed, int | float) and math.isfinite(speed)):
+        raise ModelError("parameter='frequency' needs a fixed speed [rad/s]",
+                         f"{WHERE}.speed")
+    if not frequency and speed is not None:
+        raise ModelError("speed is the continuation parameter; give start and stop",
+                         f"{WHERE}.speed")
+    return frequency
+
+
+def _lam_map(plan: ExcitationPlan, frequency: bool) -> Any:
+    """Parameter -> continuation variable ``omega`` (``f W``, or the frequency itself)."""
+    if frequency:
+        return lambda value: float(value)
+    return lambda value: float(plan.order * value)
+
+
+def _unit(plan: ExcitationPlan, parameter: str, frequency: bool) -> Any:
+    """``omega -> "speed 123.4 rad/s"`` for messages."""
+    order = 1.0 if frequency else plan.order
+    return lambda lam: f"{parameter} {lam / order:.6g} rad/s"
+
+
+def _describe(arguments: dict[str, Any]) -> dict[str, Any]:
+    """JSON-able options of a run (from ``periodic``'s local variables)."""
+    a = arguments
+    base = a["base"]
+    return {
+        "parameter": a["parameter"], "start": float(a["start"]), "stop": float(a["stop"]),
+        "speed": None if a["speed"] is None else float(a["speed"]),
+        "harmonics": int(a["harmonics"]), "samples": int(a["residual"].samples),
+        "unbalance": [[float(v) for v in u] for u in a["unbalance"]],
+        "gravity": a["gravity"], "direction": [float(v) for v in np.ravel(a["direction"])],
+        "loads": [[int(n), str(d), float(v)] for n, d, v in a["loads"]],
+        "base": None if base is None else base.describe(),
+        "varying_compliance": a["varying_compliance"], "fundamental": a["fundamental"],
+        "moving_elements": a["plan"].moving_elements, "shaft_angle": float(a["shaft_angle"]),
+        "condense": bool(a["condense"]),
+        "continuation": dataclasses.asdict(a["begun"].options), "run": a["begun"].identity,
+        "stability": a["stability"], "stability_modes": a["stability_modes"],
+        "stability_tol": float(a["stability_tol"]), "bifurcations": bool(a["bifurcations"]),
+        "fold_map_requested": a["fold_map"] is not False,
+        "nodes": None if a["nodes"] is None else [int(n) for n in a["nodes"]],
+        "x0_given": a["x0"] is not None,
+    }
+
+
+__all__ = ["HarmonicBase", "periodic"]

@@ -1,0 +1,14 @@
+"""Transient responses: the rotor's equations of motion integrated in time.
+
+- ``transient``: the ``rs.transient`` verb (steppers from ``rotorsim.time_integration``).
+- ``speed_profile``: spin-speed schedules W(t) with acceleration and angle.
+- ``loads``: the time-dependent loads and nonlinear forces as stepper callbacks, base
+  excitation.
+- ``start``: the initial state (zero, given, or the static equilibrium).
+- ``reduction``: Craig-Bampton reduction of a transient.
+- ``element_histories``: the load and contact angle of every rolling element over time.
+
+May import: :mod:`rotorsim.analyses.statics`, :mod:`rotorsim.analyses.linear`, the shared
+modules of :mod:`rotorsim.analyses`, the model layers, ``time_integration``, ``solvers``,
+``results`` and the checkpoint files of ``rotorsim.io``. Not ``analyses.periodic``.
+"""

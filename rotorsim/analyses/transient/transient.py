@@ -1,0 +1,367 @@
+"""Transient response of a rotor on linear and nonlinear bearings (time integration).
+
+``transient`` builds ``M q'' + (C + W(t) G) q' + K q + r(q, q', phi(t), W(t)) = f(t)`` from
+the assembled rotor (DESIGN section 3), integrates it with a stepper of
+:mod:`rotorsim.time_integration` (Newmark family by default, the enhanced Adams method, or
+either under adaptive step control) and returns a :class:`TransientResult` with the kept
+DOFs, the speed and angle histories and the load of every nonlinear bearing. The bearing
+tangents are local to the bearing DOFs, so the implicit steppers factorise the linear part
+once per step size and speed and update it by a low-rank solve in each Newton iteration.
+
+The initial state is, by default, the static equilibrium under the constant loads (gravity
+and point loads) at the starting speed and angle, at rest: a balanced rotor then stays at
+rest up to the varying compliance of its bearings.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import os
+from collections.abc import Callable, Sequence
+from typing import Any
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from rotorsim.analyses.keyword_check import checked_keywords
+from rotorsim.analyses.statics.linearized_rotor import rolling_start
+from rotorsim.analyses.transient.loads import (
+    BaseExcitation,
+    RestoringForce,
+    TransientLoads,
+)
+from rotorsim.analyses.transient.speed_profile import BoundSpeed, SpeedProfile, as_speed_profile
+from rotorsim.analyses.transient.start import initial_state
+from rotorsim.assembly.loads import (
+    STANDARD_GRAVITY,
+    gravity_load,
+    nodal_load,
+    rigid_translation,
+    unbalance_amplitudes,
+)
+from rotorsim.assembly.system import RotorSystem, assemble
+from rotorsim.elements.base import DOFS_PER_NODE, FloatArray, NonlinearElement
+from rotorsim.errors import ModelError
+from rotorsim.model.rotor import Rotor
+from rotorsim.results.transient import TransientResult
+from rotorsim.solvers.threads import one_blas_thread
+from rotorsim.time_integration.adams import Adams
+from rotorsim.time_integration.adaptive import Adaptive
+from rotorsim.time_integration.base import TimeStepper
+from rotorsim.time_integration.integrate import IntegrationResult, integrate
+from rotorsim.time_integration.newmark import Newmark
+from rotorsim.time_integration.output import OutputSpec
+from rotorsim.time_integration.problem import SecondOrderProblem
+
+WHERE = "transient"
+DENSE_STEPPING = 400
+"""Up to this many free DOFs the matrices are dense: a step's few matrix-vector products
+then cost less than scipy.sparse's call overhead."""
+
+
+@checked_keywords
+@one_blas_thread()  # the static start and the reduction too, not only the steps
+def transient(
+    model: Rotor | RotorSystem,
+    t_end: float | Sequence[float],
+    dt: float,
+    *,
+    nonlinear: Sequence[NonlinearElement] = (),
+    speed: float | SpeedProfile | Callable[[float], float] = 0.0,
+    unbalance: Sequence[tuple[int, float, float]] = (),
+    gravity: float | None = STANDARD_GRAVITY,
+    direction: ArrayLike = (0.0, -1.0, 0.0),
+    loads: Sequence[tuple[int, str, float]] = (),
+    forces: Callable[[float], ArrayLike] | None = None,
+    base: BaseExcitation | None = None,
+    method: str | TimeStepper = "average_acceleration",
+    initial: str | tuple[ArrayLike, ArrayLike] = "static",
+    nodes: Sequence[int] | None = None,
+    every: int = 1,
+    times: ArrayLike | None = None,
+    checkpoint: str | os.PathLike[str] | None = None,
+    checkpoint_every: int = 1000,
+    resume: str | os.PathLike[str] | None = None,
+    progress: bool = False,
+    reduction: int | None = None,
+    rolling_elements: bool = False,
+    on_failure: str = "raise",
+) -> TransientResult:
+    """Integrate the rotor's equation of motion from 0 (or ``t0``) to ``t_end``.
+
+    Parameters
+    ----------
+    model : Rotor or RotorSystem
+        The rotor with its linear bearings and its nonlinear elements (rolling bearings),
+        or a RotorSystem assembled with them.
+    t_end : float or (t0, t_end)
+        End time [s] (from 0), or the time span.
+    dt : float
+        Time step [s] (first trial step when adaptive).
+    nonlinear : sequence of NonlinearElement
+        More nonlinear elements, e.g.
+        :class:`~rotorsim.elements.rolling.element.RollingBearing` (with a Rotor only).
+    speed : float, callable or speed profile
+        Spin speed [rad/s]: a constant, :class:`~.speed_profile.LinearSpeed` (run-up or
+        coast-down), :class:`~.speed_profile.SpeedFunction` or any ``W(t)``.
+    unbalance : list of (node, me, angle)
+        Unbalances [kg m, rad] rotating with the shaft angle ``phi(t)``, with the
+        angular-acceleration term (module :mod:`~.transient_loads`).
+    gravity, direction
+        Gravity [m/s^2] (None for none) and its direction.
+    loads : list of (node, dof, value)
+        Constant point forces and moments [N, N m].
+    forces : callable, optional
+        ``forces(t)`` -> array (n_free,) of extra loads on the free DOFs [N, N m]
+        (``system.dofs_of(node, dofs)`` gives indices).
+    base : BaseExcitation, optional
+        Acceleration of the base (seed 002 eq 3.43); coordinates are then relative to it.
+    method : str or TimeStepper
+        ``"average_acceleration"`` (default, alias ``"newmark"``), ``"linear_acceleration"``,
+        ``"hht"``,
+        ``"generalized_alpha"``, ``"adams"`` (enhanced 4th-order Adams, seed 002 App. F),
+        ``"adaptive"`` (error-controlled average acceleration) or a stepper object.
+    initial : {"static", "zero"} or (q0, v0)
+        Static equilibrium at rest (default), zero, or given displacements and velocities
+        on ALL DOFs (``6 * n_nodes``).
+    nodes : sequence of int, optional
+        Nodes whose DOFs are kept (default all); the nonlinear elements' DOFs are always
+        kept to compute the bearing loads.
+    every : int
+        Keep every ``every``-th step (ignored with ``times``).
+    times : array-like, optional
+        Sample times [s] (dense output by the stepper's interpolant).
+    checkpoint, checkpoint_every, resume, progress
+        As in :func:`~rotorsim.time_integration.integrate.integrate`: an HDF5 checkpoint
+        every ``checkpoint_every`` steps, resume from one (same result as an uninterrupted
+        run), progress bar.
+    reduction : int, optional
+        Craig-Bampton reduction of the linear part with this many fixed-interface modes,
+        the nonlinear DOFs kept physical (:mod:`~.transient_reduction`); the accuracy check
+        is in ``result.options["reduction"]``.
+    rolling_elements : bool
+        Also keep the load and contact angle of every rolling element of each bearing at
+        every sample (``result.element_loads``, ``result.contact_angles``).
+    on_failure : {"raise", "stop"}
+        When a step fails: raise, or return the run up to the last accepted step with
+        ``status`` ``NOT_CONVERGED`` and the error in ``options["failure"]`` (what the
+        command line does: partial results are written and the exit code is 3).
+
+    Returns
+    -------
+    TransientResult
+
+    Raises
+    ------
+    ModelError
+        For bad input (checked before the first step): ``dt <= 0``, an empty span, a speed
+        function returning NaN, unknown nodes or method, speed-dependent linear bearings
+        with a varying speed.
+    ConvergenceError
+        When a step diverges (time, step, iteration and worst DOF in the message); the last
+        checkpoint is kept.
+
+    Examples
+    --------
+    >>> import rotorsim as rs
+    >>> steel = rs.Material(name="steel", E=211e9, G_s=81.2e9, rho=7810)
+    >>> shaft = [rs.ShaftElement(L=0.25, idl=0.0, odl=0.05, material=steel)] * 4
+    >>> rotor = rs.Rotor(shaft, bearing_elements=[rs.BearingElement(n=0, kxx=1e7, cxx=1e3),
+    ...                                           rs.BearingElement(n=4, kxx=1e7, cxx=1e3)])
+    >>> res = transient(rotor, 0.05, 1e-4, speed=300.0, unbalance=[(2, 1e-4, 0.0)],
+    ...                 gravity=None, initial="zero", nodes=[2])
+    >>> res.q.shape, res.dof_labels[:2]
+    ((501, 6), ['2:ux', '2:uy'])
+    """
+    if not (isinstance(dt, int | float) and np.isfinite(dt) and dt > 0):
+        raise ModelError(f"dt must be a positive number [s], got {dt!r}", f"{WHERE}.dt")
+    system = _system(model, nonlinear)
+    t0, t_end = _span(t_end)
+    _check_step_count(dt, t_end - t0)
+    profile = as_speed_profile(speed).bind(t0, t_end, max(4096, int((t_end - t0) / dt)))
+    problem, loads_fn = _problem(system, profile, t0, unbalance, gravity, direction, loads,
+                                 forces, base)
+    stepper = _stepper(method)
+    start = None
+    if initial == "static" and isinstance(model, Rotor) and system.nonlinear is not None:
+        start = rolling_start(model, nonlinear, system, gravity, direction, loads,
+                              profile.speed(t0), profile.angle(t0))
+    q0, v0 = initial_state(system, initial, loads_fn.constant, profile, t0, start)
+    kept = _kept_dofs(system, nodes)
+    basis, report = None, None
+    if reduction is not None:
+        from rotorsim.analyses.transient.reduction import reduce_problem
+
+        problem, basis, report = reduce_problem(system, problem, loads_fn, int(reduction),
+                                                profile.speed(t0))
+        q0, v0 = basis.project(q0), basis.project(v0)
+    sample_times = None if times is None else np.asarray(times, dtype=float)
+    output = OutputSpec(times=sample_times, every=None if times is not None else every,
+                        dofs=kept if basis is None else None)
+    run = integrate(problem, stepper, (t0, t_end), q0, v0, dt=dt, output=output,
+                    checkpoint=checkpoint, checkpoint_every=checkpoint_every, resume=resume,
+                    progress=progress, on_failure=on_failure)
+    if basis is not None:
+        from rotorsim.analyses.transient.reduction import expand_run
+
+        run = expand_run(run, basis, kept)
+    options = {"t_span": [t0, t_end], "dt": dt, "method": stepper.name,
+               "speed": profile.describe(), "gravity": gravity,
+               "unbalance": [list(map(float, u)) for u in unbalance],
+               "base": None if base is None else list(base.direction),
+               "initial": initial if isinstance(initial, str) else "given", "every": every,
+               "reduction": report}
+    if run.message:
+        options["failure"] = run.message
+    result = _result(system, run, profile, kept, options)
+    if rolling_elements and system.nonlinear is not None:
+        from rotorsim.analyses.transient.element_histories import rolling_element_histories
+
+        loads_, angles = rolling_element_histories(system, result)
+        result = dataclasses.replace(result, element_loads=loads_, contact_angles=angles)
+    return result
+
+
+def _system(model: Rotor | RotorSystem, nonlinear: Sequence[NonlinearElement]) -> RotorSystem:
+    if isinstance(model, RotorSystem):
+        if nonlinear:
+            raise ModelError("give the nonlinear elements to assemble(), or a Rotor here",
+                             WHERE)
+        return model
+    if not isinstance(model, Rotor):
+        raise ModelError(f"expected a Rotor or RotorSystem, got {type(model).__name__}",
+                         WHERE)
+    return assemble(model, nonlinear=tuple(nonlinear))
+
+
+MAX_STEPS = 10**9
+"""Largest number of time steps of one run: more is a unit slip (``dt`` in s, not us), not
+a run that would end in any reasonable time."""
+
+
+def _check_step_count(dt: float, duration: float) -> None:
+    """Refuse a step longer than the run, or so short that the run would never end."""
+    if dt > duration:
+        raise ModelError(f"dt {dt} s exceeds the duration {duration} s: check the units",
+                         f"{WHERE}.dt")
+    if duration / dt > MAX_STEPS:
+        raise ModelError(f"dt {dt} s gives {duration / dt:.3g} steps over {duration} s, more "
+                         f"than {MAX_STEPS:.0e}: check the units", f"{WHERE}.dt")
+
+
+def _span(t_span: float | Sequence[float]) -> tuple[float, float]:
+    values: list[Any] = [0.0, t_span] if np.ndim(t_span) == 0 else list(t_span)  # type: ignore[arg-type]
+    try:
+        t0, t_end = (float(x) for x in values)
+    except (TypeError, ValueError):
+        raise ModelError(f"t_end must be a time or (t0, t_end), got {t_span!r}",
+                         WHERE) from None
+    if not (np.isfinite(t0) and np.isfinite(t_end) and t_end > t0):
+        raise ModelError(f"t_end must be finite and after t0, got {t_span!r}", f"{WHERE}.t_end")
+    return t0, t_end
+
+
+def _problem(system: RotorSystem, profile: BoundSpeed, t0: float, unbalance: Sequence[Any],
+             gravity: float | None, direction: ArrayLike, loads: Sequence[Any],
+             forces: Callable[[float], ArrayLike] | None, base: BaseExcitation | None
+             ) -> tuple[SecondOrderProblem, TransientLoads]:
+    description = profile.describe()
+    constant_speed = description["kind"] == "constant"
+    if system.variable_bearings and not constant_speed:
+        tags = [b.label for _, b in system.variable_bearings]
+        raise ModelError(f"speed-dependent linear bearings {tags} need a constant speed "
+                         "(their matrices are evaluated once)", WHERE)
+    mats = system.matrices(profile.speed(t0) if constant_speed else 0.0)
+    constant = np.zeros(system.n_free)
+    if gravity is not None:
+        constant += gravity_load(system, gravity, direction)
+    for i, (node, dof, value) in enumerate(loads):
+        constant += nodal_load(system, int(node), str(dof), float(value),
+                               where=f"loads[{i}]")
+    if forces is not None and not callable(forces):
+        raise ModelError("forces must be a callable f(t) -> array (n_free,)", WHERE)
+    base_load = None
+    if base is not None:
+        e = rigid_translation(system.dof_map.n_nodes, base.direction)[system.dof_map.free]
+        base_load = -(mats.M @ e)
+    loads_fn = TransientLoads(
+        n=system.n_free, speed=profile, constant=constant,
+        unbalance=unbalance_amplitudes(system, unbalance) if unbalance else None,
+        base=base_load, base_acceleration=None if base is None else base.acceleration,
+        forces=forces)
+    loads_fn(t0)  # fail early on bad callbacks
+    restoring = None if system.nonlinear is None else RestoringForce(system.nonlinear, profile)
+    has_gyro = mats.G.nnz > 0
+    M, K, C, G = (m.toarray() if system.n_free <= DENSE_STEPPING else m
+                  for m in (mats.M, mats.K, mats.C, mats.G))
+    problem = SecondOrderProblem(
+        mass=M, stiffness=K, damping=C, restoring=restoring, load=loads_fn,
+        gyroscopic=G if has_gyro else None, speed=profile.speed if has_gyro else None)
+    return problem, loads_fn
+
+
+def _stepper(method: str | TimeStepper) -> TimeStepper:
+    if not isinstance(method, str):
+        if not isinstance(method, TimeStepper):
+            raise ModelError(f"not a time stepper: {method!r}", f"{WHERE}.method")
+        return method
+    if method == "newmark":
+        return Newmark.average_acceleration()
+    if method == "adams":
+        return Adams()
+    if method == "adaptive":
+        return Adaptive(Newmark.average_acceleration())
+    try:
+        return Newmark.from_name(method)
+    except TypeError as exc:
+        raise ModelError(f"{exc}, 'adams' or 'adaptive'", f"{WHERE}.method") from None
+
+
+def _kept_dofs(system: RotorSystem, nodes: Sequence[int] | None) -> np.ndarray:
+    dm = system.dof_map
+    if nodes is None:
+        kept = np.arange(system.n_free)
+    else:
+        full: list[int] = []
+        for node in nodes:
+            if not 0 <= int(node) < dm.n_nodes:
+                raise ModelError(f"node {node} outside 0..{dm.n_nodes - 1}", f"{WHERE}.nodes")
+            full.extend(DOFS_PER_NODE * int(node) + k for k in range(DOFS_PER_NODE))
+        free = dm.full_to_free[np.asarray(full, dtype=np.int64)]
+        kept = free[free >= 0]
+    if system.nonlinear is not None:
+        kept = np.union1d(kept, system.nonlinear.dofs)
+    return np.asarray(kept, dtype=np.int64)
+
+
+def _result(system: RotorSystem, run: IntegrationResult, profile: BoundSpeed,
+            kept: np.ndarray, options: dict[str, Any]) -> TransientResult:
+    t = run.t
+    speed = np.array([profile.speed(float(x)) for x in t])
+    angle = np.array([profile.angle(float(x)) for x in t])
+    accel = np.array([profile.acceleration(float(x)) for x in t])
+    loads, tags, counts, kappa = _bearing_histories(system, run, kept, angle, speed)
+    return TransientResult(
+        t=t, q=run.q, v=run.v, dofs=system.dof_map.free[kept], speed=speed, angle=angle,
+        acceleration=accel, bearing_loads=loads, bearing_tags=tags,
+        bearing_elements=counts, bearing_kappa=kappa, reduced=dict(run.reduced),
+        dof_map=system.dof_map, nodes_pos=np.asarray(system.nodes_pos, dtype=float),
+        method=run.method, options=options, stats=dict(run.stats), status=run.status,
+        summary=dict(system.summary))
+
+
+def _bearing_histories(system: RotorSystem, run: IntegrationResult, kept: np.ndarray,
+                       angle: FloatArray, speed: FloatArray
+                       ) -> tuple[FloatArray, tuple[str, ...], np.ndarray, FloatArray]:
+    nl = system.nonlinear
+    if nl is None:
+        return (np.zeros((run.t.size, 0, 5)), (), np.zeros(0, dtype=np.int64), np.zeros(0))
+    cols = np.searchsorted(kept, nl.dofs)
+    v = run.v if run.v is not None else np.zeros_like(run.q)
+    out = nl.evaluate(run.q[:, cols], v[:, cols], angle, speed)
+    loads = np.stack([f[:, :5] for f in out.element_forces], axis=1)
+    tags = tuple(str(getattr(el, "tag", None) or i) for i, el in enumerate(nl.elements))
+    models = [getattr(el, "bearing", None) for el in nl.elements]
+    counts = np.array([int(getattr(b, "n_elements", 0) or 0) for b in models], dtype=np.int64)
+    kappa = np.array([float(getattr(b, "kappa", 0.0) or 0.0) for b in models])
+    return loads, tags, counts, kappa

@@ -1,0 +1,405 @@
+"""Radial roller bearing with flexible rings (seed 001, Leontiev, Ivannikov, Degtyarev 2017).
+
+Each ring is cut into ``N`` segments of angle ``theta = 2 pi / N``, one per roller; a
+segment deflects radially by ``w`` under a constant hoop force and bending moment
+(seed 001 section 2.2, eqs 8-11). A roller with its two ring segments has four internal
+DOFs ``[v_r, phi, w_i, w_e]`` (eq 12) and the potential of eq 19: Hertz line contacts by
+slices (eqs 13-17), ring tension and bending (eqs 9-10) and the centrifugal potential of
+the roller (eq 18). For a given relative displacement of the rings the rollers are solved
+independently by a batched Newton method (eq 22,
+:mod:`~rotorsim.elements.rolling.condensation`), condensed to their local load
+``[Q_e, M_e]`` and tangent (eqs 23-26), and summed into the 5-DOF bearing force and
+stiffness (eqs 3-7, :mod:`~rotorsim.elements.rolling.flexible_ring.state`). The physics of
+one roller is in :mod:`~rotorsim.elements.rolling.flexible_ring.roller`.
+
+Limits (seed 001 sections 2.2, 2.5 and 4): no axial load (``z`` carries nothing), small
+displacements and rotations, each ring segment deforms on its own (good for negative or
+small clearance, where the radial loads vary smoothly; too stiff when a few rollers carry
+a concentrated load). With ``rigid_rings=True`` (no ``w_i``, ``w_e``) and at rest the model
+equals :class:`~rotorsim.elements.rolling.roller.bearing.RollerBearing` ``(model="slices")`` with
+``Kn = C L / 2^n``, ``diametral_clearance = g`` and twice the roller's profile drop.
+
+References
+----------
+Seed 001 eqs 1-26.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from dataclasses import dataclass, field
+from functools import cached_property
+from typing import Any
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from rotorsim.elements.rolling.condensation import InnerNewton
+from rotorsim.elements.rolling.contact.hertz_line import LINE_EXPONENT
+from rotorsim.elements.rolling.flexible_ring.geometry import (
+    FloatArray,
+    RingSection,
+    RollerSlices,
+    line_contact_constant,
+)
+from rotorsim.elements.rolling.flexible_ring.roller import RollerPotential
+from rotorsim.elements.rolling.flexible_ring.solve import solve_state
+from rotorsim.elements.rolling.flexible_ring.state import FlexibleRingState
+from rotorsim.elements.rolling.geometry import (
+    cage_ratio,
+    element_angles,
+    interference_problem,
+)
+from rotorsim.elements.rolling.roller.profile import (
+    CircularCrown,
+    LogarithmicProfile,
+    RollerProfile,
+    StraightProfile,
+)
+from rotorsim.errors import ModelError
+
+CAGE_LAWS = ("rotating", "fixed")
+"""Roller placement: cage turning at ``kappa phi`` or rollers held at ``psi0 + 2 pi j/N``."""
+
+
+def _number(value: Any, name: str, where: str, *, positive: bool = False) -> float:
+    ok = not isinstance(value, bool) and isinstance(value, int | float | np.floating) \
+        and math.isfinite(value) and (value > 0.0 or not positive)
+    if not ok:
+        kind = "a positive finite" if positive else "a finite"
+        raise ModelError(f"{name} must be {kind} number, got {value!r}", where)
+    return float(value)
+
+
+@dataclass(frozen=True, eq=False)
+class FlexibleRingRollerBearing:
+    """Cylindrical roller bearing with flexible rings, 5 relative DOFs (seed 001).
+
+    Parameters
+    ----------
+    n_rollers : int
+        Number of rollers ``N``.
+    pitch_radius : float
+        ``R_p`` [m] (roller centres).
+    roller_radius : float
+        ``R_b`` [m].
+    effective_length : float
+        ``L`` [m].
+    diametral_clearance : float
+        Operating diametral clearance ``g`` [m] (eq 13); negative = preload. The rigid-ring
+        :class:`~rotorsim.elements.rolling.roller.bearing.RollerBearing` takes
+        ``radial_clearance = g / 2``.
+    shaft_radius : float, optional
+        Bore radius ``R_s`` [m] of the inner ring (with a hollow shaft: the shaft's inner
+        radius); the inner ring section spans ``R_s .. R_p - R_b`` (Fig. 3a).
+    housing_radius : float, optional
+        ``R_h`` [m]; the outer ring section spans ``R_p + R_b .. R_h``.
+    ring_width : float, optional
+        Axial width ``b`` [m] of both ring sections.
+    inner_ring, outer_ring : RingSection, optional
+        Ring sections given directly (instead of ``shaft_radius`` / ``housing_radius``).
+    E, nu : float
+        Young's modulus [Pa] and Poisson ratio of rollers and rings.
+    rho : float
+        Density [kg/m^3] (roller mass).
+    ring_modulus : float, optional
+        Young's modulus of the rings [Pa] (default ``E``; a large value stiffens them).
+    roller_mass : float, optional
+        ``m`` [kg]; default ``rho pi R_b^2 L``.
+    contact_constant : float, optional
+        ``C`` [N/m^(1+n)] of the line law ``q = C delta^n`` per contact; default eq 16.
+    exponent : float
+        ``n`` (10/9).
+    n_slices : int
+        Equal slices per roller (when ``slice_widths`` is not given).
+    slice_widths : tuple of float, optional
+        Slice widths ``h_k`` [m], adding up to ``L``.
+    profile : RollerProfile
+        Roller crowning; its drop relieves each contact (eq 15, ``b_k - R_b``).
+    tilt : bool
+        Keep the roller tilt ``phi`` and the ring misalignment ``gamma_n`` (eq 15); without
+        them the bearing carries no moment.
+    rigid_rings : bool
+        Drop the ring DOFs ``w_i``, ``w_e`` (rigid-ring limit).
+    cage : {"rotating", "fixed"}
+        Rollers at ``psi0 + 2 pi j / N + kappa phi`` or held at ``kappa = 0``.
+    cage_ratio : float, optional
+        ``omega_c / W`` of the centrifugal force (eq 18); default the kinematic
+        ``(1 - R_b / R_p) / 2`` (inner ring turning, outer fixed).
+    psi0 : float
+        Angle of roller 0 at ``phi = 0`` [rad], from +x towards +y.
+    speed : float
+        Shaft speed ``W`` [rad/s] used when :meth:`state` gets none.
+    tol, max_iter : float, int
+        Inner Newton tolerance (relative to the largest roller load) and iteration limit.
+    tag : str
+        Name used in messages.
+
+    Examples
+    --------
+    >>> b = FlexibleRingRollerBearing(n_rollers=24, pitch_radius=0.075, roller_radius=0.0065,
+    ...     effective_length=0.016, diametral_clearance=-40e-6, shaft_radius=0.054,
+    ...     housing_radius=0.097, ring_width=0.030)
+    >>> st = b.state([[10e-6, 0, 0, 0, 0]], b.element_angles())
+    >>> st.element_load.shape, st.internal.shape, bool(st.force[0, 0] > 0)
+    ((1, 24), (1, 24, 4), True)
+    """
+
+    n_rollers: int
+    pitch_radius: float
+    roller_radius: float
+    effective_length: float
+    diametral_clearance: float = 0.0
+    shaft_radius: float | None = None
+    housing_radius: float | None = None
+    ring_width: float | None = None
+    inner_ring: RingSection | None = None
+    outer_ring: RingSection | None = None
+    E: float = 2.0e11
+    nu: float = 0.3
+    rho: float = 7850.0
+    ring_modulus: float | None = None
+    roller_mass: float | None = None
+    contact_constant: float | None = None
+    exponent: float = LINE_EXPONENT
+    n_slices: int = 10
+    slice_widths: tuple[float, ...] | None = None
+    profile: RollerProfile = field(default_factory=StraightProfile)
+    tilt: bool = True
+    rigid_rings: bool = False
+    cage: str = "rotating"
+    cage_ratio: float | None = None
+    psi0: float = 0.0
+    speed: float = 0.0
+    tol: float = 1e-10
+    max_iter: int = 50
+    tag: str = ""
+
+    def __post_init__(self) -> None:
+        where = self.label
+        if isinstance(self.n_rollers, bool) or not isinstance(self.n_rollers, int | np.integer) \
+                or self.n_rollers < 1:
+            raise ModelError(f"n_rollers must be an integer >= 1, got {self.n_rollers!r}", where)
+        r_p = _number(self.pitch_radius, "pitch_radius", where, positive=True)
+        r_b = _number(self.roller_radius, "roller_radius", where, positive=True)
+        _number(self.effective_length, "effective_length", where, positive=True)
+        if r_b >= r_p:
+            raise ModelError(f"roller_radius {r_b} m must be smaller than pitch_radius {r_p} m",
+                             where)
+        g = _number(self.diametral_clearance, "diametral_clearance", where)
+        if abs(g) >= r_b:
+            raise ModelError(f"diametral_clearance {g} m exceeds the roller radius: check the "
+                             "units (metres)", where)
+        problem = interference_problem(0.5 * g, 2.0 * r_b, "roller")
+        if problem is not None:
+            raise ModelError(problem, where)
+        for name in ("E", "rho"):
+            _number(getattr(self, name), name, where, positive=True)
+        for name in ("ring_modulus", "roller_mass", "contact_constant", "cage_ratio"):
+            if getattr(self, name) is not None:
+                _number(getattr(self, name), name, where, positive=name != "cage_ratio")
+        if _number(self.exponent, "exponent", where) < 1.0:
+            raise ModelError(f"exponent must be >= 1, got {self.exponent!r}", where)
+        for name in ("psi0", "speed"):
+            _number(getattr(self, name), name, where)
+        if self.cage not in CAGE_LAWS:
+            raise TypeError(f"{where}: unknown cage {self.cage!r}; valid: {CAGE_LAWS}")
+        if not isinstance(self.profile, StraightProfile | CircularCrown | LogarithmicProfile):
+            raise TypeError(f"{where}: profile must be a StraightProfile, CircularCrown or "
+                            f"LogarithmicProfile, got {type(self.profile).__name__}")
+        self.slices  # noqa: B018 - validates the slicing
+        self.sections  # noqa: B018 - validates the rings
+        self.newton  # noqa: B018 - validates tol and max_iter
+        line_contact_constant(self.E, self.nu, self.effective_length, self.exponent)
+
+    # ------------------------------------------------------------------ geometry
+    @property
+    def label(self) -> str:
+        return f"FlexibleRingRollerBearing '{self.tag}'" if self.tag \
+            else "FlexibleRingRollerBearing"
+
+    @cached_property
+    def slices(self) -> RollerSlices:
+        """The roller slices (widths, centres, drops)."""
+        return RollerSlices.build(self.effective_length, self.n_slices, self.slice_widths,
+                                  self.profile, self.label)
+
+    @cached_property
+    def sections(self) -> tuple[RingSection | None, RingSection | None]:
+        """Inner and outer ring sections (``None`` for rigid rings without geometry)."""
+        where = self.label
+        inner_race = self.pitch_radius - self.roller_radius
+        outer_race = self.pitch_radius + self.roller_radius
+        out: list[RingSection | None] = []
+        for side, given, radius, race in (
+                ("inner", self.inner_ring, self.shaft_radius, inner_race),
+                ("outer", self.outer_ring, self.housing_radius, outer_race)):
+            name = "shaft_radius" if side == "inner" else "housing_radius"
+            if given is not None and radius is not None:
+                raise ModelError(f"give {side}_ring or {name}, not both", where)
+            if radius is not None:
+                r = _number(radius, name, where, positive=True)
+                if side == "inner" and r >= race:
+                    raise ModelError(f"shaft_radius R_s = {r} m must be smaller than the inner "
+                                     f"raceway radius R_p - R_b = {race:.6g} m", where)
+                if side == "outer" and r <= race:
+                    raise ModelError(f"housing_radius R_h = {r} m must exceed the outer "
+                                     f"raceway radius R_p + R_b = {race:.6g} m", where)
+                if self.ring_width is None:
+                    raise ModelError(f"ring_width b is needed with {name}", where)
+                lo, hi = (r, race) if side == "inner" else (race, r)
+                given = RingSection.rectangular(lo, hi, self.ring_width, where)
+            if given is None and not self.rigid_rings:
+                raise ModelError(f"the {side} ring needs {name} and ring_width, or "
+                                 f"{side}_ring=RingSection(...) (or rigid_rings=True)", where)
+            if given is not None:
+                given.validate(f"{where} {side}_ring")
+            out.append(given)
+        return out[0], out[1]
+
+    @property
+    def n_elements(self) -> int:
+        """Number of rollers."""
+        return int(self.n_rollers)
+
+    @property
+    def pitch_diameter(self) -> float:
+        return 2.0 * self.pitch_radius
+
+    @property
+    def roller_diameter(self) -> float:
+        return 2.0 * self.roller_radius
+
+    @property
+    def contact_angle(self) -> float:
+        return 0.0
+
+    @property
+    def clearance(self) -> float:
+        """Radial clearance ``g / 2`` [m] (rigid-ring convention, seed 000 eq 6a)."""
+        return 0.5 * self.diametral_clearance
+
+    @cached_property
+    def line_constant(self) -> float:
+        """``C`` [N/m^(1+n)] of each contact (given or seed 001 eq 16)."""
+        if self.contact_constant is not None:
+            return float(self.contact_constant)
+        return line_contact_constant(self.E, self.nu, self.effective_length, self.exponent)
+
+    @property
+    def Kn(self) -> float:
+        """Whole-roller constant of the rigid-ring limit, ``C L / 2^n`` [N/m^n]."""
+        return self.line_constant * self.effective_length / 2.0 ** self.exponent
+
+    @property
+    def mass(self) -> float:
+        """Roller mass ``m`` [kg] (given or ``rho pi R_b^2 L``)."""
+        if self.roller_mass is not None:
+            return float(self.roller_mass)
+        return self.rho * math.pi * self.roller_radius**2 * self.effective_length
+
+    @property
+    def centrifugal_cage_ratio(self) -> float:
+        """``omega_c / W`` of the centrifugal force (eq 18)."""
+        if self.cage_ratio is not None:
+            return float(self.cage_ratio)
+        return cage_ratio(self.roller_diameter, self.pitch_diameter, 0.0)
+
+    @property
+    def kappa(self) -> float:
+        """Cage ratio of the roller positions (0 for ``cage="fixed"``)."""
+        return 0.0 if self.cage == "fixed" else self.centrifugal_cage_ratio
+
+    def element_angles(self, phi: ArrayLike = 0.0) -> FloatArray:
+        """Roller angles ``psi`` [rad], shape ``(S, N)``, at shaft angles ``phi`` (S,)."""
+        return element_angles(self.n_rollers, phi, self.kappa, self.psi0)
+
+    def at_speed(self, speed: float) -> FlexibleRingRollerBearing:
+        """A copy whose default shaft speed is ``speed`` [rad/s] (bearing statics at speed)."""
+        return dataclasses.replace(self, speed=float(speed))
+
+    @cached_property
+    def potential(self) -> RollerPotential:
+        """The per-roller potential (seed 001 eq 19)."""
+        theta = 2.0 * math.pi / self.n_rollers
+        modulus = self.E if self.ring_modulus is None else float(self.ring_modulus)
+
+        def ring(section: RingSection | None) -> tuple[float, float, float]:
+            if section is None or self.rigid_rings:
+                return 0.0, 0.0, 1.0
+            return (section.tension_stiffness(modulus, theta),
+                    section.bending_rigidity(modulus, theta), section.mean_radius)
+
+        internal = (0, 1) if self.tilt else (0,)
+        if not self.rigid_rings:
+            internal = (*internal, 2, 3)
+        return RollerPotential(self.line_constant, float(self.exponent),
+                               float(self.diametral_clearance), self.slices,
+                               float(self.pitch_radius), ring(self.sections[0]),
+                               ring(self.sections[1]), internal, (0, 1) if self.tilt else (0,))
+
+    @cached_property
+    def newton(self) -> InnerNewton:
+        """Options of the inner Newton solve."""
+        if isinstance(self.max_iter, bool) or not isinstance(self.max_iter, int):
+            raise ModelError(f"max_iter must be an integer >= 1, got {self.max_iter!r}",
+                             self.label)
+        try:
+            return InnerNewton(tol=float(self.tol), max_iter=self.max_iter)
+        except ModelError as exc:
+            raise ModelError(str(exc), self.label) from None
+
+    # ------------------------------------------------------------------ state
+    def energy(self, delta: ArrayLike, psi: ArrayLike, speed: ArrayLike | None = None,
+               internal: ArrayLike | None = None) -> FloatArray:
+        """Condensed potential ``sum_j Pi*_j`` [J], shape ``(S,)``."""
+        return np.asarray(self.state(delta, psi, speed, internal).energy)
+
+    def state(self, delta: ArrayLike, psi: ArrayLike, speed: ArrayLike | None = None,
+              internal: ArrayLike | None = None, details: bool = True) -> FlexibleRingState:
+        """Force, exact condensed tangent and roller loads for ``S`` samples.
+
+        Parameters
+        ----------
+        delta : array (S, 5)
+            ``[x, y, z, rx, ry]`` of the inner ring relative to the outer ring [m, rad].
+        psi : array (S, N) or (N,)
+            Roller angles [rad].
+        speed : float or array (S,), optional
+            Shaft speed ``W`` [rad/s] (centrifugal force); default :attr:`speed`.
+        internal : array (S, N, 4), optional
+            ``state.internal`` of a previous call (warm start); NaN rows start cold.
+        details : bool
+            Also return the slice loads (``slice_load``, ``outer_slice_load``).
+
+        Returns
+        -------
+        FlexibleRingState
+
+        Raises
+        ------
+        ConvergenceError
+            When the inner Newton fails for a roller (names the roller and the sample).
+        """
+        d, p = self._inputs(delta, psi)
+        n_s = d.shape[0]
+        w = np.asarray(self.speed if speed is None else speed, dtype=float).reshape(-1)
+        if w.size not in (1, n_s) or not np.all(np.isfinite(w)):
+            raise ModelError(f"speed must be finite, a scalar or ({n_s},), got shape "
+                             f"{w.shape}", self.label)
+        return solve_state(self, d, p, np.broadcast_to(w, (n_s,)), internal, details)
+
+    def _inputs(self, delta: ArrayLike, psi: ArrayLike) -> tuple[FloatArray, FloatArray]:
+        d = np.asarray(delta, dtype=float)
+        d = d[None, :] if d.ndim == 1 else d
+        p = np.asarray(psi, dtype=float)
+        p = p[None, :] if p.ndim == 1 else p
+        if d.ndim != 2 or d.shape[1] != 5:
+            raise ModelError(f"delta must have shape (S, 5), got {np.shape(delta)}", self.label)
+        if p.ndim != 2 or p.shape[1] != self.n_rollers or p.shape[0] not in (1, d.shape[0]):
+            raise ModelError(f"psi must have shape (S, {self.n_rollers}), got "
+                             f"{np.shape(psi)}", self.label)
+        if not (np.isfinite(d).all() and np.isfinite(p).all()):
+            raise ModelError("delta and psi must be finite", self.label)
+        return d, np.broadcast_to(p, (d.shape[0], self.n_rollers))
