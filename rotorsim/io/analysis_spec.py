@@ -1,8 +1,9 @@
-"""Typed analysis specifications read from model files, and the runner that executes them.
+"""Typed analysis specifications read from model files.
 
 A model file names analyses (``[analyses.campbell]`` with ``type = "campbell"``); the
 loader turns each into one of the frozen specs below, in SI units with node numbers
-resolved. :func:`run_analysis` maps a spec onto the matching ``rotorsim`` call.
+resolved. :func:`~rotorsim.io.analysis_runners.run_analysis` maps a spec onto the
+matching ``rotorsim`` call.
 
 Examples
 --------
@@ -15,25 +16,13 @@ Examples
 
 from __future__ import annotations
 
-import dataclasses
-import functools
-import os
 from dataclasses import dataclass, fields
-from pathlib import Path
-from typing import TYPE_CHECKING, Any, ClassVar, Literal
+from typing import Any, ClassVar, Literal
 
 import numpy as np
 
 from rotorsim.assembly.loads import STANDARD_GRAVITY
 from rotorsim.elements.base import FloatArray
-from rotorsim.errors import ModelError
-from rotorsim.io.restart import checkpoint_path, restart_options
-
-if TYPE_CHECKING:
-    from rotorsim.io.model_file import Model
-
-FAST_POINTS = 7
-"""Grid size used by ``run_analysis(..., fast=True)``."""
 
 
 @dataclass(frozen=True)
@@ -334,70 +323,3 @@ SPEC_TYPES: dict[str, type[AnalysisSpec]] = {
                               SweepSpec)
 }
 """Analysis ``type`` names of model files and their spec classes."""
-
-
-def run_analysis(model: Model, name: str, *, fast: bool = False, progress: bool = False,
-                 checkpoint_dir: str | os.PathLike[str] | None = None) -> Any:
-    """Run the analysis ``name`` of a loaded model.
-
-    Parameters
-    ----------
-    model : Model
-        From :func:`rotorsim.io.model_file.load_model`.
-    name : str
-        Key of the analysis in ``model.analyses``.
-    fast : bool
-        Shrink every grid to at most :data:`FAST_POINTS` points, a transient to a tenth of
-        its duration and a periodic branch to 10 points with at most 4 harmonics (tests,
-        smoke runs).
-    progress : bool
-        Show progress bars on sweeps that support them.
-    checkpoint_dir : path, optional
-        Folder of the checkpoint file ``<name>.checkpoint.h5`` of an analysis with
-        ``checkpoint`` or ``resume`` set (default ``results/<model name>``, where the
-        command line writes its results), and of the store ``<name>.h5`` a ``sweep``
-        writes point by point (kept in memory when neither ``checkpoint_dir`` nor
-        ``resume`` is given).
-
-    Returns
-    -------
-    result
-        The analysis result (``ModalResult``, ``CampbellResult``, ``CriticalSpeeds``,
-        ``CriticalSpeedMapResult``, ``FrequencyResponseResult``, ``StaticResult``,
-        ``TransientResult`` or ``PeriodicResult``).
-
-    Raises
-    ------
-    ModelError
-        ``name`` is not an analysis of the model.
-
-    Notes
-    -----
-    A model with rolling bearings is analysed on :meth:`Model.linearized` (the bearings
-    linearised at their static loads, computed once per model and speed: the spec's
-    ``speed`` for ``modal`` and ``static``, else 0); the result's ``options`` then hold
-    ``rolling_bearings`` (tags, loads, iterations). A ``static`` analysis returns that
-    nonlinear static equilibrium; a ``transient`` uses the full nonlinear bearings.
-    """
-    if name not in model.analyses:
-        raise ModelError(f"no analysis {name!r}; the model has {sorted(model.analyses)}",
-                         model.name)
-    spec = model.analyses[name]
-    from rotorsim.io.analysis_runners import RUNNERS
-
-    runner = RUNNERS[spec.type]
-    folder = Path("results") / model.name if checkpoint_dir is None else Path(checkpoint_dir)
-    if isinstance(spec, RestartableSpec):
-        return runner(model.rotor.with_nonlinear(model.rolling_bearings), model, spec, fast,
-                      progress, restart_options(spec, checkpoint_path(folder, name)))
-    if isinstance(spec, SweepSpec):  # its store is the results file (in memory unless asked)
-        on_disk = checkpoint_dir is not None or spec.resume
-        runner = functools.partial(runner, store=folder / f"{name}.h5" if on_disk else None)
-    if not model.rolling_bearings:
-        return runner(model.rotor, model, spec, fast, progress)
-    linear = model.linearized(float(getattr(spec, "speed", None) or 0.0)
-                              if spec.type in ("modal", "static") else 0.0)
-    result = linear.static if spec.type == "static" else runner(linear.rotor, model, spec,
-                                                                  fast, progress)
-    return dataclasses.replace(result, options={**result.options,
-                                                "rolling_bearings": linear.describe()})
