@@ -19,21 +19,22 @@ import numpy as np
 
 from rotorsim.elements.base import FloatArray
 from rotorsim.errors import ModelError
-from rotorsim.io.analysis_spec import (
-    AnalysisSpec,
+from rotorsim.io.analysis_spec import AnalysisSpec, Grid
+from rotorsim.io.linear_specs import (
     CampbellSpec,
     CriticalSpeedMapSpec,
     CriticalSpeedsSpec,
     FrequencyResponseSpec,
-    Grid,
     ModalSpec,
+    StaticSpec,
+    UnbalanceSpec,
+)
+from rotorsim.io.long_specs import (
     PeriodicParameterSpec,
     PeriodicSpec,
     RestartableSpec,
-    StaticSpec,
     SweepSpec,
     TransientSpec,
-    UnbalanceSpec,
 )
 from rotorsim.io.restart import checkpoint_path, restart_options
 

@@ -19,7 +19,8 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from rotorsim.errors import ModelError
-from rotorsim.io.analysis_spec import AnalysisSpec, Loads, PeriodicParameterSpec
+from rotorsim.io.analysis_spec import AnalysisSpec, Loads
+from rotorsim.io.long_specs import PeriodicParameterSpec
 from rotorsim.io.model_parameter import ModelParameter, parameter_range
 from rotorsim.model.rotor import Rotor
 

@@ -12,7 +12,9 @@ starts with the key path (``shaft[3].od: must be > id (0.06 m)``); TOML syntax e
 the line and column.
 
 pydantic (and pint, for unit strings) is imported when a file is read, so importing this
-module stays light.
+module stays light. This module is the entry point: :class:`Model` and
+:func:`model_from_dict` are defined in :mod:`rotorsim.io.model`, :func:`run_analysis` in
+:mod:`rotorsim.io.analysis_runners`, and are importable from here.
 
 Examples
 --------

@@ -13,6 +13,9 @@ from pathlib import Path
 
 IO = Path(__file__).resolve().parents[2] / "rotorsim" / "io"
 PACKAGE = "rotorsim.io"
+SPECS = {f"{PACKAGE}.{name}" for name in ("analysis_spec", "linear_specs", "long_specs",
+                                          "spec_registry")}
+"""The analysis specs: plain data that imports no schema, builder, Model or runner."""
 
 
 def module_name(path: Path, root: Path = IO) -> str:
@@ -121,3 +124,9 @@ def test_checker_finds_a_cycle_and_ignores_type_checking(tmp_path):
 def test_io_imports_are_acyclic():
     cycle = find_cycle(import_graph())
     assert cycle is None, "import cycle in rotorsim.io: " + " -> ".join(cycle or [])
+
+
+def test_specs_import_only_specs():
+    graph = import_graph()
+    outside = {name: sorted(graph[name] - SPECS) for name in sorted(SPECS)}
+    assert all(not v for v in outside.values()), outside
