@@ -56,6 +56,22 @@ class ResultsFileError(ModelError):
     """
 
 
+class CheckpointError(RotorsimError, ValueError):
+    """A checkpoint cannot be read or belongs to another run.
+
+    Parameters
+    ----------
+    message : str
+        What is wrong.
+    path : str, optional
+        The checkpoint file.
+    """
+
+    def __init__(self, message: str, path: str | None = None) -> None:
+        self.path = path
+        super().__init__(f"checkpoint {path}: {message}" if path else message)
+
+
 class ConvergenceError(RotorsimError, RuntimeError):
     """A single solve failed to converge.
 

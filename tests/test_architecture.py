@@ -36,6 +36,30 @@ def test_numerics_do_not_import_model_layers(layer):
     assert not offenders, offenders
 
 
+def _module_level_imports(path: Path) -> set[str]:
+    names: set[str] = set()
+    for node in ast.parse(path.read_text(), filename=str(path)).body:
+        if isinstance(node, ast.Import):
+            names.update(alias.name for alias in node.names)
+        elif isinstance(node, ast.ImportFrom) and node.module:
+            names.add(node.module)
+    return names
+
+
+@pytest.mark.parametrize("layer", NUMERICS)
+def test_numerics_leave_files_to_io(layer):
+    """Checkpoints go through rotorsim.io.checkpoint_file, resolved when one is written:
+    the numerics never import h5py, nor rotorsim.io when they are imported."""
+    offenders = []
+    for path in (PACKAGE / layer).rglob("*.py"):
+        names = _imports(path)
+        offenders += [f"{path.relative_to(PACKAGE)} imports h5py" for n in names
+                      if n.startswith("h5py")]
+        offenders += [f"{path.relative_to(PACKAGE)} imports {n} at module level"
+                      for n in _module_level_imports(path) if n.startswith("rotorsim.io")]
+    assert not offenders, offenders
+
+
 def test_results_do_not_import_analyses_or_plotting():
     offenders = [
         f"{path.name} imports {name}"

@@ -18,13 +18,13 @@ h5py is imported when a file is read or written, not with this module.
 from __future__ import annotations
 
 import os
-import uuid
-from collections.abc import Callable, Mapping
+from collections.abc import Mapping
 from datetime import UTC, datetime
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 import rotorsim.io.result_types  # noqa: F401  (registers every result type)
+from rotorsim.io.atomic_file import write_atomically
 from rotorsim.io.serialize import ResultsFileError, read_result, result_type, write_result
 
 if TYPE_CHECKING:
@@ -81,10 +81,10 @@ def save(result: object | Mapping[str, object], path: str | os.PathLike[str]) ->
     target = Path(path)
     if isinstance(result, Mapping):
         items = _checked_items(result)
-        _atomic_write(target, lambda f: _write_collection(f, items))
+        write_atomically(target, lambda f: _write_collection(f, items), "save")
     else:
         result_type(result)
-        _atomic_write(target, lambda f: _write_single(f, result))
+        write_atomically(target, lambda f: _write_single(f, result), "save")
     return target
 
 
@@ -162,25 +162,6 @@ def _write_collection(f: h5py.File, items: list[tuple[str, object]]) -> None:
     group = f.create_group("results", track_order=True)
     for name, result in items:
         write_result(group.create_group(name), result)
-
-
-def _atomic_write(target: Path, write: Callable[[h5py.File], None]) -> None:
-    """Run ``write`` on a new HDF5 file beside ``target`` and rename it onto ``target``."""
-    import h5py
-
-    from rotorsim.io.output_folder import prepare_folder
-
-    prepare_folder(target, "save")
-    temp = target.with_name(f".{target.name}.{uuid.uuid4().hex}.tmp")
-    try:
-        with h5py.File(temp, "x") as f:
-            write(f)
-        with open(temp, "rb+") as raw:  # the data are on disk before the rename
-            os.fsync(raw.fileno())
-        os.replace(temp, target)
-    except BaseException:
-        temp.unlink(missing_ok=True)
-        raise
 
 
 def _check_header(f: h5py.File, source: Path) -> str:

@@ -36,6 +36,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from rotorsim.errors import ModelError, Status
+from rotorsim.io.atomic_file import write_atomically
 from rotorsim.results.sweep import FloatArray, ParameterSpace, PointRecord, SweepResult
 
 FORMAT = "rotorsim.sweep"
@@ -226,13 +227,9 @@ class HDF5Store:
         """Create a new store (replacing any file at ``path``) for ``header``."""
         import h5py
 
-        from rotorsim.io.output_folder import prepare_folder
-
-        path = Path(path)
-        prepare_folder(path, "sweep store")
-        tmp = path.with_name(path.name + ".tmp")
         space, n = header.space, header.space.n_points
-        with h5py.File(tmp, "w") as f:
+
+        def write(f: h5py.File) -> None:
             f.attrs.update({"format": FORMAT, "version": VERSION, "kind": space.kind,
                             "fingerprint": header.fingerprint,
                             "definition": header.definition_json,
@@ -246,7 +243,8 @@ class HDF5Store:
             points.create_dataset("message", data=[""] * n, dtype=h5py.string_dtype())
             points.create_dataset("wall_time", data=np.zeros(n))
             f.create_group("outputs")
-        os.replace(tmp, path)
+
+        path = write_atomically(Path(path), write, "sweep store")
         return cls(path, header)
 
     @classmethod

@@ -152,7 +152,7 @@ def continue_branch(residual: ResidualCallback, x0: ArrayLike, lam0: float,
         (its folder is created; a folder or an uncreatable path is a ModelError).
     resume : path, optional
         Continue from this checkpoint (same options and start, else
-        :class:`~rotorsim.time_integration.checkpoint.CheckpointError`); the branch equals
+        :class:`~rotorsim.errors.CheckpointError`); the branch equals
         that of an uninterrupted run bit for bit.
     progress : bool
         Show a tqdm bar over points.

@@ -1,4 +1,4 @@
-"""Continuation checkpoints: the stepper state and the branch so far, in HDF5.
+"""Continuation checkpoints: the stepper state and the branch so far.
 
 Layout (``format_version`` 1)::
 
@@ -8,27 +8,29 @@ Layout (``format_version`` 1)::
     /state/counters   attrs: the ContinuationCounters fields
     /branch           datasets: one array per branch quantity (points so far)
 
-Floats are stored as float64, so a resumed run continues bit for bit. The file is written
-under a temporary name and renamed when complete; h5py is imported only here, when a
-checkpoint is read or written.
+Floats are stored as float64, so a resumed run continues bit for bit. This module turns a
+state into that content and back; the file itself is written and read by a
+:class:`~rotorsim.io.checkpoint_file.CheckpointFiles` (by default the atomic HDF5 files of
+:mod:`rotorsim.io.checkpoint_file`, imported when a checkpoint is first written or read), so
+the continuation never imports h5py.
 """
 
 from __future__ import annotations
 
 import dataclasses
-import json
 import os
-import uuid
 from collections.abc import Mapping
-from datetime import UTC, datetime
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numpy.typing import NDArray
 
+from rotorsim.errors import CheckpointError
 from rotorsim.solvers.continuation_state import ContinuationCounters, ContinuationState
-from rotorsim.time_integration.checkpoint import CheckpointError, compare_config, read_header
+
+if TYPE_CHECKING:
+    from rotorsim.io.checkpoint_file import CheckpointFiles, GroupContent
 
 FORMAT = "rotorsim-continuation-checkpoint"
 FORMAT_VERSION = 1
@@ -39,56 +41,31 @@ _KINDS: dict[str, type] = {"point": int, "iterations": int, "det_sign": int, "st
 
 def save_continuation_checkpoint(path: str | os.PathLike[str], state: ContinuationState, *,
                                  branch: Mapping[str, NDArray[Any]],
-                                 config: Mapping[str, Any]) -> Path:
+                                 config: Mapping[str, Any],
+                                 files: CheckpointFiles | None = None) -> Path:
     """Write ``state`` and the branch arrays atomically to ``path`` (replaced if present).
 
     Parameters
     ----------
     path : path-like
-        Target file; its folder must exist.
+        Target file; missing folders are created.
     state : ContinuationState
     branch : mapping of str to array
         Branch quantities so far, one row per point.
     config : mapping
         JSON-able identity of the run, compared by :func:`load_continuation_checkpoint`.
+    files : CheckpointFiles, optional
+        Where the checkpoint goes (default: HDF5 files, :mod:`rotorsim.io.checkpoint_file`).
     """
-    import h5py
-
-    target = Path(path)
-    if not target.parent.is_dir():
-        raise FileNotFoundError(f"folder of checkpoint {target} does not exist")
-    temp = target.with_name(f".{target.name}.{uuid.uuid4().hex}.tmp")
-    try:
-        with h5py.File(temp, "x") as f:
-            f.attrs["format"] = FORMAT
-            f.attrs["format_version"] = FORMAT_VERSION
-            f.attrs["created"] = datetime.now(UTC).isoformat(timespec="seconds")
-            f.attrs["config"] = json.dumps(config, sort_keys=True)
-            group = f.create_group("state")
-            for field in dataclasses.fields(state):
-                value = getattr(state, field.name)
-                if field.name in _ARRAYS:
-                    group.create_dataset(field.name, data=np.asarray(value, dtype=float))
-                elif field.name == "counters":
-                    sub = group.create_group("counters")
-                    for c in dataclasses.fields(value):
-                        sub.attrs[c.name] = int(getattr(value, c.name))
-                else:
-                    group.attrs[field.name] = value
-            out = f.create_group("branch")
-            for name, value in branch.items():
-                out.create_dataset(name, data=np.asarray(value))
-        with open(temp, "rb+") as raw:
-            os.fsync(raw.fileno())
-        os.replace(temp, target)
-    except BaseException:
-        temp.unlink(missing_ok=True)
-        raise
-    return target
+    content: dict[str, GroupContent] = {
+        "state": _state_content(state),
+        "branch": {"datasets": {name: np.asarray(value) for name, value in branch.items()}}}
+    return _files(files).write(path, FORMAT, FORMAT_VERSION, config, content)
 
 
 def load_continuation_checkpoint(
     path: str | os.PathLike[str], *, config: Mapping[str, Any] | None = None,
+    files: CheckpointFiles | None = None,
 ) -> tuple[ContinuationState, dict[str, NDArray[Any]], dict[str, Any]]:
     """Read ``(state, branch arrays, stored config)``.
 
@@ -100,39 +77,53 @@ def load_continuation_checkpoint(
         If the file is not a continuation checkpoint of this version, is damaged, or was
         written by a run with another configuration (the differing entries are listed).
     """
-    import h5py
-
-    source = Path(path)
-    if not source.is_file():
-        raise FileNotFoundError(f"no such checkpoint: {source}")
-    try:
-        with h5py.File(source, "r") as f:
-            stored = read_header(f, FORMAT, FORMAT_VERSION)
-            if config is not None:
-                compare_config(stored, json.loads(json.dumps(config, sort_keys=True)))
-            state = _read_state(f["state"])
-            branch = {name: f["branch"][name][()] for name in f["branch"]}
-    except CheckpointError as exc:
-        raise CheckpointError(str(exc), str(source)) from exc
-    except (KeyError, OSError, TypeError, ValueError) as exc:
-        raise CheckpointError(f"corrupted or incomplete ({type(exc).__name__}: {exc})",
-                              str(source)) from exc
+    (state, branch), stored = _files(files).read(path, FORMAT, FORMAT_VERSION, _decode,
+                                                 config)
     return state, branch, stored
 
 
-def _read_state(group: Any) -> ContinuationState:
+def _files(files: CheckpointFiles | None) -> CheckpointFiles:
+    if files is not None:
+        return files
+    from rotorsim.io.checkpoint_file import HDF5_CHECKPOINTS
+
+    return HDF5_CHECKPOINTS
+
+
+def _state_content(state: ContinuationState) -> GroupContent:
+    attrs: dict[str, Any] = {}
+    datasets: dict[str, NDArray[Any]] = {}
+    groups: dict[str, GroupContent] = {}
+    for field in dataclasses.fields(state):
+        value = getattr(state, field.name)
+        if field.name in _ARRAYS:
+            datasets[field.name] = np.asarray(value, dtype=float)
+        elif field.name == "counters":
+            groups[field.name] = {"attrs": {c.name: int(getattr(value, c.name))
+                                            for c in dataclasses.fields(value)}}
+        else:
+            attrs[field.name] = value
+    return {"attrs": attrs, "datasets": datasets, "groups": groups}
+
+
+def _decode(content: Mapping[str, Any], stored: dict[str, Any],
+            ) -> tuple[ContinuationState, dict[str, NDArray[Any]]]:
+    branch = content["branch"]
+    return _read_state(content["state"]), {name: branch[name] for name in branch}
+
+
+def _read_state(group: Mapping[str, Any]) -> ContinuationState:
     values: dict[str, Any] = {}
     for field in dataclasses.fields(ContinuationState):
         if field.name in _ARRAYS:
-            values[field.name] = np.asarray(group[field.name][()], dtype=float)
+            values[field.name] = np.asarray(group[field.name], dtype=float)
         elif field.name == "counters":
-            attrs = group["counters"].attrs
+            counters = group["counters"]
             values[field.name] = ContinuationCounters(
-                **{c.name: int(attrs[c.name]) for c in dataclasses.fields(ContinuationCounters)})
+                **{c.name: int(counters[c.name])
+                   for c in dataclasses.fields(ContinuationCounters)})
         else:
-            raw = group.attrs[field.name]
-            raw = raw.decode() if isinstance(raw, bytes) else raw
-            values[field.name] = _KINDS.get(field.name, float)(raw)
+            values[field.name] = _KINDS.get(field.name, float)(group[field.name])
     m = values["x"].size
     if values["tangent"].shape != (m + 1,) or values["x_scale"].shape != (m,):
         raise CheckpointError(f"state arrays have inconsistent shapes for m = {m}")

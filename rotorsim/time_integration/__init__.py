@@ -7,14 +7,11 @@ fourth-order :class:`Adams`) and call
 them.
 """
 
+from rotorsim.errors import CheckpointError
 from rotorsim.time_integration.adams import Adams
 from rotorsim.time_integration.adaptive import Adaptive
 from rotorsim.time_integration.base import Counters, State, TimeStepper, cubic_hermite
-from rotorsim.time_integration.checkpoint import (
-    CheckpointError,
-    load_checkpoint,
-    save_checkpoint,
-)
+from rotorsim.time_integration.checkpoint import load_checkpoint, save_checkpoint
 from rotorsim.time_integration.integrate import IntegrationResult, integrate
 from rotorsim.time_integration.newmark import Newmark
 from rotorsim.time_integration.output import OutputSpec, Reducer

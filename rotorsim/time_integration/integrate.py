@@ -105,7 +105,7 @@ def integrate(problem: SecondOrderProblem, stepper: TimeStepper, t_span: Sequenc
         ``checkpoint_every`` accepted steps and at the end.
     resume : path, optional
         Continue from this checkpoint (same problem, stepper, span, dt, output and initial
-        state, else :class:`~.checkpoint.CheckpointError`); the samples, reductions and
+        state, else :class:`~rotorsim.errors.CheckpointError`); the samples, reductions and
         final state equal those of an uninterrupted run bit for bit (the cost counters add
         one factorisation: the LU factors are not stored).
     progress : bool

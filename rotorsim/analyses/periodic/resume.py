@@ -7,7 +7,7 @@ is the finished branch. Users often save the result under the same name
 such a file returns the stored result when it was computed by the same run: the options of
 the call (:func:`~rotorsim.analyses.periodic.periodic.periodic`'s ``result.options``) and the
 identity of the start (size and hash of the first point, as stored in continuation
-checkpoints) must match, else :class:`~rotorsim.time_integration.checkpoint.CheckpointError`
+checkpoints) must match, else :class:`~rotorsim.errors.CheckpointError`
 lists what differs. A results file holding anything but a periodic branch is refused too.
 """
 
@@ -18,8 +18,9 @@ import os
 from pathlib import Path
 from typing import Any
 
+from rotorsim.errors import CheckpointError
+from rotorsim.io.checkpoint_file import compare_config, file_format
 from rotorsim.results.periodic import PeriodicResult
-from rotorsim.time_integration.checkpoint import CheckpointError, compare_config
 
 RESULTS_FORMAT = "rotorsim-results"
 """``format`` attribute of a file written by :func:`rotorsim.io.hdf5.save`."""
@@ -37,17 +38,8 @@ def finished_result(path: str | os.PathLike[str]) -> PeriodicResult | None:
     CheckpointError
         For a results file that does not hold one periodic result.
     """
-    import h5py
-
     source = Path(path)
-    if not source.is_file():
-        return None
-    try:
-        with h5py.File(source, "r") as f:
-            fmt = f.attrs.get("format")
-    except OSError:
-        return None
-    if fmt != RESULTS_FORMAT:
+    if file_format(source) != RESULTS_FORMAT:
         return None
     from rotorsim.io.hdf5 import load
 
