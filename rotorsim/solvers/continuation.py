@@ -31,6 +31,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from rotorsim.errors import ModelError, Status
+from rotorsim.progress import progress_bar
 from rotorsim.solvers.continuation_checkpoint import (
     load_continuation_checkpoint,
     save_continuation_checkpoint,
@@ -201,7 +202,8 @@ def continue_branch(residual: ResidualCallback, x0: ArrayLike, lam0: float,
         state = opts.init(residual, x_start, float(lam0))
         history = {name: [] for name in _FIELDS}
         _record(history, state)
-    bar = _progress_bar(progress, opts.max_points, len(history["lam"]))
+    bar = progress_bar(progress, total=opts.max_points, initial=len(history["lam"]),
+                       desc="continuation", unit="pt")
     try:
         while not state.finished:
             if len(history["lam"]) >= opts.max_points:
@@ -273,11 +275,3 @@ def _stats(counters: ContinuationCounters, points: int, wall_time: float) -> dic
     out["iterations_per_point"] = counters.iterations / max(points - 1, 1)
     out["wall_time"] = wall_time
     return out
-
-
-def _progress_bar(enabled: bool, total: int, done: int) -> Any:
-    if not enabled:
-        return None
-    from tqdm import tqdm
-
-    return tqdm(total=total, initial=done, desc="continuation", unit="pt")

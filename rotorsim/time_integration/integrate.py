@@ -21,6 +21,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from rotorsim.errors import ConvergenceError, ModelError, Status
+from rotorsim.progress import progress_bar
 from rotorsim.solvers.threads import one_blas_thread
 from rotorsim.time_integration.base import FloatArray, IntArray, State, TimeStepper
 from rotorsim.time_integration.checkpoint import load_checkpoint, save_checkpoint
@@ -30,6 +31,9 @@ from rotorsim.time_integration.problem import SecondOrderProblem
 LAST_STEP_SLACK = 1e-7
 """Relative tolerance on the step size within which the last step lands on ``t_end``:
 round-off accumulated in ``t`` never leaves a sliver step or costs a factorisation."""
+
+TIME_BAR = "{desc}: {percentage:3.0f}%|{bar}| t = {n:.4g}/{total:.4g} s [{elapsed}<{remaining}]"
+"""Layout of the progress bar over simulated time."""
 
 
 @dataclass(frozen=True, eq=False)
@@ -165,7 +169,8 @@ def integrate(problem: SecondOrderProblem, stepper: TimeStepper, t_span: Sequenc
         recorder.start(state)
         if checkpoint is not None:
             save_checkpoint(checkpoint, state, config=config, output=recorder.snapshot())
-    bar = _progress_bar(progress, stepper.name, t0, t_end, state.t)
+    bar = progress_bar(progress, total=t_end - t0, initial=state.t - t0, desc=stepper.name,
+                       unit="s", bar_format=TIME_BAR)
     status, message = Status.OK, ""
     try:
         while state.t < t_end:
@@ -245,12 +250,3 @@ def _stats(state: State, wall_time: float) -> dict[str, float]:
     out["wall_time"] = wall_time
     return out
 
-
-def _progress_bar(enabled: bool, name: str, t0: float, t_end: float, t: float) -> Any:
-    if not enabled:
-        return None
-    from tqdm import tqdm
-
-    return tqdm(total=t_end - t0, initial=t - t0, desc=name, unit="s",
-                bar_format="{desc}: {percentage:3.0f}%|{bar}| t = {n:.4g}/{total:.4g} s "
-                           "[{elapsed}<{remaining}]")

@@ -8,7 +8,6 @@ modes (:func:`circularize`).
 
 from __future__ import annotations
 
-from collections.abc import Iterable
 from dataclasses import dataclass
 from typing import Any, Literal
 
@@ -28,6 +27,7 @@ from rotorsim.analyses.system_input import as_system
 from rotorsim.assembly.system import RotorSystem
 from rotorsim.errors import ConvergenceError, ModelError, Status
 from rotorsim.model.rotor import Rotor
+from rotorsim.progress import with_progress
 from rotorsim.results.campbell import CampbellResult
 from rotorsim.solvers.stats import Stats
 from rotorsim.solvers.threads import one_blas_thread
@@ -135,7 +135,7 @@ def campbell(
     status = np.full(n_speeds, int(Status.OK), dtype=np.int64)
     previous: tuple[ComplexArray, ComplexArray] | None = None
     fewest = num_modes
-    for i in _progress(range(n_speeds), progress):
+    for i in with_progress(range(n_speeds), progress, desc="campbell", unit="speed"):
         try:
             cand = _candidates(system, float(grid[i]), num_modes, sparse, sigma, stats)
         except (ConvergenceError, np.linalg.LinAlgError) as exc:
@@ -194,14 +194,6 @@ def _check_inputs(speeds: ArrayLike, num_modes: int, on_failure: str) -> FloatAr
     if np.any(np.diff(grid) <= 0):
         raise ModelError("speeds must be strictly increasing", where)
     return grid
-
-
-def _progress(items: range, show: bool) -> Iterable[int]:
-    if not show:
-        return items
-    from tqdm import tqdm
-
-    return tqdm(items, desc="campbell", unit="speed")
 
 
 def _candidates(system: RotorSystem, speed: float, num_modes: int, sparse: bool | None,

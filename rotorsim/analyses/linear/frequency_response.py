@@ -7,7 +7,7 @@ sparse complex LU of the dynamic stiffness, solved for all right-hand sides at o
 
 from __future__ import annotations
 
-from collections.abc import Callable, Iterable, Sequence
+from collections.abc import Callable, Sequence
 from typing import Any
 
 import numpy as np
@@ -23,6 +23,7 @@ from rotorsim.assembly.system import RotorSystem, SystemMatrices
 from rotorsim.elements.base import as_float_array
 from rotorsim.errors import ConvergenceError, ModelError, Status
 from rotorsim.model.rotor import Rotor
+from rotorsim.progress import with_progress
 from rotorsim.results.frequency_response import FrequencyResponseResult
 from rotorsim.solvers.linear import factorize
 from rotorsim.solvers.stats import Stats
@@ -209,7 +210,7 @@ def _harmonic_sweep(
     status = np.full(w.size, int(Status.OK), dtype=np.int64)
     speed_dependent = bool(system.variable_bearings)
     mats = system.matrices(float(spins[0]))
-    for i in _progress(range(w.size), progress, kind):
+    for i in with_progress(range(w.size), progress, desc=kind, unit="pt"):
         if speed_dependent and (i == 0 or spins[i] != spins[i - 1]):
             mats = system.matrices(float(spins[i]))
         where = f"{kind} at w = {w[i]:.6g} rad/s (point {i})"
@@ -262,14 +263,3 @@ def _solve_point(system: RotorSystem, Z: sp.csr_matrix, load: ComplexArray, w: f
     out[keep] = factorize(sp.csr_matrix(Z)[keep][:, keep], stats=stats,
                           where=where).solve(load[keep])
     return out
-
-
-def _progress(items: Iterable[int], enabled: bool, label: str) -> Iterable[int]:
-    """Wrap ``items`` in a tqdm bar when asked and tqdm is installed."""
-    if not enabled:
-        return items
-    try:
-        from tqdm.auto import tqdm
-    except ImportError:  # progress is cosmetic: run without the bar
-        return items
-    return tqdm(items, desc=label, unit="pt")

@@ -25,6 +25,7 @@ import numpy as np
 from rotorsim.errors import ConvergenceError, ModelError, Status
 from rotorsim.io.sweep_store import StoreHeader, content_hash, describe_callable, open_store
 from rotorsim.model.rotor import Rotor
+from rotorsim.progress import progress_bar
 from rotorsim.results.sweep import Grid, Normal, PointRecord, Sample, SweepResult, Uniform
 from rotorsim.solvers.threads import one_blas_thread
 
@@ -162,7 +163,8 @@ def sweep(
     try:
         resumed, pending = int(target.done.sum()), np.flatnonzero(~target.done)
         tasks = ((int(i), space.point(int(i))) for i in pending)
-        bar = _progress_bar(progress, space.n_points, resumed)
+        bar = progress_bar(progress, total=space.n_points, initial=resumed, desc="sweep",
+                           unit="pt")
         evaluated = failed = 0
         records = _records(executor, definition, tasks, max_workers) if pending.size else ()
         for record in records:
@@ -313,13 +315,3 @@ def _dask(client: Any, definition: SweepDefinition, tasks: Iterator[Task],
     width = max_workers or max(1, sum(client.nthreads().values()))
     yield from _stream(lambda i, p: client.submit(evaluate_point, shared, i, p, pure=False),
                        tasks, 2 * width, wait)
-
-
-def _progress_bar(enabled: bool, total: int, initial: int) -> Any:
-    if not enabled:
-        return None
-    try:
-        from tqdm.auto import tqdm
-    except ImportError:  # the bar is cosmetic
-        return None
-    return tqdm(total=total, initial=initial, desc="sweep", unit="pt")
