@@ -249,4 +249,3 @@ def _stats(state: State, wall_time: float) -> dict[str, float]:
     out["iterations_per_step"] = state.counters.iterations / max(state.step, 1)
     out["wall_time"] = wall_time
     return out
-
