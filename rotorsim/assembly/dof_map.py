@@ -1,9 +1,10 @@
-"""Numbering of the global DOFs and of the free (unconstrained) subset."""
+"""Numbering of the global DOFs and of the free (unconstrained) subset, and their labels."""
 
 from __future__ import annotations
 
 from collections.abc import Iterable
 from dataclasses import dataclass, field
+from typing import SupportsInt
 
 import numpy as np
 from numpy.typing import NDArray
@@ -12,6 +13,25 @@ from rotorsim.elements.base import DOF_NAMES, DOFS_PER_NODE
 from rotorsim.errors import ModelError
 
 IntArray = NDArray[np.int64]
+
+
+def dof_label(index: SupportsInt, *, short: bool = False) -> str:
+    """Label of the global DOF ``index`` (``6 * node + local``), the one place that spells it.
+
+    ``"node 8 uy"`` (the default) labels the DOFs of results files (their ``dof_labels``
+    datasets) and of results in memory (``TransientResult.dof_labels``,
+    ``PeriodicResult.dof_labels``). ``short=True`` gives ``"8:uy"``, the compact form of
+    messages and of the labels that result fields and summaries carry
+    (:meth:`DofMap.names`, ``StaticResult.restrained_dofs``, ``summary["inactive_dofs"]``);
+    it stays as it is so that files written before keep their content.
+
+    Examples
+    --------
+    >>> dof_label(49), dof_label(49, short=True)
+    ('node 8 uy', '8:uy')
+    """
+    node, local = divmod(int(index), DOFS_PER_NODE)
+    return f"{node}:{DOF_NAMES[local]}" if short else f"node {node} {DOF_NAMES[local]}"
 
 
 @dataclass(frozen=True, eq=False)
@@ -92,5 +112,5 @@ class DofMap:
         return out
 
     def names(self) -> list[str]:
-        """Labels ``"node:dof"`` of all DOFs."""
-        return [f"{n}:{d}" for n in range(self.n_nodes) for d in DOF_NAMES]
+        """Short labels ``"node:dof"`` (``"8:uy"``) of all DOFs (:func:`dof_label`)."""
+        return [dof_label(i, short=True) for i in range(self.ndof)]

@@ -10,7 +10,7 @@ import numpy as np
 import scipy.sparse as sp
 from numpy.typing import NDArray
 
-from rotorsim.assembly.dof_map import DofMap
+from rotorsim.assembly.dof_map import DofMap, dof_label
 from rotorsim.assembly.nonlinear import NonlinearAssembly
 from rotorsim.assembly.sparse import SparsityPattern
 from rotorsim.elements.base import (
@@ -122,9 +122,7 @@ def assemble(rotor: Rotor, nonlinear: Sequence[NonlinearElement] = ()) -> RotorS
     inactive = _unconnected_dofs(system)
     if inactive.size:
         system = _assemble(rotor, [*fixed, *inactive.tolist()])
-        system.summary["inactive_dofs"] = [
-            f"{i // DOFS_PER_NODE}:{DOF_NAMES[i % DOFS_PER_NODE]}" for i in inactive
-        ]
+        system.summary["inactive_dofs"] = [dof_label(i, short=True) for i in inactive]
     elements = (*rotor.nonlinear_elements, *nonlinear)
     if not elements:
         return system

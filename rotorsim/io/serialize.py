@@ -28,8 +28,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from rotorsim.assembly.dof_map import DofMap
-from rotorsim.elements.base import DOF_NAMES, DOFS_PER_NODE
+from rotorsim.assembly.dof_map import DofMap, dof_label
 from rotorsim.errors import ModelError, ResultsFileError, Status
 from rotorsim.io.tagged_json import from_jsonable, plain_dtype, to_jsonable
 
@@ -128,8 +127,7 @@ def dof_labels(indices: Any) -> np.ndarray:
     ['node 0 ux', 'node 8 uy']
     """
     idx = np.asarray(indices, dtype=np.int64).reshape(-1)
-    return np.array([f"node {i // DOFS_PER_NODE} {DOF_NAMES[i % DOFS_PER_NODE]}" for i in idx],
-                    dtype=object)
+    return np.array([dof_label(i) for i in idx], dtype=object)
 
 
 def _write_kept_labels(group: h5py.Group, result: object, kinds: dict[str, str]) -> None:

@@ -10,6 +10,7 @@ from numpy.typing import NDArray
 
 from rotorsim.assembly.dof_map import DofMap
 from rotorsim.errors import ModelError, Status
+from rotorsim.results.dof_access import KeptDofs
 
 FloatArray = NDArray[np.float64]
 IntArray = NDArray[np.int64]
@@ -53,13 +54,14 @@ class PeriodicBifurcation:
 
 
 @dataclass(frozen=True, eq=False)
-class PeriodicResult:
+class PeriodicResult(KeptDofs):
     """A branch of periodic responses with their stability and bifurcations.
 
     The response at point ``i`` is ``q(t) = sum_h Q_hc cos(h tau) + Q_hs sin(h tau)``,
     ``tau = fundamental[i] t``, with the coefficient rows ``[Q_0, Q_1c, Q_1s, ..., Q_Hs]``
     (:mod:`rotorsim.harmonic_balance.fourier`); complex amplitudes ``X_h = Q_hc - i Q_hs``
-    follow ``x(t) = Re(X_h e^{i h omega t})``.
+    follow ``x(t) = Re(X_h e^{i h omega t})``. :attr:`dof_labels` and :meth:`column`
+    (:class:`~.dof_access.KeptDofs`) label and find the kept DOFs (last axis).
 
     Attributes
     ----------
@@ -162,22 +164,6 @@ class PeriodicResult:
         return tuple(b for b in self.bifurcations if b.kind == kind)
 
     # ------------------------------------------------------------------ responses
-    @property
-    def dof_labels(self) -> list[str]:
-        """``"node:dof"`` label of each kept DOF."""
-        names = self.dof_map.names()
-        return [names[i] for i in self.dofs]
-
-    def column(self, node: int, dof: str) -> int:
-        """Column of ``(node, dof)`` among the kept DOFs.
-
-        Raises
-        ------
-        ModelError
-            When that DOF was not kept (or was held).
-        """
-        return self.dof_map.column(self.dofs, node, dof, "PeriodicResult")
-
     def amplitude(self, node: int, dof: str = "uy", measure: str = "max") -> FloatArray:
         """Amplitude measure of one DOF at every point (P,) [m, rad].
 

@@ -11,6 +11,7 @@ from numpy.typing import ArrayLike, NDArray
 from rotorsim.assembly.dof_map import DofMap
 from rotorsim.elements.base import DOF_NAMES
 from rotorsim.errors import ModelError, Status
+from rotorsim.results.dof_access import KeptDofs
 
 if TYPE_CHECKING:
     from rotorsim.results.order_tracking import OrderTrack, Waterfall
@@ -21,8 +22,11 @@ IntArray = NDArray[np.int64]
 
 
 @dataclass(frozen=True, eq=False)
-class TransientResult:
+class TransientResult(KeptDofs):
     """Time histories of a rotor transient: kept DOFs, speed, angle and bearing loads.
+
+    :attr:`dof_labels` and :meth:`column` (:class:`~.dof_access.KeptDofs`) label and find
+    the columns of ``q`` and ``v``.
 
     Attributes
     ----------
@@ -84,22 +88,6 @@ class TransientResult:
     summary: dict[str, Any] = field(default_factory=dict)
     element_loads: dict[str, FloatArray] = field(default_factory=dict)
     contact_angles: dict[str, FloatArray] = field(default_factory=dict)
-
-    @property
-    def dof_labels(self) -> list[str]:
-        """``"node:dof"`` label of each kept DOF."""
-        names = self.dof_map.names()
-        return [names[i] for i in self.dofs]
-
-    def column(self, node: int, dof: str) -> int:
-        """Column of ``(node, dof)`` in :attr:`q`.
-
-        Raises
-        ------
-        ModelError
-            When that DOF was not kept (the message lists the kept nodes).
-        """
-        return self.dof_map.column(self.dofs, node, dof, "TransientResult")
 
     def displacement(self, node: int, dof: str = "uy") -> FloatArray:
         """Time history of one DOF [m, rad]."""

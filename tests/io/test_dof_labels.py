@@ -36,6 +36,7 @@ def test_transient_columns_are_labelled(rotor, tmp_path):
         assert g["dofs"][col] == 6 * 8 + 1
         np.testing.assert_array_equal(g["q"][:, col], result.node_displacement(8)[:, 1])
         assert np.any(g["q"][:, col] != 0.0)
+        assert names == result.dof_labels  # the same labels in memory and in the file
         everything = labels(g["dof_map"]["dof_labels"])
         assert len(everything) == 6 * rotor.n_nodes and everything[49] == "node 8 uy"
     assert rs.load(path).dof_labels == result.dof_labels  # loading ignores the labels
@@ -51,3 +52,12 @@ def test_modal_rows_are_labelled(rotor, tmp_path):
         np.testing.assert_array_equal(g["mode_shapes"][row], modes.mode_shapes[row])
     back = rs.load(path)["modes"]
     np.testing.assert_array_equal(back.mode_shapes, modes.mode_shapes)
+
+
+def test_one_function_spells_both_label_forms():
+    from rotorsim.assembly.dof_map import dof_label
+    from rotorsim.results.dof_access import KeptDofs
+
+    assert rs.DofMap(9).names()[49] == dof_label(49, short=True) == "8:uy"
+    assert dof_label(np.int64(49)) == "node 8 uy"
+    assert issubclass(rs.TransientResult, KeptDofs) and issubclass(rs.PeriodicResult, KeptDofs)

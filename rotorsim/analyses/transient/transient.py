@@ -171,7 +171,7 @@ def transient(
     >>> res = transient(rotor, 0.05, 1e-4, speed=300.0, unbalance=[(2, 1e-4, 0.0)],
     ...                 gravity=None, initial="zero", nodes=[2])
     >>> res.q.shape, res.dof_labels[:2]
-    ((501, 6), ['2:ux', '2:uy'])
+    ((501, 6), ['node 2 ux', 'node 2 uy'])
     """
     if not (isinstance(dt, int | float) and np.isfinite(dt) and dt > 0):
         raise ModelError(f"dt must be a positive number [s], got {dt!r}", f"{WHERE}.dt")
