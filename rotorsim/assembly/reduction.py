@@ -7,7 +7,7 @@ other (interior) DOFs ``i``, the Craig-Bampton basis
 
 keeps the boundary DOFs ``q_b`` as unknowns (so the bearings see physical displacements),
 represents the interior by the static constraint modes ``Psi = -K_ii^-1 K_ib`` (the interior
-following a unit motion of one boundary DOF), the lowest ``n_modes`` fixed-interface normal
+following a unit motion of one boundary DOF), the lowest ``num_modes`` fixed-interface normal
 modes ``Phi`` (``K_ii phi = w^2 M_ii phi``, boundary held) and, optionally, the interior
 static responses ``S = K_ii^-1 f_i`` to given load shapes (gravity, unbalance), which make
 the static deflection under those loads exact. The reduced matrices are ``T^T A T``.
@@ -51,7 +51,7 @@ class ReducedBasis:
         are the boundary DOFs themselves.
     boundary : int array (b,)
         Free DOFs kept physical, in the order of ``x``.
-    frequencies : array (n_modes,)
+    frequencies : array (num_modes,)
         Natural frequencies of the fixed-interface modes [rad/s].
     n_static : int
         Number of static load vectors in the basis.
@@ -76,7 +76,7 @@ class ReducedBasis:
         return np.linalg.lstsq(self.T, np.asarray(q, dtype=float), rcond=None)[0]
 
 
-def craig_bampton(system: RotorSystem, boundary: ArrayLike, n_modes: int, *,
+def craig_bampton(system: RotorSystem, boundary: ArrayLike, num_modes: int, *,
                   static_loads: Sequence[ArrayLike] = (), speed: float = 0.0
                   ) -> ReducedBasis:
     """Build the Craig-Bampton basis of ``system`` (module docstring).
@@ -87,7 +87,7 @@ def craig_bampton(system: RotorSystem, boundary: ArrayLike, n_modes: int, *,
         The assembled model (its linear matrices at ``speed``).
     boundary : sequence of int
         Free DOFs kept physical (the nonlinear elements' DOFs, ``system.nonlinear.dofs``).
-    n_modes : int
+    num_modes : int
         Number of fixed-interface normal modes (>= 0); raised to keep the last cluster of
         equal frequencies whole (:func:`fixed_interface_modes`).
     static_loads : sequence of arrays (n_free,)
@@ -107,8 +107,8 @@ def craig_bampton(system: RotorSystem, boundary: ArrayLike, n_modes: int, *,
         raise ModelError(f"boundary DOFs must be free-DOF indices in 0..{n - 1}",
                          "craig_bampton")
     inner = np.setdiff1d(np.arange(n), b)
-    if not 0 <= int(n_modes) <= inner.size:
-        raise ModelError(f"n_modes must lie in 0..{inner.size} (interior DOFs), got {n_modes}",
+    if not 0 <= int(num_modes) <= inner.size:
+        raise ModelError(f"num_modes must lie in 0..{inner.size} (interior DOFs), got {num_modes}",
                          "craig_bampton")
     mats = system.matrices(speed)
     K, M = sp.csr_matrix(mats.K), sp.csr_matrix(mats.M)
@@ -120,7 +120,7 @@ def craig_bampton(system: RotorSystem, boundary: ArrayLike, n_modes: int, *,
                          "part of the rotor moves freely when the bearing DOFs are held; "
                          "add DOFs of that part to the boundary", "craig_bampton") from None
     psi = -np.asarray(lu.solve(K[inner][:, b].toarray())).reshape(inner.size, b.size)
-    freqs, phi = fixed_interface_modes(K_ii, M_ii, int(n_modes))
+    freqs, phi = fixed_interface_modes(K_ii, M_ii, int(num_modes))
     extra = [np.asarray(lu.solve(np.asarray(f, dtype=float)[inner])).reshape(-1)
              for f in static_loads]
     statics = _independent(extra, phi, M_ii)

@@ -46,7 +46,7 @@ def _figures(result: Any, folder: Path, name: str, units: str,
         return []
     figures: dict[str, Any] = {}
     if kind == "ModalResult":
-        for j in range(min(MODE_FIGURES, result.n_modes)):
+        for j in range(min(MODE_FIGURES, result.num_modes)):
             figures[f"{name}_mode_{j}.png"] = plot(result, mode=j, units="Hz")
     elif kind in ("StaticResult", "BearingEquilibriumResult", "StiffnessVariation"):
         figures[f"{name}.png"] = plot(result)

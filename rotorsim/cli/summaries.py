@@ -42,7 +42,7 @@ def modal_summary(result: Any, units: str = "Hz") -> str:
     f = _factor(units)
     rows = [(i, f"{result.wn[i] * f:.3f}", f"{result.wd[i] * f:.3f}",
              _fixed(result.damping_ratio[i], 4), _fixed(result.log_dec[i], 4), result.whirl[i],
-             result.kind[i]) for i in range(result.n_modes)]
+             result.kind[i]) for i in range(result.num_modes)]
     head = (f"modes at {result.speed * f:.4g} {units}; rigid-body modes: "
             f"{result.rigid_body_modes}")
     body = head + "\n" + table(rows, ("mode", f"wn [{units}]", f"wd [{units}]", "zeta",

@@ -223,7 +223,7 @@ def _steps(result: Any, input: int, geometry: _Geometry) -> tuple[list[_Step], s
     shapes = np.moveaxis(result.mode_shapes.reshape(n_nodes, 6, -1), 2, 0)
     if isinstance(result, ModalResult):
         scalars = {"wn": result.wn, "wd": result.wd, "log_dec": result.log_dec,
-                   "speed": np.full(result.n_modes, result.speed)}
+                   "speed": np.full(result.num_modes, result.speed)}
     else:
         scalars = {"critical_speed": result.speed, "frequency": result.frequency}
     return _harmonic_steps(shapes, scalars), "mode"

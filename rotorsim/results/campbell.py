@@ -25,7 +25,7 @@ IntArray = NDArray[np.int64]
 class CampbellResult:
     """Damped natural frequencies tracked over spin speed.
 
-    Column ``j`` of every ``(S, n_modes)`` array follows one physical mode through
+    Column ``j`` of every ``(S, num_modes)`` array follows one physical mode through
     crossings and veering (see :func:`rotorsim.analyses.linear.campbell.campbell`). Rows of
     speeds whose modal analysis failed hold ``NaN`` (and ``""`` in the string arrays).
 
@@ -33,17 +33,17 @@ class CampbellResult:
     ----------
     speeds : array (S,)
         Spin speeds [rad/s], increasing.
-    wd, wn : array (S, n_modes)
+    wd, wn : array (S, num_modes)
         Damped and undamped natural frequencies [rad/s].
-    log_dec, damping_ratio : array (S, n_modes)
+    log_dec, damping_ratio : array (S, num_modes)
         Logarithmic decrement and damping ratio [-].
-    whirl_ratio : array (S, n_modes)
+    whirl_ratio : array (S, num_modes)
         Amplitude-weighted ``(rf - rb) / (rf + rb)``: +1 forward circular, -1 backward.
-    whirl : str array (S, n_modes)
+    whirl : str array (S, num_modes)
         ``"forward"``, ``"backward"``, ``"mixed"`` or ``"none"`` (non-lateral).
-    kind : str array (S, n_modes)
+    kind : str array (S, num_modes)
         ``"lateral"``, ``"axial"`` or ``"torsional"``.
-    tracking_mac : array (S, n_modes)
+    tracking_mac : array (S, num_modes)
         MAC between a track's shape and its shape at the previous good speed (``NaN`` on
         the first row): values well below 1 flag a doubtful match (grid too coarse).
     status : int array (S,)
@@ -81,7 +81,8 @@ class CampbellResult:
     notes: tuple[str, ...] = ()
 
     @property
-    def n_modes(self) -> int:
+    def num_modes(self) -> int:
+        """Number of tracked modes (columns of ``wd``)."""
         return int(self.wd.shape[1])
 
     def critical_speeds(self, harmonic: float = 1, whirl: str | None = None) -> CriticalSpeeds:
@@ -108,7 +109,7 @@ class CampbellResult:
         k = check_harmonic(harmonic, "CampbellResult.critical_speeds")
         check_whirl_filter(whirl, "CampbellResult.critical_speeds")
         rows: list[tuple[float, float, int, int]] = []  # speed, log_dec, track, nearest row
-        for j in range(self.n_modes):
+        for j in range(self.num_modes):
             rows.extend(self._track_crossings(j, k))
         rows.sort()
         speed = np.array([r[0] for r in rows], dtype=float)

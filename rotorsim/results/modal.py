@@ -29,21 +29,21 @@ class ModalResult:
     ----------
     speed : float
         Spin speed [rad/s].
-    eigenvalues : complex array (n_modes,)
+    eigenvalues : complex array (num_modes,)
         ``lam = -zeta wn + i wd`` [rad/s].
-    wn, wd : array (n_modes,)
+    wn, wd : array (num_modes,)
         Undamped (``|lam|``) and damped (``Im lam``) natural frequencies [rad/s].
-    damping_ratio, log_dec : array (n_modes,)
+    damping_ratio, log_dec : array (num_modes,)
         ``zeta = -Re(lam) / |lam|`` and ``delta = -2 pi Re(lam) / Im(lam)``
         (``inf`` for an overdamped, non-oscillating mode).
     whirl : tuple of str
         ``"forward"``, ``"backward"`` or ``"mixed"`` for lateral modes (``"none"`` otherwise).
-    whirl_ratio : array (n_modes,)
+    whirl_ratio : array (num_modes,)
         Amplitude-weighted mean of ``(rf - rb) / (rf + rb)`` over the nodes.
     kind : tuple of str
         ``"lateral"``, ``"axial"`` or ``"torsional"`` by the DOF group carrying most of
         the kinetic energy.
-    mode_shapes : complex array (ndof, n_modes)
+    mode_shapes : complex array (ndof, num_modes)
         All DOFs (zeros at fixed ones); largest translation scaled to 1 with zero phase.
     rigid_body_modes : int
         Number of independent rigid-body modes found.
@@ -74,7 +74,8 @@ class ModalResult:
     notes: tuple[str, ...] = ()
 
     @property
-    def n_modes(self) -> int:
+    def num_modes(self) -> int:
+        """Number of modes (columns of ``mode_shapes``)."""
         return int(self.wn.size)
 
     def shape(self, mode: int, node: int, dof: str | int) -> complex:
@@ -94,5 +95,5 @@ class ModalResult:
         return ellipse(ux[node], uy[node])
 
     def _check_mode(self, mode: int) -> None:
-        if not 0 <= mode < self.n_modes:
-            raise ModelError(f"mode {mode} outside 0..{self.n_modes - 1}", "ModalResult")
+        if not 0 <= mode < self.num_modes:
+            raise ModelError(f"mode {mode} outside 0..{self.num_modes - 1}", "ModalResult")

@@ -37,14 +37,14 @@ def test_num_modes_must_be_a_positive_integer(verb, num_modes):
 
 
 def test_numpy_integer_num_modes_is_accepted():
-    assert rs.modal(small_rotor(), 0.0, np.int64(3)).n_modes == 3
+    assert rs.modal(small_rotor(), 0.0, np.int64(3)).num_modes == 3
 
 
 @pytest.mark.parametrize("sparse", [False, True])
 def test_num_modes_above_what_exists_is_noted(sparse):
     rotor = small_rotor(2)  # 18 DOFs, 2 rigid: 16 elastic modes
     result = rs.modal(rotor, 0.0, 100, sparse=sparse)
-    assert result.n_modes == 16 and result.rigid_body_modes == 2
+    assert result.num_modes == 16 and result.rigid_body_modes == 2
     assert len(result.notes) == 1
     assert "num_modes = 100 asked, but the model has only 16 elastic modes" in result.notes[0]
     assert rs.modal(rotor, 0.0, 16, sparse=sparse).notes == ()
@@ -54,7 +54,7 @@ def test_penalty_modes_left_out_are_noted():
     """With 1e20 N/m supports the dense solver cannot resolve the 4 support (penalty) mode
     pairs near sqrt(1e20 / m): asking for every mode says which were left out."""
     result = rs.modal(small_rotor(2, k=1e20), 0.0, 100, sparse=False)
-    assert result.n_modes == 12  # 16 elastic minus the 4 penalty modes at the supports
+    assert result.num_modes == 12  # 16 elastic minus the 4 penalty modes at the supports
     assert "only 12 elastic modes are resolved: 8 eigenvalues" in result.notes[0]
     assert np.all(result.damping_ratio > -1e-9)  # none of them shows up as unstable
 

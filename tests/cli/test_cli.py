@@ -46,7 +46,7 @@ def test_subcommand_overrides_with_units(tmp_path, capsys):
     [h5] = list((tmp_path / "friswell_5_9_1").glob("*.h5"))
     modes = rs.load(h5)
     assert modes.speed == pytest.approx(4000 * 3.141592653589793 / 30)
-    assert modes.n_modes == 4
+    assert modes.num_modes == 4
     assert "wd [Hz]" in capsys.readouterr().out
 
 

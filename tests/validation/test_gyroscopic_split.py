@@ -66,7 +66,7 @@ def split_modes(result) -> tuple[np.ndarray, np.ndarray, tuple[str, str]]:
 def test_translation_and_gyroscopic_tilt_split(speed):
     result = modal(disk_on_support(), speed, 4, sparse=False)
     assert result.rigid_body_modes == 0
-    assert result.n_modes == 4
+    assert result.num_modes == 4
     np.testing.assert_allclose(result.log_dec, 0.0, atol=1e-8)
     translation, tilt, whirl = split_modes(result)
     np.testing.assert_allclose(translation, np.sqrt(K / M), rtol=RTOL)

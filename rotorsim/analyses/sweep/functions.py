@@ -113,8 +113,8 @@ def _min_log_dec(rotor: Rotor, params: Params, *, speed: str | float, num_modes:
     w = _value(params, speed) if isinstance(speed, str) else float(speed)
     m = modal(rotor, w, num_modes, sparse=sparse)
     log_dec, wd = np.full(num_modes, np.nan), np.full(num_modes, np.nan)
-    log_dec[: m.n_modes], wd[: m.n_modes] = m.log_dec, m.wd
-    keep = np.ones(m.n_modes, bool) if kind is None else np.array(m.kind) == kind
+    log_dec[: m.num_modes], wd[: m.num_modes] = m.log_dec, m.wd
+    keep = np.ones(m.num_modes, bool) if kind is None else np.array(m.kind) == kind
     least = float(m.log_dec[keep].min()) if np.any(keep) else np.nan
     return {"log_dec_min": least, "log_dec": log_dec, "wd": wd}
 

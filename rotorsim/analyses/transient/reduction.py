@@ -26,7 +26,7 @@ from rotorsim.time_integration.problem import SecondOrderProblem
 
 
 def reduce_problem(system: RotorSystem, problem: SecondOrderProblem, loads: TransientLoads,
-                   n_modes: int, speed: float) -> tuple[SecondOrderProblem, ReducedBasis,
+                   num_modes: int, speed: float) -> tuple[SecondOrderProblem, ReducedBasis,
                                                         dict[str, Any]]:
     """The reduced problem, its basis and the accuracy report."""
     nl = system.nonlinear
@@ -38,7 +38,7 @@ def reduce_problem(system: RotorSystem, problem: SecondOrderProblem, loads: Tran
         shapes += [loads.unbalance.real, loads.unbalance.imag]
     if loads.base is not None:
         shapes.append(loads.base)
-    basis = craig_bampton(system, nl.dofs, n_modes,
+    basis = craig_bampton(system, nl.dofs, num_modes,
                           static_loads=[s for s in shapes if np.any(s)], speed=speed)
     check = accuracy(system, basis, nominal_tangent(system), speed=speed)
     T = basis.T
@@ -51,7 +51,7 @@ def reduce_problem(system: RotorSystem, problem: SecondOrderProblem, loads: Tran
                              load=lambda t: T.T @ loads(t), gyroscopic=reduced["gyroscopic"],
                              speed=problem.speed)
     report = {"fixed_interface_modes": int(basis.frequencies.size),
-              "requested_modes": int(n_modes), "size": basis.size,
+              "requested_modes": int(num_modes), "size": basis.size,
               "full_size": system.n_free, "static_vectors": basis.n_static,
               "max_relative_error": check["max_relative_error"],
               "check_frequencies_full": np.asarray(check["full"]).tolist(),
