@@ -13,6 +13,13 @@ import numpy as np
 
 from rotorsim.elements.base import FloatArray
 from rotorsim.io.analysis_spec import FAST_POINTS, Grid
+from rotorsim.options import (
+    Checkpointing,
+    ContinuationOptions,
+    Excitation,
+    Harmonics,
+    Output,
+)
 
 if TYPE_CHECKING:
     from rotorsim.io.model_file import Model
@@ -89,12 +96,38 @@ def _transient(rotor: Rotor, model: Model, spec: Any, fast: bool, progress: bool
         ramp = spec.t_end if spec.ramp_time is None else spec.ramp_time
         speed = LinearSpeed(spec.speed, spec.speed_stop, 0.0, ramp)
     unbalance = model.loads.unbalance if spec.unbalance is None else spec.unbalance
-    loads = model.loads
     return transient(rotor, t_end, spec.dt, speed=speed, unbalance=list(unbalance),
-                     gravity=loads.gravity, direction=loads.gravity_direction,
-                     loads=list(loads.point_loads), method=spec.method, initial=spec.initial,
-                     nodes=spec.nodes, every=spec.every, progress=progress,
-                     on_failure=spec.on_failure, **restart)
+                     excitation=_excitation(model), method=spec.method, initial=spec.initial,
+                     nodes=spec.nodes, output=Output(every=spec.every, progress=progress),
+                     on_failure=spec.on_failure, checkpoint=_checkpointing(restart))
+
+
+def _excitation(model: Model) -> Excitation:
+    """Gravity and point loads of the model file (the unbalance is the analysis')."""
+    loads = model.loads
+    return Excitation(gravity=loads.gravity, direction=loads.gravity_direction,
+                      loads=list(loads.point_loads))
+
+
+def _checkpointing(restart: dict[str, Any]) -> Checkpointing:
+    return Checkpointing(path=restart.get("checkpoint"), every=restart.get("checkpoint_every"),
+                         resume=restart.get("resume"))
+
+
+def _branch_options(spec: Any, fast: bool, progress: bool, restart: dict[str, Any]
+                    ) -> dict[str, Any]:
+    """Harmonics, continuation, stability, output and checkpoint keywords of a periodic
+    branch (``fast``: at most 4 harmonics and 10 points)."""
+    return {
+        "harmonics": Harmonics(min(spec.harmonics, 4) if fast else spec.harmonics,
+                               samples=None if fast else spec.samples),
+        "continuation": ContinuationOptions(
+            max_points=min(spec.max_points, 10) if fast else spec.max_points,
+            max_step=spec.max_step),
+        "stability": None if spec.stability == "none" else spec.stability,
+        "nodes": spec.nodes, "output": Output(progress=progress),
+        "checkpoint": _checkpointing(restart),
+    }
 
 
 def _periodic(rotor: Rotor, model: Model, spec: Any, fast: bool, progress: bool,
@@ -102,16 +135,9 @@ def _periodic(rotor: Rotor, model: Model, spec: Any, fast: bool, progress: bool,
     from rotorsim.analyses.periodic.periodic import periodic
 
     unbalance = model.loads.unbalance if spec.unbalance is None else spec.unbalance
-    loads = model.loads
-    harmonics = min(spec.harmonics, 4) if fast else spec.harmonics
-    max_points = min(spec.max_points, 10) if fast else spec.max_points
-    return periodic(rotor, start=spec.start, stop=spec.stop, harmonics=harmonics,
-                    samples=None if fast else spec.samples, unbalance=list(unbalance),
-                    gravity=loads.gravity, direction=loads.gravity_direction,
-                    loads=list(loads.point_loads), varying_compliance=spec.varying_compliance,
-                    max_points=max_points, max_step=spec.max_step,
-                    stability=None if spec.stability == "none" else spec.stability,
-                    nodes=spec.nodes, progress=progress, **restart)
+    return periodic(rotor, start=spec.start, stop=spec.stop, unbalance=list(unbalance),
+                    excitation=_excitation(model), varying_compliance=spec.varying_compliance,
+                    **_branch_options(spec, fast, progress, restart))
 
 
 def _periodic_parameter(rotor: Rotor, model: Model, spec: Any, fast: bool,
@@ -120,16 +146,10 @@ def _periodic_parameter(rotor: Rotor, model: Model, spec: Any, fast: bool,
 
     vary = spec.vary if spec.vary in ("loads", "forcing") else model.parameter(spec.vary)
     unbalance = model.loads.unbalance if spec.unbalance is None else spec.unbalance
-    loads = model.loads
     return periodic_parameter(
         rotor, vary, speed=spec.speed, start=spec.start, stop=spec.stop, name=spec.vary,
-        harmonics=min(spec.harmonics, 4) if fast else spec.harmonics,
-        samples=None if fast else spec.samples, unbalance=list(unbalance),
-        gravity=loads.gravity, direction=loads.gravity_direction,
-        loads=list(loads.point_loads), max_points=min(spec.max_points, 10) if fast
-        else spec.max_points, max_step=spec.max_step,
-        stability=None if spec.stability == "none" else spec.stability, nodes=spec.nodes,
-        progress=progress, **restart)
+        unbalance=list(unbalance), excitation=_excitation(model),
+        **_branch_options(spec, fast, progress, restart))
 
 
 def _sweep(rotor: Rotor, model: Model, spec: Any, fast: bool, progress: bool, *,

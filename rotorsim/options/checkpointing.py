@@ -38,6 +38,7 @@ class Checkpointing(OptionGroup):
     rotorsim.options.group.OptionError: Checkpointing.every: must be a positive integer, got 2.5
     """
 
+    FROM_VERB: ClassVar[tuple[str, ...]] = ("every",)
     SHORTCUT: ClassVar[str | None] = "path"
 
     path: str | os.PathLike[str] | None = field(

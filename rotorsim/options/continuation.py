@@ -48,6 +48,7 @@ class ContinuationOptions(OptionGroup):
     rotorsim.options.group.OptionError: ContinuationOptions.max_step: must be a positive ...
     """
 
+    FROM_VERB: ClassVar[tuple[str, ...]] = ("max_step", "max_points")
     HINT: ClassVar[str] = (" (a solver Continuation goes into "
                            "rs.ContinuationOptions(solver=...))")
 
@@ -58,6 +59,10 @@ class ContinuationOptions(OptionGroup):
     tol: float = field(default=1e-10, metadata=about("corrector tolerance on the scaled residual"))
     solver: Continuation | None = field(
         default=None, metadata=about("full solver options (experts)"))
+
+    def resolved(self, defaults: ContinuationOptions) -> ContinuationOptions:
+        """The verb's defaults filled in, unless a solver brings its own."""
+        return self if self.solver is not None else super().resolved(defaults)
 
     def __post_init__(self) -> None:
         for name in ("step", "max_step"):

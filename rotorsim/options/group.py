@@ -43,10 +43,13 @@ class OptionGroup:
 
     ``SHORTCUT`` names the field that a plain value given to the verb's keyword fills (e.g.
     ``harmonics=8`` is ``Harmonics(count=8)``); None when the keyword takes only the group.
+    ``FROM_VERB`` names the fields whose default depends on the verb.
     """
 
     SHORTCUT: ClassVar[str | None] = None
     HINT: ClassVar[str] = ""
+    FROM_VERB: ClassVar[tuple[str, ...]] = ()
+    """Fields whose None means "the verb's default" (:meth:`resolved`)."""
 
     def _fail(self, name: str, reason: str) -> OptionError:
         return OptionError(reason, f"{type(self).__name__}.{name}")
@@ -75,10 +78,10 @@ class OptionGroup:
                 if not _same(getattr(self, f.name), f.default)}
 
     def resolved(self: G, defaults: G) -> G:
-        """A copy whose fields left at None take the value of ``defaults`` (the verb's own
-        defaults, written once in the verb)."""
-        changes = {f.name: getattr(defaults, f.name) for f in dataclasses.fields(self)  # type: ignore[arg-type]
-                   if getattr(self, f.name) is None}
+        """A copy whose ``FROM_VERB`` fields left at None take the value of ``defaults``
+        (the verb's own defaults, written once in the verb)."""
+        changes = {name: getattr(defaults, name) for name in self.FROM_VERB
+                   if getattr(self, name) is None}
         return dataclasses.replace(self, **changes)  # type: ignore[type-var]
 
     def merged(self: G, where: str, **shortcuts: Any) -> G:
@@ -144,7 +147,7 @@ def check_count(value: Any, least: int) -> bool:
 def check_positive(value: Any) -> bool:
     """Whether ``value`` is a finite real number > 0 (not a bool)."""
     return (isinstance(value, numbers.Real) and not isinstance(value, bool)
-            and math.isfinite(value) and value > 0)
+            and math.isfinite(value) and float(value) > 0)
 
 
 def check_path(value: Any) -> bool:

@@ -6,7 +6,7 @@ import math
 import numbers
 from collections.abc import Sequence
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, ClassVar
 
 from rotorsim.options.group import OptionGroup, about, check_count
 
@@ -47,6 +47,7 @@ class Output(OptionGroup):
     rotorsim.options.group.OptionError: Output.every: must be a positive integer, got 0
     """
 
+    FROM_VERB: ClassVar[tuple[str, ...]] = ("every",)
     nodes: Sequence[int] | None = field(
         default=None, metadata=about("nodes whose DOFs are kept (default all)"))
     every: int | None = field(default=None, metadata=about("keep every n-th time step (default 1)"))
@@ -66,7 +67,7 @@ class Output(OptionGroup):
         if self.every is not None and not check_count(self.every, 1):
             raise self._fail("every", f"must be a positive integer, got {self.every!r}")
         if self.times is not None:
-            times = tuple(self.times) if _sequence(self.times) else None
+            times = tuple(self.times) if _sequence(self.times) else None  # type: ignore[arg-type]
             if times is None or not all(isinstance(t, numbers.Real) and math.isfinite(t)
                                         for t in times):
                 raise self._fail("times", f"expected finite sample times [s], got "

@@ -43,6 +43,7 @@ class StabilityOptions(OptionGroup):
     rotorsim.options.group.OptionError: StabilityOptions.modes: must be None, 'auto' or an ...
     """
 
+    FROM_VERB: ClassVar[tuple[str, ...]] = ("tol",)
     SHORTCUT: ClassVar[str | None] = "method"
 
     method: str | None = field(
