@@ -37,13 +37,7 @@ from rotorsim.io.long_specs import (
     TransientSpec,
 )
 from rotorsim.io.restart import checkpoint_path, restart_options
-from rotorsim.options import (
-    Checkpointing,
-    ContinuationOptions,
-    Excitation,
-    Harmonics,
-    Output,
-)
+from rotorsim.options import Checkpointing, Excitation, Harmonics, Output
 
 if TYPE_CHECKING:
     from rotorsim.io.model import Model
@@ -113,7 +107,7 @@ def _static(rotor: Rotor, model: Model, spec: Any, fast: bool, progress: bool) -
 
 
 def _transient(rotor: Rotor, model: Model, spec: Any, fast: bool, progress: bool,
-               restart: dict[str, Any]) -> Any:
+               restart: Checkpointing) -> Any:
     from rotorsim.analyses.transient.speed_profile import LinearSpeed
     from rotorsim.analyses.transient.transient import transient
 
@@ -125,8 +119,9 @@ def _transient(rotor: Rotor, model: Model, spec: Any, fast: bool, progress: bool
     unbalance = model.loads.unbalance if spec.unbalance is None else spec.unbalance
     return transient(rotor, t_end, spec.dt, speed=speed, unbalance=list(unbalance),
                      excitation=_excitation(model), method=spec.method, initial=spec.initial,
-                     nodes=spec.nodes, output=Output(every=spec.every, progress=progress),
-                     on_failure=spec.on_failure, checkpoint=_checkpointing(restart))
+                     nodes=spec.nodes,
+                     output=dataclasses.replace(spec.output, progress=progress),
+                     on_failure=spec.on_failure, checkpoint=restart)
 
 
 def _excitation(model: Model) -> Excitation:
@@ -136,47 +131,40 @@ def _excitation(model: Model) -> Excitation:
                       loads=list(loads.point_loads))
 
 
-def _checkpointing(restart: dict[str, Any]) -> Checkpointing:
-    return Checkpointing(path=restart.get("checkpoint"), every=restart.get("checkpoint_every"),
-                         resume=restart.get("resume"))
-
-
-def _branch_options(spec: Any, fast: bool, progress: bool, restart: dict[str, Any]
-                    ) -> dict[str, Any]:
-    """Harmonics, continuation, stability, output and checkpoint keywords of a periodic
-    branch (``fast``: at most 4 harmonics and 10 points)."""
-    return {
-        "harmonics": Harmonics(min(spec.harmonics, 4) if fast else spec.harmonics,
-                               samples=None if fast else spec.samples),
-        "continuation": ContinuationOptions(
-            max_points=min(spec.max_points, 10) if fast else spec.max_points,
-            max_step=spec.max_step),
-        "stability": None if spec.stability == "none" else spec.stability,
-        "nodes": spec.nodes, "output": Output(progress=progress),
-        "checkpoint": _checkpointing(restart),
-    }
+def _branch_options(spec: Any, defaults: Any, fast: bool, progress: bool,
+                    restart: Checkpointing) -> dict[str, Any]:
+    """The option groups of a periodic branch from its spec (``fast``: at most 4 harmonics,
+    the default samples and 10 points; ``defaults``: the verb's)."""
+    harmonics, continuation = spec.harmonics, spec.continuation
+    if fast:
+        harmonics = Harmonics(min(harmonics.count, 4))
+        points = continuation.resolved(defaults.continuation).max_points
+        continuation = dataclasses.replace(continuation, max_points=min(points, 10))
+    return {"harmonics": harmonics, "continuation": continuation,
+            "stability": spec.stability, "nodes": spec.nodes,
+            "output": Output(progress=progress), "checkpoint": restart}
 
 
 def _periodic(rotor: Rotor, model: Model, spec: Any, fast: bool, progress: bool,
-              restart: dict[str, Any]) -> Any:
-    from rotorsim.analyses.periodic.periodic import periodic
+              restart: Checkpointing) -> Any:
+    from rotorsim.analyses.periodic.periodic import DEFAULTS, periodic
 
     unbalance = model.loads.unbalance if spec.unbalance is None else spec.unbalance
     return periodic(rotor, start=spec.start, stop=spec.stop, unbalance=list(unbalance),
                     excitation=_excitation(model), varying_compliance=spec.varying_compliance,
-                    **_branch_options(spec, fast, progress, restart))
+                    **_branch_options(spec, DEFAULTS, fast, progress, restart))
 
 
 def _periodic_parameter(rotor: Rotor, model: Model, spec: Any, fast: bool,
-                        progress: bool, restart: dict[str, Any]) -> Any:
-    from rotorsim.analyses.periodic.parameter import periodic_parameter
+                        progress: bool, restart: Checkpointing) -> Any:
+    from rotorsim.analyses.periodic.parameter import DEFAULTS, periodic_parameter
 
     vary = spec.vary if spec.vary in ("loads", "forcing") else model.parameter(spec.vary)
     unbalance = model.loads.unbalance if spec.unbalance is None else spec.unbalance
     return periodic_parameter(
         rotor, vary, speed=spec.speed, start=spec.start, stop=spec.stop, name=spec.vary,
         unbalance=list(unbalance), excitation=_excitation(model),
-        **_branch_options(spec, fast, progress, restart))
+        **_branch_options(spec, DEFAULTS, fast, progress, restart))
 
 
 def _sweep(rotor: Rotor, model: Model, spec: Any, fast: bool, progress: bool, *,

@@ -44,8 +44,9 @@ class Checkpointing(OptionGroup):
     path: str | os.PathLike[str] | None = field(
         default=None, metadata=about("checkpoint file (HDF5)"))
     every: int | None = field(
-        default=None, metadata=about("steps or branch points between checkpoints",
-                                     key="checkpoint_every"))
+        default=None, metadata=about("steps (transient) or branch points (periodic) "
+                                     "between checkpoints", key="checkpoint_every",
+                                     file=int, ge=1))
     resume: str | os.PathLike[str] | None = field(
         default=None, metadata=about("checkpoint to continue from"))
 

@@ -53,10 +53,15 @@ class ContinuationOptions(OptionGroup):
                            "rs.ContinuationOptions(solver=...))")
 
     step: float | None = field(
-        default=None, metadata=about("first scaled arclength step (default max_step / 4)"))
-    max_step: float | None = field(default=None, metadata=about("largest scaled arclength step"))
-    max_points: int | None = field(default=None, metadata=about("largest number of branch points"))
-    tol: float = field(default=1e-10, metadata=about("corrector tolerance on the scaled residual"))
+        default=None, metadata=about("first scaled arclength step (default max_step / 4)",
+                                     file=float, gt=0))
+    max_step: float | None = field(
+        default=None, metadata=about("largest scaled arclength step", file=float, gt=0))
+    max_points: int | None = field(
+        default=None, metadata=about("largest number of branch points", file=int, ge=2))
+    tol: float = field(
+        default=1e-10, metadata=about("corrector tolerance on the scaled residual",
+                                      file=float, gt=0))
     solver: Continuation | None = field(
         default=None, metadata=about("full solver options (experts)"))
 

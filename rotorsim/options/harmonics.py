@@ -42,14 +42,18 @@ class Harmonics(OptionGroup):
 
     SHORTCUT: ClassVar[str | None] = "count"
 
-    count: int = field(default=10, metadata=about("number of harmonics H", key="harmonics"))
+    count: int = field(
+        default=10, metadata=about("number of harmonics H", key="harmonics", file=int,
+                                   ge=1, le=200))
     samples: int | None = field(
-        default=None, metadata=about("AFT samples per period (default 2**ceil(log2(8 H)))"))
+        default=None, metadata=about("AFT samples per period (default 2**ceil(log2(8 H)))",
+                                     file=int, ge=4))
     fundamental: float | None = field(
         default=None, metadata=about("order omega / W of the fundamental (default: from "
-                                     "the forcing)"))
+                                     "the forcing)", file=float, gt=0))
     condense: bool = field(
-        default=True, metadata=about("exact condensation onto the nonlinear DOFs"))
+        default=True, metadata=about("exact condensation onto the nonlinear DOFs",
+                                     file=bool))
 
     def __post_init__(self) -> None:
         if not check_count(self.count, 1):

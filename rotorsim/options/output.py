@@ -50,11 +50,14 @@ class Output(OptionGroup):
     FROM_VERB: ClassVar[tuple[str, ...]] = ("every",)
     nodes: Sequence[int] | None = field(
         default=None, metadata=about("nodes whose DOFs are kept (default all)"))
-    every: int | None = field(default=None, metadata=about("keep every n-th time step (default 1)"))
+    every: int | None = field(
+        default=None, metadata=about("keep every n-th time step (default 1)", file=int,
+                                     ge=1))
     times: ArrayLike | None = field(
         default=None, metadata=about("sample times (default every time step)", "s"))
     rolling_elements: bool = field(
-        default=False, metadata=about("keep the load of every rolling element"))
+        default=False, metadata=about("keep the load of every rolling element",
+                                      file=bool))
     progress: bool = field(default=False, metadata=about("show a progress bar"))
 
     def __post_init__(self) -> None:

@@ -48,13 +48,16 @@ class StabilityOptions(OptionGroup):
 
     method: str | None = field(
         default="auto", metadata=about("Floquet method: auto, hill, hsu or variational "
-                                       "(none: skip)", key="stability"))
+                                       "(none: skip)", key="stability", file=str,
+                                       choices=METHODS, none="none"))
     modes: int | str | None = field(
         default="auto", metadata=about("fixed-interface modes of the stability model "
                                        "(None: full system)"))
     tol: float | None = field(
-        default=None, metadata=about("stable when max |mu| < 1 + tol (default 1e-5)"))
-    bifurcations: bool = field(default=True, metadata=about("detect and locate bifurcations"))
+        default=None, metadata=about("stable when max |mu| < 1 + tol (default 1e-5)",
+                                     key="stability_tol", file=float, ge=0))
+    bifurcations: bool = field(
+        default=True, metadata=about("detect and locate bifurcations", file=bool))
 
     def __post_init__(self) -> None:
         if self.method is not None and self.method not in METHODS:

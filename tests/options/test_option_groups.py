@@ -119,3 +119,56 @@ def test_the_package_imports_nothing_of_rotorsim_but_the_errors():
                                            "collections", "dataclasses", "typing", "math",
                                            "numbers", "os")), f"{path.name}: {node.module}"
     assert issubclass(rs.Harmonics, OptionGroup)
+
+
+def test_resolution_keeps_the_nones_that_mean_something():
+    from rotorsim.solvers.continuation import Continuation
+
+    assert rs.StabilityOptions(None).resolved(rs.StabilityOptions(tol=1e-5)).method is None
+    assert rs.Output(nodes=None).resolved(rs.Output(every=1)) == rs.Output(every=1)
+    expert = rs.ContinuationOptions(solver=Continuation(max_step=0.5))
+    assert expert.resolved(rs.ContinuationOptions(max_step=0.02, max_points=500)) is expert
+
+
+def test_periodic_verbs_resolve_their_groups_with_their_own_defaults():
+    from rotorsim.analyses.periodic import parameter, periodic
+    from rotorsim.analyses.periodic.arguments import periodic_options
+    from rotorsim.solvers.continuation import Continuation
+
+    keywords = dict(harmonics=4, unbalance=[(1, 1e-4, 0.0)], excitation=None,
+                    continuation=None, stability=None, nodes=[1], output=None,
+                    checkpoint="a.h5")
+    own = periodic_options("periodic", periodic.DEFAULTS, **keywords)
+    assert (own.continuation.max_step, own.continuation.max_points) == (0.02, 500)
+    assert own.checkpoint_every == 25 and own.checkpoint.path == "a.h5"
+    assert own.stability.method is None and own.stability.tol == 1e-5
+    assert own.output.nodes == (1,) and own.excitation.unbalance == ((1, 1e-4, 0.0),)
+    other = periodic_options("periodic_parameter", parameter.DEFAULTS, **keywords)
+    assert (other.continuation.max_step, other.continuation.max_points) == (0.05, 200)
+    solver = Continuation(max_step=0.5)
+    expert = periodic_options("periodic", periodic.DEFAULTS, **{
+        **keywords, "continuation": rs.ContinuationOptions(solver=solver, tol=1e-9)})
+    stepping = expert.stepping()
+    assert stepping.given is solver and stepping.tol == 1e-9
+    with pytest.raises(ModelError, match=r"^periodic_parameter\.harmonics\.condense: not an "
+                                         r"option of periodic_parameter"):
+        periodic_options("periodic_parameter", parameter.DEFAULTS, **{
+            **keywords, "harmonics": rs.Harmonics(4, condense=False)})
+    with pytest.raises(ModelError, match=r"^periodic\.excitation\.base: expected "
+                                         r"rs\.HarmonicBase, got BaseExcitation"):
+        periodic_options("periodic", periodic.DEFAULTS, **{
+            **keywords, "excitation": rs.Excitation(base=rs.BaseExcitation(lambda t: 0.0))})
+
+
+def test_transient_checks_its_base_and_shortcuts():
+    rotor = rs.Rotor([rs.ShaftElement(L=0.25, idl=0.0, odl=0.05, material=rs.Material(
+        name="steel", E=211e9, G_s=81.2e9, rho=7810))] * 2,
+        bearing_elements=[rs.BearingElement(n=0, kxx=1e7), rs.BearingElement(n=2, kxx=1e7)])
+    with pytest.raises(ModelError, match=r"^transient\.excitation\.base: expected "
+                                         r"rs\.BaseExcitation, got HarmonicBase"):
+        rs.transient(rotor, 0.01, 1e-3, excitation=rs.Excitation(base=rs.HarmonicBase(1e-6)))
+    with pytest.raises(ModelError, match=r"^transient\.nodes: given twice"):
+        rs.transient(rotor, 0.01, 1e-3, nodes=[1], output=rs.Output(nodes=[2]))
+    with pytest.raises(TypeError, match=r"^transient: 'checkpoint_every' moved to "
+                                        r"checkpoint=rs\.Checkpointing\(every=\.\.\.\)$"):
+        rs.transient(rotor, 0.01, 1e-3, checkpoint_every=5)
