@@ -68,8 +68,10 @@ def benchmark_rotor() -> rs.Rotor:
 
 def hb_branch(rotor: rs.Rotor, points: int, stability: str | None) -> PeriodicResult:
     return periodic(rotor, start=200.0, stop=3000.0, harmonics=10, unbalance=UNBALANCE,
-                    max_points=points, stability=stability, bifurcations=stability is not None,
-                    nodes=[5, 11], max_step=0.05, tol=1e-8)
+                    continuation=rs.ContinuationOptions(max_points=points, max_step=0.05,
+                                                        tol=1e-8),
+                    stability=rs.StabilityOptions(stability, bifurcations=stability is not None),
+                    nodes=[5, 11])
 
 
 def comparable_points(branch: PeriodicResult, count: int) -> np.ndarray:
@@ -86,8 +88,8 @@ def comparable_points(branch: PeriodicResult, count: int) -> np.ndarray:
 def hb_reference(rotor: rs.Rotor, speed: float) -> float:
     """Disk peak-to-peak at ``speed`` with ``H = 20`` (the accuracy reference of HB)."""
     res = periodic(rotor, start=speed, stop=speed * 1.001, harmonics=20, unbalance=UNBALANCE,
-                   max_points=2, stability=None, bifurcations=False, nodes=[DISK],
-                   tol=1e-10)
+                   continuation=rs.ContinuationOptions(max_points=2, tol=1e-10),
+                   stability=rs.StabilityOptions(None, bifurcations=False), nodes=[DISK])
     return float(res.amplitude(DISK, "uy", "peak_to_peak")[0])
 
 

@@ -63,7 +63,7 @@ def model() -> tuple[rs.Rotor, list[RollingBearing]]:
 def rotorsim_run(t_end: float, dt: float, times: Any = None):
     rotor, bearings = model()
     return transient(rotor, t_end, dt, nonlinear=bearings, speed=SPEED, unbalance=UNBALANCE,
-                     nodes=[10], times=[t_end] if times is None else times)
+                     nodes=[10], output=rs.Output(times=[t_end] if times is None else times))
 
 
 def steps(n_steps: int, dt: float = 2e-5) -> dict[str, float]:
@@ -164,7 +164,8 @@ def memory(n_steps: int) -> dict[str, float]:
     for k in (n_steps, 10 * n_steps):
         tracemalloc.start()
         transient(rotor, k * 1e-5, 1e-5, speed=SPEED, unbalance=UNBALANCE,
-                  nodes=[10], every=10, gravity=None, initial="zero")
+                  nodes=[10], excitation=rs.Excitation(gravity=None), output=rs.Output(every=10),
+                  initial="zero")
         out[f"{k} steps peak MB"] = tracemalloc.get_traced_memory()[1] / 1e6
         tracemalloc.stop()
     return out

@@ -76,7 +76,7 @@ def run(ramp: float, hold: float, dt: float) -> rs.TransientResult:
         return f
 
     return rs.transient(r, ramp + hold, dt, speed=rs.LinearSpeed(0.0, SPEED, 0.0, ramp),
-                        forces=basement_loads, gravity=None, nodes=[0])
+                        excitation=rs.Excitation(forces=basement_loads, gravity=None), nodes=[0])
 
 
 def roller_history(res: rs.TransientResult, roller: int = 0) -> tuple[np.ndarray, np.ndarray]:

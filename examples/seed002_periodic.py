@@ -96,8 +96,9 @@ def point_1000(fast: bool) -> dict[str, Any]:
     """Undamped response and multipliers at 1000 rad/s (seed's printed y(t))."""
     out: dict[str, Any] = {}
     for method in ("hill", "hsu"):
-        res = periodic(seed_rotor(), start=1000.0, stop=1001.0, harmonics=10, max_points=2,
-                       stability=method, bifurcations=False, tol=1e-11)
+        res = periodic(seed_rotor(), start=1000.0, stop=1001.0, harmonics=10,
+                       continuation=rs.ContinuationOptions(max_points=2, tol=1e-11),
+                       stability=rs.StabilityOptions(method, bifurcations=False))
         out[method] = res
     res = out["hill"]
     y, z = res.harmonic_amplitudes(0, 0, "uy"), res.harmonic_amplitudes(0, 0, "ux")
@@ -121,7 +122,8 @@ def stability_map(fast: bool) -> dict[str, Any]:
     for i, W in enumerate(speeds):
         try:
             res = periodic(seed_rotor(), start=float(W), stop=float(W) + 0.5, harmonics=8,
-                           max_points=2, stability="hill", bifurcations=False, tol=1e-10)
+                           continuation=rs.ContinuationOptions(max_points=2, tol=1e-10),
+                           stability=rs.StabilityOptions("hill", bifurcations=False))
         except rs.ConvergenceError:
             continue
         max_mu[i] = res.max_multiplier[0]
@@ -131,8 +133,9 @@ def stability_map(fast: bool) -> dict[str, Any]:
 def sweep(base: HarmonicBase | None, fast: bool, max_step: float) -> PeriodicResult:
     """Damped branch from 100 to 1000 rad/s (400 in fast mode)."""
     return periodic(seed_rotor(damped=True), start=100.0, stop=400.0 if fast else 1000.0,
-                    harmonics=6 if fast else 10, base=base, max_step=max_step, tol=1e-8,
-                    max_points=250 if fast else 2500)
+                    harmonics=6 if fast else 10, excitation=rs.Excitation(base=base),
+                    continuation=rs.ContinuationOptions(max_step=max_step, tol=1e-8,
+                                                        max_points=250 if fast else 2500))
 
 
 def housing_studies(fast: bool) -> dict[str, PeriodicResult]:

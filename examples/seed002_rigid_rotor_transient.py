@@ -112,7 +112,7 @@ def reference_check(t_end: float = 0.004) -> dict[str, float]:
     r = rotor()
     system = rs.assemble(r)
     profile = ConstantSpeed(SPEED).bind(0.0, t_end)
-    problem, loads = _problem(system, profile, 0.0, (), 9.80665, (0, -1, 0), (), None, None)
+    problem, loads = _problem(system, profile, 0.0, rs.Excitation())
     n = system.n_free
     M, K = np.asarray(problem.mass), np.asarray(problem.stiffness)
     D = np.asarray(problem.damping) + SPEED * np.asarray(problem.gyroscopic)
@@ -133,7 +133,7 @@ def reference_check(t_end: float = 0.004) -> dict[str, float]:
         for steps_per_vc in (64, 128):
             dt = 2 * np.pi / vc_frequency(r) / steps_per_vc
             res = rs.transient(r, t_end, dt, speed=SPEED, initial="zero", nodes=[0],
-                               times=times, method=method)
+                               output=rs.Output(times=times), method=method)
             err = np.max(np.abs(res.displacement(0, "uy") - ref.y[iy]))
             out[f"{label}max error uy, {steps_per_vc} steps per VC period [m]"] = float(err)
     out["max |uy| [m]"] = float(np.max(np.abs(ref.y[iy])))

@@ -17,6 +17,11 @@ The workflow is model -> assemble -> analyse -> save/plot::
     branch = rs.periodic(rotor, start=100, stop=500,
                          unbalance=[(2, 1e-4, 0.0)])      # PeriodicResult (HB branch)
 
+The wide verbs group their options by concern (``rs.Excitation``, ``rs.Harmonics``,
+``rs.ContinuationOptions``, ``rs.StabilityOptions``, ``rs.Output``, ``rs.Checkpointing``;
+:mod:`rotorsim.options`), e.g. ``rs.transient(rotor, 0.5, 1e-4, excitation=rs.Excitation(
+gravity=None), output=rs.Output(every=10))``.
+
 Rolling bearings (``rs.RollingBearing``) go into the rotor beside the linear bearings; the
 transient and static analyses use them as they are, the linear analyses after
 ``rs.linearize_rolling_bearings(rotor)`` at the static load.
@@ -79,6 +84,14 @@ from rotorsim.io.sweep_store import load_sweep
 from rotorsim.io.vtk import export_vtk
 from rotorsim.model.material import Material
 from rotorsim.model.rotor import Rotor
+from rotorsim.options import (
+    Checkpointing,
+    ContinuationOptions,
+    Excitation,
+    Harmonics,
+    Output,
+    StabilityOptions,
+)
 from rotorsim.plotting import plot
 from rotorsim.results.bearing import BearingEquilibriumResult, StiffnessVariation
 from rotorsim.results.campbell import CampbellResult
@@ -106,7 +119,9 @@ __all__ = [
     "BearingEquilibriumResult",
     "CampbellResult",
     "CentrifugalBearing",
+    "Checkpointing",
     "ConstantSpeed",
+    "ContinuationOptions",
     "ConvergenceError",
     "CriticalSpeedMapResult",
     "CriticalSpeeds",
@@ -114,11 +129,13 @@ __all__ = [
     "DofMap",
     "ElementMatrices",
     "Ellipse",
+    "Excitation",
     "FlexibleRingBearingElement",
     "FlexibleRingRollerBearing",
     "FrequencyResponseResult",
     "Grid",
     "HarmonicBase",
+    "Harmonics",
     "InconsistentModelError",
     "LargeRotationBearing",
     "LinearSpeed",
@@ -130,6 +147,7 @@ __all__ = [
     "ModelError",
     "Newmark",
     "Normal",
+    "Output",
     "PeriodicBifurcation",
     "PeriodicResult",
     "PointMass",
@@ -143,6 +161,7 @@ __all__ = [
     "Sample",
     "ShaftElement",
     "SpeedFunction",
+    "StabilityOptions",
     "StaticResult",
     "Status",
     "StiffnessVariation",

@@ -4,10 +4,9 @@ that type (or a default one) with the command-line overrides applied."""
 from __future__ import annotations
 
 import argparse
-import dataclasses
 from typing import Any
 
-from rotorsim.cli.parser import SUBCOMMAND_TYPES
+from rotorsim.cli.parser import BRANCH_OPTIONS, SUBCOMMAND_TYPES, option_dest
 
 
 def adhoc_job(model: Any, args: argparse.Namespace) -> tuple[str, Any]:
@@ -24,7 +23,8 @@ def adhoc_job(model: Any, args: argparse.Namespace) -> tuple[str, Any]:
     changes: dict[str, Any] = {}
     if getattr(args, "num_modes", None) is not None:
         changes["num_modes"] = args.num_modes
-    for option in ("harmonics", "max_points"):
+    for group, field in BRANCH_OPTIONS:
+        option = option_dest(group, field)
         if getattr(args, option, None) is not None:
             changes[option] = _count(str(getattr(args, option)))
     if getattr(args, "no_stability", False):
@@ -65,7 +65,7 @@ def adhoc_job(model: Any, args: argparse.Namespace) -> tuple[str, Any]:
                              args.command)
     if kind == "periodic_parameter":
         changes.update(_parameter_changes(model, spec, args))
-    spec = cls(**changes) if spec is None else dataclasses.replace(spec, **changes)
+    spec = cls.from_flat(**changes) if spec is None else spec.with_flat(**changes)
     return name, spec
 
 

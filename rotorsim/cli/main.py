@@ -210,7 +210,7 @@ def _with_restart(spec: Any, name: str, args: argparse.Namespace, folder: Path) 
     changes = {key: True for key in ("checkpoint", "resume") if getattr(args, key, False)}
     if every is not None:
         changes.update(checkpoint=True, checkpoint_every=every)
-    spec = dataclasses.replace(spec, **changes)
+    spec = spec.with_flat(**changes)
     path = checkpoint_path(folder, name)
     if spec.checkpoint or spec.resume:
         from rotorsim.io.output_folder import prepare_folder

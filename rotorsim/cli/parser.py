@@ -8,8 +8,16 @@ from collections.abc import Sequence
 from pathlib import Path
 from typing import NoReturn
 
+from rotorsim.options import Checkpointing, ContinuationOptions, Harmonics
+from rotorsim.options.flat import flat_key, option_field
+from rotorsim.options.group import OptionGroup
+
 RESTARTABLE = ("transient", "periodic", "periodic_parameter")
 """Analysis types with checkpoints (``--checkpoint``, ``--resume``)."""
+BRANCH_OPTIONS: tuple[tuple[type[OptionGroup], str], ...] = (
+    (Harmonics, "count"), (ContinuationOptions, "max_points"))
+"""Option-group fields of a periodic branch on the command line (``--harmonics``,
+``--max-points``): name, type and help come from the group's field."""
 
 _SUBCOMMAND_HELP = {
     "modal": "modes at one speed",
@@ -100,8 +108,8 @@ def build_parser() -> argparse.ArgumentParser:
         if kind in RESTARTABLE:
             _add_restart_options(p)
         if kind in ("periodic", "periodic_parameter"):
-            p.add_argument("--harmonics", type=int, help="number of harmonics H")
-            p.add_argument("--max-points", type=int, help="largest number of branch points")
+            for group, field in BRANCH_OPTIONS:
+                add_option(p, group, field)
             p.add_argument("--no-stability", action="store_true",
                            help="skip the Floquet stability analysis")
         if kind == "critical_speed_map":
@@ -134,10 +142,22 @@ def _add_restart_options(p: argparse.ArgumentParser) -> None:
     p.add_argument("--checkpoint", action="store_true",
                    help="write <out>/<model>/<analysis>.checkpoint.h5 while a transient or "
                         "periodic branch runs")
-    p.add_argument("--checkpoint-every", type=int, metavar="N",
-                   help="steps (transient) or branch points (periodic) between checkpoints")
+    add_option(p, Checkpointing, "every", metavar="N")
     p.add_argument("--resume", action="store_true",
                    help="continue from that checkpoint when it exists (and keep writing it)")
+
+
+def add_option(p: argparse.ArgumentParser, group: type[OptionGroup], field: str,
+               **extra: str) -> None:
+    """The option ``--<flat key>`` of an option-group field, with its type and help."""
+    meta = option_field(group, field).metadata
+    p.add_argument("--" + flat_key(group, field).replace("_", "-"), type=meta["file"],
+                   help=meta["help"], **extra)  # type: ignore[arg-type]
+
+
+def option_dest(group: type[OptionGroup], field: str) -> str:
+    """The ``argparse`` attribute of :func:`add_option`'s option (its flat key)."""
+    return flat_key(group, field)
 
 
 def parse(argv: Sequence[str] | None) -> argparse.Namespace:

@@ -37,6 +37,7 @@ from rotorsim.io.long_specs import (
     TransientSpec,
 )
 from rotorsim.io.restart import checkpoint_path, restart_options
+from rotorsim.options import Checkpointing, Excitation, Harmonics, Output
 
 if TYPE_CHECKING:
     from rotorsim.io.model import Model
@@ -106,7 +107,7 @@ def _static(rotor: Rotor, model: Model, spec: Any, fast: bool, progress: bool) -
 
 
 def _transient(rotor: Rotor, model: Model, spec: Any, fast: bool, progress: bool,
-               restart: dict[str, Any]) -> Any:
+               restart: Checkpointing) -> Any:
     from rotorsim.analyses.transient.speed_profile import LinearSpeed
     from rotorsim.analyses.transient.transient import transient
 
@@ -116,47 +117,54 @@ def _transient(rotor: Rotor, model: Model, spec: Any, fast: bool, progress: bool
         ramp = spec.t_end if spec.ramp_time is None else spec.ramp_time
         speed = LinearSpeed(spec.speed, spec.speed_stop, 0.0, ramp)
     unbalance = model.loads.unbalance if spec.unbalance is None else spec.unbalance
-    loads = model.loads
     return transient(rotor, t_end, spec.dt, speed=speed, unbalance=list(unbalance),
-                     gravity=loads.gravity, direction=loads.gravity_direction,
-                     loads=list(loads.point_loads), method=spec.method, initial=spec.initial,
-                     nodes=spec.nodes, every=spec.every, progress=progress,
-                     on_failure=spec.on_failure, **restart)
+                     excitation=_excitation(model), method=spec.method, initial=spec.initial,
+                     nodes=spec.nodes,
+                     output=dataclasses.replace(spec.output, progress=progress),
+                     on_failure=spec.on_failure, checkpoint=restart)
+
+
+def _excitation(model: Model) -> Excitation:
+    """Gravity and point loads of the model file (the unbalance is the analysis')."""
+    loads = model.loads
+    return Excitation(gravity=loads.gravity, direction=loads.gravity_direction,
+                      loads=list(loads.point_loads))
+
+
+def _branch_options(spec: Any, defaults: Any, fast: bool, progress: bool,
+                    restart: Checkpointing) -> dict[str, Any]:
+    """The option groups of a periodic branch from its spec (``fast``: at most 4 harmonics,
+    the default samples and 10 points; ``defaults``: the verb's)."""
+    harmonics, continuation = spec.harmonics, spec.continuation
+    if fast:
+        harmonics = Harmonics(min(harmonics.count, 4))
+        points = continuation.resolved(defaults.continuation).max_points
+        continuation = dataclasses.replace(continuation, max_points=min(points, 10))
+    return {"harmonics": harmonics, "continuation": continuation,
+            "stability": spec.stability, "nodes": spec.nodes,
+            "output": Output(progress=progress), "checkpoint": restart}
 
 
 def _periodic(rotor: Rotor, model: Model, spec: Any, fast: bool, progress: bool,
-              restart: dict[str, Any]) -> Any:
-    from rotorsim.analyses.periodic.periodic import periodic
+              restart: Checkpointing) -> Any:
+    from rotorsim.analyses.periodic.periodic import DEFAULTS, periodic
 
     unbalance = model.loads.unbalance if spec.unbalance is None else spec.unbalance
-    loads = model.loads
-    harmonics = min(spec.harmonics, 4) if fast else spec.harmonics
-    max_points = min(spec.max_points, 10) if fast else spec.max_points
-    return periodic(rotor, start=spec.start, stop=spec.stop, harmonics=harmonics,
-                    samples=None if fast else spec.samples, unbalance=list(unbalance),
-                    gravity=loads.gravity, direction=loads.gravity_direction,
-                    loads=list(loads.point_loads), varying_compliance=spec.varying_compliance,
-                    max_points=max_points, max_step=spec.max_step,
-                    stability=None if spec.stability == "none" else spec.stability,
-                    nodes=spec.nodes, progress=progress, **restart)
+    return periodic(rotor, start=spec.start, stop=spec.stop, unbalance=list(unbalance),
+                    excitation=_excitation(model), varying_compliance=spec.varying_compliance,
+                    **_branch_options(spec, DEFAULTS, fast, progress, restart))
 
 
 def _periodic_parameter(rotor: Rotor, model: Model, spec: Any, fast: bool,
-                        progress: bool, restart: dict[str, Any]) -> Any:
-    from rotorsim.analyses.periodic.parameter import periodic_parameter
+                        progress: bool, restart: Checkpointing) -> Any:
+    from rotorsim.analyses.periodic.parameter import DEFAULTS, periodic_parameter
 
     vary = spec.vary if spec.vary in ("loads", "forcing") else model.parameter(spec.vary)
     unbalance = model.loads.unbalance if spec.unbalance is None else spec.unbalance
-    loads = model.loads
     return periodic_parameter(
         rotor, vary, speed=spec.speed, start=spec.start, stop=spec.stop, name=spec.vary,
-        harmonics=min(spec.harmonics, 4) if fast else spec.harmonics,
-        samples=None if fast else spec.samples, unbalance=list(unbalance),
-        gravity=loads.gravity, direction=loads.gravity_direction,
-        loads=list(loads.point_loads), max_points=min(spec.max_points, 10) if fast
-        else spec.max_points, max_step=spec.max_step,
-        stability=None if spec.stability == "none" else spec.stability, nodes=spec.nodes,
-        progress=progress, **restart)
+        unbalance=list(unbalance), excitation=_excitation(model),
+        **_branch_options(spec, DEFAULTS, fast, progress, restart))
 
 
 def _sweep(rotor: Rotor, model: Model, spec: Any, fast: bool, progress: bool, *,

@@ -2,15 +2,19 @@
 
 Analyses are written as ``[analyses.<name>]`` tables or as an ``[[analyses]]`` array with a
 ``name`` key (default: the type). Each has a ``type`` (see :data:`TABLES`), the options of
-that analysis and the common reporting options of :class:`AnalysisTable`.
+that analysis and the common reporting options of :class:`AnalysisTable`. The keys of the
+option groups of a transient or periodic branch (``harmonics``, ``max_points``, ``every``,
+``checkpoint_every``, ...) are derived from the groups of :mod:`rotorsim.options`
+(:func:`option_fields`), not written again here.
 """
 
 from typing import Annotated, Any, Literal
 
-from pydantic import Field, PlainValidator, model_validator
+from pydantic import Field, PlainValidator, create_model, model_validator
 
 from rotorsim.errors import ModelError
-from rotorsim.io.analysis_spec import Grid
+from rotorsim.io.analysis_spec import AnalysisSpec, Grid
+from rotorsim.io.long_specs import PeriodicParameterSpec, PeriodicSpec, TransientSpec
 from rotorsim.io.model_schema import UnbalanceTable
 from rotorsim.io.schema_types import (
     Dof,
@@ -32,6 +36,7 @@ from rotorsim.io.schema_types import (
     suggest,
     validate_table,
 )
+from rotorsim.options.flat import flat_key, option_field
 
 NumModes = Annotated[int, Field(ge=1, le=1000)]
 
@@ -118,17 +123,39 @@ class StaticTable(AnalysisTable):
 class RestartableTable(AnalysisTable):
     """Checkpoint and resume of a long analysis (transient, periodic branch): ``checkpoint``
     writes ``<analysis>.checkpoint.h5`` beside the results every ``checkpoint_every``
-    steps or points; ``resume`` continues from it when it exists."""
+    steps or points; ``resume`` continues from it when it exists. ``checkpoint_every`` and
+    the other option keys come from the option groups of the spec (:func:`option_fields`)."""
 
     checkpoint: bool = False
-    checkpoint_every: Annotated[int, Field(ge=1)] | None = None
     resume: bool = False
 
 
-class TransientTable(RestartableTable):
-    """A run at constant speed (``speed``) or a linear run-up/coast-down from ``speed`` to
-    ``speed_stop`` over ``ramp_time`` (default the whole run)."""
+def option_fields(spec: type[AnalysisSpec]) -> dict[str, Any]:
+    """Pydantic fields ``{flat key: (annotation, default)}`` of the option-group keys of a
+    model-file analysis (``harmonics``, ``max_points``, ``checkpoint_every``, ...): the
+    fields ``spec.FILE_OPTIONS`` names, with their type, bounds and default from the
+    group's field metadata (:mod:`rotorsim.options.flat`). A default of None (the verb's
+    default) makes the key optional."""
+    groups = spec.option_groups()
+    out: dict[str, Any] = {}
+    for attr, names in spec.FILE_OPTIONS.items():
+        for name in names:
+            f = option_field(groups[attr], name)
+            out[flat_key(groups[attr], name)] = _option_annotation(f.metadata, f.default)
+    return out
 
+
+def _option_annotation(meta: Any, default: Any) -> tuple[Any, Any]:
+    kind, bounds = meta["file"], {k: meta[k] for k in ("ge", "gt", "le") if k in meta}
+    annotation: Any
+    if "choices" in meta:
+        annotation = Literal[(*meta["choices"], *([meta["none"]] if "none" in meta else []))]
+    else:
+        annotation = Annotated[kind, Field(**bounds)] if bounds else kind
+    return (annotation | None, None) if default is None else (annotation, default)
+
+
+class _TransientKeys(RestartableTable):
     type: Literal["transient"]
     t_end: PositiveTime
     dt: PositiveTime
@@ -137,51 +164,56 @@ class TransientTable(RestartableTable):
     ramp_time: PositiveTime | None = None
     method: Literal["average_acceleration", "newmark", "linear_acceleration", "hht",
                     "generalized_alpha", "adams", "adaptive"] = "average_acceleration"
-    every: Annotated[int, Field(ge=1)] = 1
     initial: Literal["static", "zero"] = "static"
     on_failure: Literal["stop", "raise"] = "stop"
     unbalance: Annotated[list[UnbalanceTable], Field(min_length=1)] | None = None
 
     @model_validator(mode="after")
-    def _step_within_run(self) -> "TransientTable":
+    def _step_within_run(self) -> "_TransientKeys":
         if self.dt > self.t_end:
             raise fail(f"{fmt(self.dt, 'time')} exceeds t_end ({fmt(self.t_end, 'time')}): "
                        "check the units", ".dt")
         return self
 
 
-class PeriodicTable(RestartableTable):
-    """A harmonic-balance branch over the speed range ``start`` .. ``stop``."""
+TransientTable = create_model(
+    "TransientTable", __base__=_TransientKeys, __module__=__name__,
+    __doc__="A run at constant speed (``speed``) or a linear run-up/coast-down from "
+            "``speed`` to ``speed_stop`` over ``ramp_time`` (default the whole run).",
+    **option_fields(TransientSpec))
 
+
+class _PeriodicKeys(RestartableTable):
     type: Literal["periodic"]
     start: Speed
     stop: Speed
-    harmonics: Annotated[int, Field(ge=1, le=200)] = 10
-    samples: Annotated[int, Field(ge=4)] | None = None
-    max_points: Annotated[int, Field(ge=2)] = 500
-    max_step: Annotated[float, Field(gt=0)] = 0.02
     varying_compliance: bool | None = None
-    stability: Literal["auto", "hill", "hsu", "none"] = "auto"
     unbalance: Annotated[list[UnbalanceTable], Field(min_length=1)] | None = None
 
 
-class PeriodicParameterTable(RestartableTable):
-    """A harmonic-balance branch at the fixed ``speed`` over a model parameter ``vary``:
-    a key path of the model file (``"rolling_bearings.DE.radial_clearance"``), ``"loads"``
-    (a factor on the point loads) or ``"forcing"`` (a factor on the unbalance), from
-    ``start`` to ``stop`` (numbers in SI, or strings with units)."""
+PeriodicTable = create_model(
+    "PeriodicTable", __base__=_PeriodicKeys, __module__=__name__,
+    __doc__="A harmonic-balance branch over the speed range ``start`` .. ``stop``.",
+    **option_fields(PeriodicSpec))
 
+
+class _PeriodicParameterKeys(RestartableTable):
     type: Literal["periodic_parameter"]
     vary: Annotated[str, Field(min_length=1)]
     speed: PositiveSpeed
     start: float | str
     stop: float | str
-    harmonics: Annotated[int, Field(ge=1, le=200)] = 10
-    samples: Annotated[int, Field(ge=4)] | None = None
-    max_points: Annotated[int, Field(ge=2)] = 200
-    max_step: Annotated[float, Field(gt=0)] = 0.05
-    stability: Literal["auto", "hill", "hsu", "none"] = "auto"
     unbalance: Annotated[list[UnbalanceTable], Field(min_length=1)] | None = None
+
+
+PeriodicParameterTable = create_model(
+    "PeriodicParameterTable", __base__=_PeriodicParameterKeys, __module__=__name__,
+    __doc__="A harmonic-balance branch at the fixed ``speed`` over a model parameter "
+            "``vary``: a key path of the model file "
+            "(``\"rolling_bearings.DE.radial_clearance\"``), ``\"loads\"`` (a factor on the "
+            "point loads) or ``\"forcing\"`` (a factor on the unbalance), from ``start`` to "
+            "``stop`` (numbers in SI, or strings with units).",
+    **option_fields(PeriodicParameterSpec))
 
 
 class SweepTable(AnalysisTable):

@@ -20,13 +20,15 @@ Examples
 
 from __future__ import annotations
 
-from dataclasses import dataclass, fields
+from dataclasses import dataclass, fields, replace
 from typing import Any, ClassVar, Literal
 
 import numpy as np
 
 from rotorsim.assembly.loads import STANDARD_GRAVITY
 from rotorsim.elements.base import FloatArray
+from rotorsim.options.flat import flat_key, group_from_flat, to_flat
+from rotorsim.options.group import OptionGroup
 
 
 @dataclass(frozen=True)
@@ -103,9 +105,18 @@ class Loads:
     point_loads: tuple[tuple[int, str, float], ...] = ()
 
 
+GroupClass = type[OptionGroup]
+
+
 @dataclass(frozen=True, kw_only=True)
 class AnalysisSpec:
     """Options shared by all analyses: a description and what to report.
+
+    A spec may hold option groups of :mod:`rotorsim.options` (the groups of its
+    ``rotorsim`` verb); ``FILE_OPTIONS`` names, per group attribute, the group fields a
+    model file gives as flat keys (``harmonics = 6`` for ``Harmonics.count``;
+    :mod:`rotorsim.options.flat`). :meth:`from_flat`, :meth:`with_flat` and
+    :meth:`to_toml` convert between the two forms.
 
     Parameters
     ----------
@@ -120,16 +131,61 @@ class AnalysisSpec:
     """
 
     type: ClassVar[str] = ""
+    FILE_OPTIONS: ClassVar[dict[str, tuple[str, ...]]] = {}
     description: str = ""
     units: str = "rpm"
     nodes: tuple[int, ...] | None = None
     dofs: tuple[str, ...] = ("ux", "uy")
 
+    @classmethod
+    def option_groups(cls) -> dict[str, GroupClass]:
+        """``{attribute: group class}`` of the groups a model file sets by flat keys."""
+        defaults: dict[str, Any] = {f.name: f.default for f in fields(cls)}
+        return {attr: defaults[attr].__class__ for attr in cls.FILE_OPTIONS}
+
+    @classmethod
+    def flat_keys(cls) -> dict[str, tuple[str, str]]:
+        """``{flat key: (group attribute, field)}`` of the group fields in model files."""
+        groups = cls.option_groups()
+        return {flat_key(groups[attr], name): (attr, name)
+                for attr, names in cls.FILE_OPTIONS.items() for name in names}
+
+    @classmethod
+    def option_keys(cls) -> tuple[str, ...]:
+        """The keys of a model-file table of this analysis besides the common ones: the
+        spec's own fields and the flat keys of its groups."""
+        return (*(f.name for f in fields(cls) if f.name not in cls.FILE_OPTIONS),
+                *cls.flat_keys())
+
+    @classmethod
+    def from_flat(cls, **values: Any) -> AnalysisSpec:
+        """The spec from its own fields and flat group keys (``harmonics=6``, ...)."""
+        return cls._split(None, values)
+
+    def with_flat(self, **changes: Any) -> AnalysisSpec:
+        """A copy with spec fields or flat group keys changed."""
+        return type(self)._split(self, changes)
+
+    @classmethod
+    def _split(cls, base: AnalysisSpec | None, values: dict[str, Any]) -> AnalysisSpec:
+        keys, groups = cls.flat_keys(), cls.option_groups()
+        plain = {k: v for k, v in values.items() if k not in keys}
+        for attr, group in groups.items():
+            mine = {k: v for k, v in values.items() if keys.get(k, ("",))[0] == attr}
+            if mine:
+                start = getattr(base, attr) if base is not None else None
+                plain[attr] = group_from_flat(group, mine, start)
+        return replace(base, **plain) if base is not None else cls(**plain)
+
     def to_toml(self) -> dict[str, Any]:
-        """Model-file form in SI numbers (``None`` entries left out)."""
+        """Model-file form in SI numbers (``None`` entries left out; the groups' fields
+        as flat keys when not at their defaults)."""
         out: dict[str, Any] = {"type": self.type}
         for f in fields(self):
             value = getattr(self, f.name)
+            if f.name in self.FILE_OPTIONS:
+                out.update(to_flat(value, self.FILE_OPTIONS[f.name]))
+                continue
             if value is None or (f.name == "description" and not value):
                 continue
             out[f.name] = _toml_value(f.name, value)

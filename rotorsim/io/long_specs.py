@@ -13,6 +13,13 @@ from dataclasses import dataclass
 from typing import ClassVar
 
 from rotorsim.io.analysis_spec import AnalysisSpec, Grid, Unbalance
+from rotorsim.options import (
+    Checkpointing,
+    ContinuationOptions,
+    Harmonics,
+    Output,
+    StabilityOptions,
+)
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -23,19 +30,21 @@ class RestartableSpec(AnalysisSpec):
     ----------
     checkpoint : bool
         Write a checkpoint file (``<out>/<model>/<analysis>.checkpoint.h5`` on the command
-        line) every ``checkpoint_every`` steps or branch points and at the end.
-    checkpoint_every : int, optional
-        Steps (transient, default 1000) or branch points (periodic, default 25) between
-        checkpoints.
+        line) every ``checkpointing.every`` steps or branch points and at the end.
     resume : bool
         Continue from that checkpoint when it exists (same model and options, else a
         :class:`~rotorsim.time_integration.checkpoint.CheckpointError`); the result equals
         that of an uninterrupted run.
+    checkpointing : Checkpointing
+        Steps (transient, default 1000) or branch points (periodic, default 25) between
+        checkpoints (key ``checkpoint_every``); the file and resume come from the flags
+        above.
     """
 
+    FILE_OPTIONS: ClassVar[dict[str, tuple[str, ...]]] = {"checkpointing": ("every",)}
     checkpoint: bool = False
-    checkpoint_every: int | None = None
     resume: bool = False
+    checkpointing: Checkpointing = Checkpointing()  # noqa: RUF009  (frozen)
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -44,38 +53,47 @@ class TransientSpec(RestartableSpec):
     at constant ``speed`` [rad/s], or a linear ramp to ``speed_stop`` over ``ramp_time``
     [s] (default ``t_end``); ``unbalance=None`` uses the model's ``[[loads.unbalance]]``;
     rolling bearings act with their full nonlinear force. ``on_failure="stop"`` (default)
-    keeps the run up to a failed step with status ``NOT_CONVERGED``; ``"raise"`` raises."""
+    keeps the run up to a failed step with status ``NOT_CONVERGED``; ``"raise"`` raises.
+    ``output`` holds the kept samples (key ``every``)."""
 
     type: ClassVar[str] = "transient"
+    FILE_OPTIONS: ClassVar[dict[str, tuple[str, ...]]] = {
+        **RestartableSpec.FILE_OPTIONS, "output": ("every",)}
     t_end: float
     dt: float
     speed: float = 0.0
     speed_stop: float | None = None
     ramp_time: float | None = None
     method: str = "average_acceleration"
-    every: int = 1
     initial: str = "static"
     on_failure: str = "stop"
     unbalance: Unbalance | None = None
+    output: Output = Output()  # noqa: RUF009  (frozen)
+
+
+_BRANCH_OPTIONS: dict[str, tuple[str, ...]] = {
+    **RestartableSpec.FILE_OPTIONS, "harmonics": ("count", "samples"),
+    "continuation": ("max_step", "max_points"), "stability": ("method",)}
+"""Group fields of a harmonic-balance branch in model files (keys ``harmonics``,
+``samples``, ``max_step``, ``max_points``, ``stability``, ``checkpoint_every``)."""
 
 
 @dataclass(frozen=True, kw_only=True)
 class PeriodicSpec(RestartableSpec):
     """Harmonic-balance branch over the speed range ``start`` .. ``stop`` [rad/s]:
-    :func:`rotorsim.periodic` with ``harmonics`` harmonics, Floquet stability
-    (``stability="none"`` skips it) and bifurcations; ``unbalance=None`` uses the model's
-    ``[[loads.unbalance]]``; rolling bearings act with their full nonlinear force."""
+    :func:`rotorsim.periodic` with its ``harmonics``, ``continuation`` and ``stability``
+    groups (``stability = "none"`` skips the multipliers); ``unbalance=None`` uses the
+    model's ``[[loads.unbalance]]``; rolling bearings act with their full nonlinear force."""
 
     type: ClassVar[str] = "periodic"
+    FILE_OPTIONS: ClassVar[dict[str, tuple[str, ...]]] = _BRANCH_OPTIONS
     start: float
     stop: float
-    harmonics: int = 10
-    samples: int | None = None
-    max_points: int = 500
-    max_step: float = 0.02
     varying_compliance: bool | None = None
-    stability: str = "auto"
     unbalance: Unbalance | None = None
+    harmonics: Harmonics = Harmonics()  # noqa: RUF009  (frozen)
+    continuation: ContinuationOptions = ContinuationOptions()  # noqa: RUF009  (frozen)
+    stability: StabilityOptions = StabilityOptions()  # noqa: RUF009  (frozen)
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -84,19 +102,19 @@ class PeriodicParameterSpec(RestartableSpec):
     ``vary`` from ``start`` to ``stop`` (SI): :func:`rotorsim.periodic_parameter` with
     ``vary`` a key path of the model file
     (:class:`~rotorsim.io.model_parameter.ModelParameter`), ``"loads"`` (a factor on the
-    model's point loads) or ``"forcing"`` (a factor on the unbalance)."""
+    model's point loads) or ``"forcing"`` (a factor on the unbalance), and the groups of
+    :class:`PeriodicSpec`."""
 
     type: ClassVar[str] = "periodic_parameter"
+    FILE_OPTIONS: ClassVar[dict[str, tuple[str, ...]]] = _BRANCH_OPTIONS
     vary: str
     speed: float
     start: float
     stop: float
-    harmonics: int = 10
-    samples: int | None = None
-    max_points: int = 200
-    max_step: float = 0.05
-    stability: str = "auto"
     unbalance: Unbalance | None = None
+    harmonics: Harmonics = Harmonics()  # noqa: RUF009  (frozen)
+    continuation: ContinuationOptions = ContinuationOptions()  # noqa: RUF009  (frozen)
+    stability: StabilityOptions = StabilityOptions()  # noqa: RUF009  (frozen)
 
 
 @dataclass(frozen=True, kw_only=True)

@@ -9,7 +9,7 @@ bearing references. Errors name the key path of the culprit
 
 from __future__ import annotations
 
-from dataclasses import dataclass, fields
+from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
@@ -334,9 +334,9 @@ def build_spec(table: Any, loc: tuple[str | int, ...], nodes: Nodes,
     }
     cls = SPEC_TYPES[table.type]
     options: dict[str, Any] = {}
-    for f in fields(cls):
-        if f.name not in common and hasattr(table, f.name):
-            options[f.name] = getattr(table, f.name)
+    for key in cls.option_keys():  # its fields and the flat keys of its option groups
+        if key not in common and hasattr(table, key):
+            options[key] = getattr(table, key)
     if table.type in ("unbalance", "transient", "periodic", "periodic_parameter"):
         options["unbalance"] = _analysis_unbalance(table, nodes, loads, where)
     elif table.type == "frequency_response":
@@ -347,7 +347,7 @@ def build_spec(table: Any, loc: tuple[str | int, ...], nodes: Nodes,
                                                f"{where}.bearings")
     elif table.type == "campbell":
         options["harmonics"] = tuple(options["harmonics"])
-    return cls(**common, **options)
+    return cls.from_flat(**common, **options)
 
 
 def _analysis_unbalance(table: Any, nodes: Nodes, loads: spec.Loads, where: str

@@ -33,11 +33,17 @@ from rotorsim.harmonic_balance.floquet import hill
 from rotorsim.harmonic_balance.monodromy import hsu
 from rotorsim.harmonic_balance.residual import continuation_function, make_residual
 from rotorsim.harmonic_balance.solve import solve_point
+from rotorsim.solvers.continuation import Continuation
 from rotorsim.solvers.stats import Stats
 
 STEEL = rs.Material(name="steel", E=211e9, G_s=81.2e9, rho=7810)
 UNBALANCE = [(1, 3e-5, 0.0)]
-FAST = {"harmonics": 6, "tol": 1e-8, "nodes": [1]}
+FAST = {"harmonics": 6, "nodes": [1]}
+
+
+def fast(**continuation):
+    """The FAST keywords with the continuation options ``continuation`` (tol 1e-8)."""
+    return {**FAST, "continuation": rs.ContinuationOptions(tol=1e-8, **continuation)}
 
 
 def ball(cage: str = "fixed", clearance: float = 10e-6) -> BallBearing:
@@ -65,7 +71,7 @@ def linear_rotor() -> rs.Rotor:
 def branch():
     """Unbalance branch of the Jeffcott rotor through both folds (Floquet by Hsu)."""
     return periodic(jeffcott(), start=1220.0, stop=1280.0, unbalance=UNBALANCE,
-                    max_step=0.1, **FAST)
+                    **fast(max_step=0.1))
 
 
 # ----------------------------------------------------------------------------- physics
@@ -75,8 +81,8 @@ def test_linear_rotor_branch_is_the_unbalance_response_plus_the_static_sag():
     equals rs.unbalance_response and harmonic 0 equals rs.static (to round-off)."""
     rotor = linear_rotor()
     unb = [(3, 1e-4, 0.3)]
-    res = periodic(rotor, start=200.0, stop=900.0, harmonics=2, unbalance=unb, max_step=2.0,
-                   tol=1e-13, stability=None)
+    res = periodic(rotor, start=200.0, stop=900.0, harmonics=2, unbalance=unb,
+                   continuation=rs.ContinuationOptions(max_step=2.0, tol=1e-13), stability=None)
     ref = unbalance_response(rotor, res.parameter, unb)
     for dof in ("ux", "uy"):
         got, exact = res.harmonic(3, dof, 1), ref.complex(3, dof)
@@ -151,10 +157,11 @@ def test_speed_derivative_of_the_residual(cage, unbalance):
 
 
 def test_condensed_and_full_harmonic_balance_give_the_same_point():
-    kw = {"unbalance": UNBALANCE, "max_points": 2, "stability": None, "bifurcations": False,
-          "harmonics": 4, "tol": 1e-11}
-    cond = periodic(jeffcott(), start=1100.0, stop=1110.0, **kw)
-    full = periodic(jeffcott(), start=1100.0, stop=1110.0, condense=False, **kw)
+    kw = {"unbalance": UNBALANCE, "continuation": rs.ContinuationOptions(max_points=2, tol=1e-11),
+          "stability": rs.StabilityOptions(None, bifurcations=False)}
+    cond = periodic(jeffcott(), start=1100.0, stop=1110.0, harmonics=4, **kw)
+    full = periodic(jeffcott(), start=1100.0, stop=1110.0,
+                    harmonics=rs.Harmonics(4, condense=False), **kw)
     np.testing.assert_allclose(full.coefficients[0], cond.coefficients[0], rtol=0,
                                atol=1e-7 * np.abs(cond.coefficients[0]).max())
 
@@ -162,8 +169,8 @@ def test_condensed_and_full_harmonic_balance_give_the_same_point():
 def test_resume_after_an_interruption_equals_the_uninterrupted_branch(tmp_path, monkeypatch):
     import rotorsim.analyses.periodic.branch as pb
 
-    kw = {"unbalance": UNBALANCE, "max_points": 9, "stability": None, "bifurcations": False,
-          **FAST}
+    kw = {"unbalance": UNBALANCE, "stability": rs.StabilityOptions(None, bifurcations=False),
+          **fast(max_points=9)}
     whole = periodic(jeffcott(), start=1200.0, stop=1300.0, **kw)
     original = pb.continue_branch
 
@@ -178,10 +185,11 @@ def test_resume_after_an_interruption_equals_the_uninterrupted_branch(tmp_path, 
                         lambda *a, **k: original(*a, **k, monitor=stop_at))
     path = tmp_path / "branch.h5"
     with pytest.raises(Interrupted):
-        periodic(jeffcott(), start=1200.0, stop=1300.0, checkpoint=path, checkpoint_every=3,
+        periodic(jeffcott(), start=1200.0, stop=1300.0, checkpoint=rs.Checkpointing(path, every=3),
                  **kw)
     monkeypatch.setattr(pb, "continue_branch", original)
-    resumed = periodic(jeffcott(), start=1200.0, stop=1300.0, resume=path, **kw)
+    resumed = periodic(jeffcott(), start=1200.0, stop=1300.0,
+                       checkpoint=rs.Checkpointing(resume=path), **kw)
     np.testing.assert_array_equal(resumed.parameter, whole.parameter)
     np.testing.assert_array_equal(resumed.coefficients, whole.coefficients)
 
@@ -217,8 +225,8 @@ def test_result_accessors(branch):
 
 
 def test_stability_is_refused_when_not_computed():
-    res = periodic(jeffcott(), start=1000.0, stop=1010.0, unbalance=UNBALANCE, max_points=2,
-                   stability=None, **FAST)
+    res = periodic(jeffcott(), start=1000.0, stop=1010.0, unbalance=UNBALANCE,
+                   stability=None, **fast(max_points=2))
     assert not res.has_stability and res.stability_method == "none"
     with pytest.raises(ModelError, match="no stability"):
         _ = res.stable
@@ -231,7 +239,8 @@ def test_stability_is_refused_when_not_computed():
     ({"parameter": "frequency"}, ModelError, "fixed speed"),
     ({"speed": 100.0}, ModelError, "continuation parameter"),
     ({"stability": "lyapunov"}, TypeError, "unknown stability"),
-    ({"stability_modes": -3}, ModelError, "stability_modes|integer"),
+    (lambda: {"stability": rs.StabilityOptions(modes=-3)}, ModelError,
+     "stability_modes|integer"),
     ({"nodes": [99]}, ModelError, "outside"),
     ({"varying_compliance": True}, ModelError, "quasi-periodic"),
     # issue 12: H = 0 has no unbalance response; H must be a positive integer that carries
@@ -243,21 +252,30 @@ def test_stability_is_refused_when_not_computed():
     ({"harmonics": None}, ModelError, "periodic.harmonics: must be a positive integer"),
     ({"harmonics": float("inf")}, ModelError, "periodic.harmonics: must be a positive"),
     ({"harmonics": "4"}, ModelError, "periodic.harmonics: must be a positive integer"),
-    ({"harmonics": 1, "fundamental": 0.5, "varying_compliance": False}, ModelError,
+    ({"harmonics": rs.Harmonics(1, fundamental=0.5), "varying_compliance": False}, ModelError,
      "1 harmonics drop the unbalance, which is harmonic 2"),
-    ({"harmonics": 2, "samples": 3}, ModelError, r"periodic.samples: must be an integer >= 2 H"),
-    ({"samples": float("nan")}, ModelError, "periodic.samples"),
+    # option groups are checked when built (lambda: inside pytest.raises)
+    (lambda: {"harmonics": rs.Harmonics(2, samples=3)}, ModelError,
+     r"Harmonics.samples: must be an integer >= 2 H"),
+    (lambda: {"harmonics": rs.Harmonics(samples=float("nan"))}, ModelError, "Harmonics.samples"),
+    ({"continuation": Continuation()}, ModelError,
+     r"periodic\.continuation: expected rs\.ContinuationOptions or None, got Continuation \(a "
+     r"solver Continuation goes into rs\.ContinuationOptions\(solver=\.\.\.\)\)"),
+    ({"output": rs.Output(every=2)}, ModelError, r"periodic\.output\.every: not an option"),
+    ({"nodes": [1], "output": rs.Output(nodes=[2])}, ModelError, r"periodic\.nodes: given twice"),
 ])
 def test_bad_input_is_rejected_before_the_branch(kwargs, error, match):
     rotor = jeffcott("rotating")
-    args = {"start": 1000.0, "stop": 1100.0, "unbalance": UNBALANCE, **kwargs}
     with pytest.raises(error, match=match):
+        args = {"start": 1000.0, "stop": 1100.0, "unbalance": UNBALANCE,
+                **(kwargs() if callable(kwargs) else kwargs)}
         periodic(rotor, **args)
 
 
 def test_frequency_continuation_of_a_housing_excitation_at_fixed_speed():
     res = periodic(jeffcott(), parameter="frequency", speed=500.0, start=900.0, stop=1000.0,
-                   base=HarmonicBase(2e-6), max_points=4, stability=None, **FAST)
+                   excitation=rs.Excitation(base=HarmonicBase(2e-6)),
+                   stability=None, **fast(max_points=4))
     assert res.parameter_name == "frequency" and res.order == 0.0
     np.testing.assert_array_equal(res.fundamental, res.parameter)
     assert np.all(res.speed == 500.0) and res.approximation == ""
@@ -301,8 +319,10 @@ def test_response_converges_in_harmonics_and_samples():
     series converge algebraically) and with N at H = 6 against N = 512 (the AFT aliasing
     error is < 2e-5 from N = 64 on)."""
     def ptp(H, N=None):
-        r = periodic(jeffcott(), start=1200.0, stop=1210.0, unbalance=UNBALANCE, harmonics=H,
-                     samples=N, max_points=2, stability=None, bifurcations=False, tol=1e-10,
+        r = periodic(jeffcott(), start=1200.0, stop=1210.0, unbalance=UNBALANCE,
+                     harmonics=rs.Harmonics(H, samples=N),
+                     continuation=rs.ContinuationOptions(max_points=2, tol=1e-10),
+                     stability=rs.StabilityOptions(None, bifurcations=False),
                      nodes=[1])
         return float(r.amplitude(1, "uy", "peak_to_peak")[0])
 
@@ -348,11 +368,12 @@ def test_parameter_branch_resumes_from_its_checkpoint(tmp_path):
         return [RollingBearing(ball("fixed", clearance=c), n=n, tag=f"B{n}") for n in (0, 2)]
 
     kw = dict(speed=1250.0, start=10e-6, stop=8e-6, unbalance=UNBALANCE, harmonics=4,
-              max_points=12, stability=None)
+              continuation=rs.ContinuationOptions(max_points=12), stability=None)
     path = tmp_path / "clearance.h5"
-    full = periodic_parameter(jeffcott().linear_part(), vary, checkpoint=path,
-                              checkpoint_every=4, **kw)
-    again = periodic_parameter(jeffcott().linear_part(), vary, resume=path, **kw)
+    full = periodic_parameter(jeffcott().linear_part(), vary,
+                              checkpoint=rs.Checkpointing(path, every=4), **kw)
+    again = periodic_parameter(jeffcott().linear_part(), vary,
+                               checkpoint=rs.Checkpointing(resume=path), **kw)
     np.testing.assert_array_equal(again.parameter, full.parameter)
     np.testing.assert_array_equal(again.coefficients, full.coefficients)
 
@@ -379,7 +400,8 @@ def test_harmonics_beyond_the_memory_limit_are_refused_with_the_figure(monkeypat
 def test_a_branch_short_of_its_end_is_not_ok_and_says_where_it_stopped(branch):
     assert branch.status == rs.Status.OK and branch.parameter[-1] == 1280.0
     short = periodic(jeffcott(), start=1220.0, stop=1280.0, unbalance=UNBALANCE,
-                     max_points=4, stability=None, bifurcations=False, **FAST)
+                     stability=rs.StabilityOptions(None, bifurcations=False),
+                     **fast(max_points=4))
     assert len(short) == 4 and short.parameter[-1] < 1280.0
     assert short.status == rs.Status.NOT_CONVERGED
     assert short.reason.startswith(f"incomplete: the branch ended at speed "
@@ -393,7 +415,8 @@ def test_a_tolerance_below_round_off_is_met_at_the_round_off_floor():
     against the round-off floor of the residual's terms it reaches its end, and the
     residuals stay at round-off level (measured 3e-15), not at a loosened tolerance."""
     res = periodic(jeffcott(), start=1100.0, stop=1150.0, unbalance=UNBALANCE, harmonics=4,
-                   tol=1e-17, nodes=[1], stability=None, bifurcations=False, max_step=0.1)
+                   continuation=rs.ContinuationOptions(tol=1e-17, max_step=0.1),
+                   stability=rs.StabilityOptions(None, bifurcations=False), nodes=[1])
     assert res.status == rs.Status.OK and res.parameter[-1] == 1150.0
     assert np.max(res.residuals) < 1e-13
 
@@ -404,22 +427,27 @@ def test_resume_of_a_finished_run_returns_its_result_also_from_the_results_file(
     returns the stored result when the run is the same, and names what differs if not."""
     from rotorsim.time_integration.checkpoint import CheckpointError
 
-    kw = {"unbalance": UNBALANCE, "stability": None, "bifurcations": False, **FAST}
+    kw = {"unbalance": UNBALANCE, "stability": rs.StabilityOptions(None, bifurcations=False),
+          **fast()}
     path = tmp_path / "branch.h5"
     done = periodic(jeffcott(), start=1200.0, stop=1210.0, checkpoint=path, **kw)
     assert done.status == rs.Status.OK
-    again = periodic(jeffcott(), start=1200.0, stop=1210.0, resume=path, **kw)
+    again = periodic(jeffcott(), start=1200.0, stop=1210.0,
+                     checkpoint=rs.Checkpointing(resume=path), **kw)
     np.testing.assert_array_equal(again.coefficients, done.coefficients)  # same machine
     rs.save(done, path)
-    stored = periodic(jeffcott(), start=1200.0, stop=1210.0, resume=path, **kw)
+    stored = periodic(jeffcott(), start=1200.0, stop=1210.0,
+                      checkpoint=rs.Checkpointing(resume=path), **kw)
     np.testing.assert_array_equal(stored.coefficients, done.coefficients)
     assert stored.status == done.status and stored.options == done.options
     with pytest.raises(CheckpointError, match=r"different run .*stop: checkpoint 1210\.0, "
                                               r"this run 1220\.0"):
-        periodic(jeffcott(), start=1200.0, stop=1220.0, resume=path, **kw)
+        periodic(jeffcott(), start=1200.0, stop=1220.0, checkpoint=rs.Checkpointing(resume=path),
+                 **kw)
     rs.save(rs.static(linear_rotor()), path)
     with pytest.raises(CheckpointError, match="StaticResult, not a periodic branch"):
-        periodic(jeffcott(), start=1200.0, stop=1210.0, resume=path, **kw)
+        periodic(jeffcott(), start=1200.0, stop=1210.0, checkpoint=rs.Checkpointing(resume=path),
+                 **kw)
 
 
 @pytest.mark.parametrize("harmonics", [0, 2.5, 10000])
@@ -438,8 +466,9 @@ def test_a_short_parameter_branch_is_not_ok():
     from rotorsim.analyses.periodic.parameter import periodic_parameter
 
     res = periodic_parameter(jeffcott(), "forcing", speed=1100.0, start=0.2, stop=1.0,
-                             unbalance=UNBALANCE, harmonics=4, max_points=3, stability=None,
-                             bifurcations=False)
+                             unbalance=UNBALANCE, harmonics=4,
+                             continuation=rs.ContinuationOptions(max_points=3),
+                             stability=rs.StabilityOptions(None, bifurcations=False))
     assert len(res) == 3 and res.status == rs.Status.NOT_CONVERGED
     assert res.reason.startswith("incomplete: the branch ended at parameter ")
     assert "short of its end parameter 1 (max_points reached)" in res.reason

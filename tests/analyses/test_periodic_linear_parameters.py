@@ -44,7 +44,8 @@ def damped(c: float) -> rs.Rotor:
 def at_fixed(rotor: rs.Rotor, **kw):
     """rs.periodic solved at W alone (two points, no stability): amplitude of the disk."""
     res = periodic(rotor, start=W, stop=W + 0.5, unbalance=UNBALANCE, harmonics=6,
-                   max_points=2, stability=None, bifurcations=False, **kw)
+                   continuation=rs.ContinuationOptions(max_points=2),
+                   stability=rs.StabilityOptions(None, bifurcations=False), **kw)
     return res.amplitude(DISK, "uy", "peak_to_peak")[0]
 
 
@@ -53,7 +54,8 @@ def damping_branch():
     """Damper coefficient from 40000 down to 2000 N s/m: an S-curve with three folds."""
     return rs.periodic_parameter(damped(40000.0), damped, speed=W, start=40000.0,
                                  stop=2000.0, unbalance=UNBALANCE, harmonics=6,
-                                 name="damper [N s/m]", max_points=200)
+                                 name="damper [N s/m]",
+                                 continuation=rs.ContinuationOptions(max_points=200))
 
 
 @pytest.mark.verification
@@ -65,7 +67,8 @@ def test_folds_in_the_damping_are_folds_of_the_speed_branch_at_that_damping(damp
     # the two folds of the main S-curve: the speed branch with dampers c_f turns at W
     for fold in sorted(folds, key=lambda f: f.index)[:2]:
         speed = periodic(damped(fold.parameter), start=1190.0, stop=1330.0,
-                         unbalance=UNBALANCE, harmonics=6, tol=1e-9, max_step=0.1,
+                         unbalance=UNBALANCE, harmonics=6,
+                         continuation=rs.ContinuationOptions(tol=1e-9, max_step=0.1),
                          stability=None)
         assert min(abs(f.parameter - W) for f in speed.events("fold")) < 1e-6 * W
 
@@ -96,7 +99,8 @@ def test_jump_map_in_the_damping_crosses_the_folds_of_the_damping_branch(damping
     from rotorsim.analyses.periodic.folds import ParameterMap
 
     mapped = periodic(damped(5000.0), start=1190.0, stop=1310.0, unbalance=UNBALANCE,
-                      harmonics=6, tol=1e-9, max_step=0.1, stability=None,
+                      harmonics=6, continuation=rs.ContinuationOptions(tol=1e-9, max_step=0.1),
+                      stability=None,
                       fold_map=ParameterMap(damped, 5000.0, 3000.0, "damper [N s/m]"))
     curves = mapped.options["fold_map"]["curves"]
     upper = max(curves, key=lambda c: c["parameter"][0])
@@ -108,7 +112,8 @@ def test_jump_map_in_the_damping_crosses_the_folds_of_the_damping_branch(damping
     assert np.all(np.diff(speed) < 0)
     assert crossing == pytest.approx(c_fold, rel=1e-4)       # interpolation: 1.7e-6 seen
     direct = periodic(damped(4000.0), start=1150.0, stop=1330.0, unbalance=UNBALANCE,
-                      harmonics=6, tol=1e-9, max_step=0.1, stability=None)
+                      harmonics=6, continuation=rs.ContinuationOptions(tol=1e-9, max_step=0.1),
+                      stability=None)
     at_4000 = float(np.interp(4000.0, mu[::-1], speed[::-1]))
     assert min(abs(at_4000 - f.parameter) for f in direct.events("fold")) < 1e-4 * W  # 1.7e-5
 
@@ -116,13 +121,15 @@ def test_jump_map_in_the_damping_crosses_the_folds_of_the_damping_branch(damping
 @pytest.mark.verification
 def test_static_load_branch_equals_the_response_under_that_load():
     res = rs.periodic_parameter(jeffcott(), "loads", speed=W, start=0.0, stop=500.0,
-                                loads=[(DISK, "uy", -1.0)], unbalance=UNBALANCE,
-                                harmonics=6, name="disk load [N]", max_points=200)
+                                excitation=rs.Excitation(loads=[(DISK, "uy", -1.0)]),
+                                unbalance=UNBALANCE, harmonics=6, name="disk load [N]",
+                                continuation=rs.ContinuationOptions(max_points=200))
     assert res.status == 0 and res.parameter[-1] == pytest.approx(500.0)
     a = res.amplitude(DISK, "uy", "peak_to_peak")
     for load in (150.0, 400.0):
         assert np.interp(load, res.parameter, a) == pytest.approx(
-            at_fixed(jeffcott(), loads=[(DISK, "uy", -load)]), rel=1e-3)
+            at_fixed(jeffcott(), excitation=rs.Excitation(loads=[(DISK, "uy", -load)])),
+            rel=1e-3)
     # harmonic 0 of the disk follows the load: it sags more under a larger load
     sag = res.coefficients[:, 0, res.column(DISK, "uy")]
     assert sag[-1] < sag[0] - 1e-6
@@ -212,7 +219,7 @@ def test_a_vary_that_changes_the_structure_is_refused_with_the_value(vary, match
     with pytest.raises(InconsistentModelError, match=match):
         rs.periodic_parameter(jeffcott(), changed_later, speed=W, start=5000.0,
                               stop=3000.0, unbalance=UNBALANCE, harmonics=3,
-                              max_points=20, stability=None)
+                              continuation=rs.ContinuationOptions(max_points=20), stability=None)
 
 
 def test_loads_mode_needs_loads():

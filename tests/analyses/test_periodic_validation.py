@@ -20,6 +20,7 @@ import numpy as np
 import pytest
 from test_periodic import UNBALANCE, jeffcott
 
+import rotorsim as rs
 from rotorsim.analyses.periodic.periodic import periodic
 from rotorsim.analyses.transient.speed_profile import LinearSpeed
 from rotorsim.analyses.transient.transient import transient
@@ -32,7 +33,7 @@ DISK = 1
 def hb():
     """The unbalance branch from 1190 to 1310 rad/s with all DOFs kept (transient starts)."""
     return periodic(jeffcott(), start=1190.0, stop=1310.0, unbalance=UNBALANCE, harmonics=6,
-                    tol=1e-9, max_step=0.1)
+                    continuation=rs.ContinuationOptions(tol=1e-9, max_step=0.1))
 
 
 def segments(res):
@@ -141,7 +142,8 @@ def test_varying_compliance_response_agrees_with_the_transient():
     HB's peak-to-peak VC vibration of the disk (tens of nm on a 10 um sag) matches the
     transient's steady state within 0.5 %."""
     rotor = jeffcott("rotating")
-    res = periodic(rotor, start=1000.0, stop=1010.0, harmonics=8, tol=1e-10, max_points=2,
+    res = periodic(rotor, start=1000.0, stop=1010.0, harmonics=8,
+                   continuation=rs.ContinuationOptions(tol=1e-10, max_points=2),
                    nodes=[DISK])
     # ball-pass order of the inner ring: Z (1 - D / d_m) / 2 (9 balls, D = 7.94 mm,
     # d_m = 38.5 mm, contact angle 0)
@@ -159,7 +161,8 @@ def test_fold_map_matches_the_folds_of_a_branch_at_reduced_unbalance():
     """Folds continued in the forcing amplitude (extended system, seed 002 3.5.2.2) against
     the folds of an independent branch computed with 95 % of the unbalance."""
     mapped = periodic(jeffcott(), start=1190.0, stop=1310.0, unbalance=UNBALANCE, harmonics=6,
-                      tol=1e-9, max_step=0.1, stability=None, fold_map=True)
+                      continuation=rs.ContinuationOptions(tol=1e-9, max_step=0.1), stability=None,
+                      fold_map=True)
     curves = mapped.options["fold_map"]
     assert len(curves) == 2
     predicted = []
@@ -172,7 +175,7 @@ def test_fold_map_matches_the_folds_of_a_branch_at_reduced_unbalance():
         predicted.append(float(np.interp(0.95, f[::-1], p[::-1])))
     reduced = [(n, 0.95 * me, a) for n, me, a in UNBALANCE]
     direct = periodic(jeffcott(), start=1190.0, stop=1330.0, unbalance=reduced, harmonics=6,
-                      tol=1e-9, max_step=0.1, stability=None)
+                      continuation=rs.ContinuationOptions(tol=1e-9, max_step=0.1), stability=None)
     folds = sorted(b.parameter for b in direct.events("fold"))
     np.testing.assert_allclose(sorted(predicted), folds, rtol=1e-4)
 
@@ -191,15 +194,17 @@ def test_clearance_branch_matches_speed_branches_at_fixed_clearances(hb):
 
     W, base = 1250.0, jeffcott().linear_part()
     res = periodic_parameter(base, vary, speed=W, start=10e-6, stop=2e-6, unbalance=UNBALANCE,
-                             harmonics=6, name="diametral clearance [m]", max_points=80)
+                             harmonics=6, name="diametral clearance [m]",
+                             continuation=rs.ContinuationOptions(max_points=80))
     folds = res.events("fold")
     assert len(folds) == 1 and 6e-6 < folds[0].parameter < 9e-6
     leg = slice(0, folds[0].index + 1)
     p, a = res.parameter[leg], res.amplitude(DISK, "uy", "peak_to_peak")[leg]
     for c in (9e-6, 8e-6):
         direct = periodic(base.with_nonlinear(vary(c)), start=W, stop=W + 0.5,
-                          unbalance=UNBALANCE, harmonics=6, max_points=2, stability=None,
-                          bifurcations=False)
+                          unbalance=UNBALANCE, harmonics=6,
+                          continuation=rs.ContinuationOptions(max_points=2),
+                          stability=rs.StabilityOptions(None, bifurcations=False))
         # linear interpolation between branch points: 1e-3
         assert np.interp(c, p[::-1], a[::-1]) == pytest.approx(
             direct.amplitude(DISK, "uy", "peak_to_peak")[0], rel=1e-3)
@@ -228,7 +233,7 @@ def test_folds_tracked_in_the_clearance_match_a_branch_at_that_clearance():
         return [RollingBearing(ball("fixed", clearance=c), n=n, tag=f"B{n}") for n in (0, 2)]
 
     mapped = periodic(jeffcott(), start=1190.0, stop=1310.0, unbalance=UNBALANCE, harmonics=6,
-                      tol=1e-9, max_step=0.1, stability=None,
+                      continuation=rs.ContinuationOptions(tol=1e-9, max_step=0.1), stability=None,
                       fold_map=ParameterMap(vary, 10e-6, 8.5e-6, "diametral clearance"))
     curves = mapped.options["fold_map"]["curves"]
     assert len(curves) == 2
@@ -236,7 +241,8 @@ def test_folds_tracked_in_the_clearance_match_a_branch_at_that_clearance():
     np.testing.assert_allclose(starts, sorted(f.parameter for f in mapped.events("fold")),
                                rtol=1e-9)
     direct = periodic(jeffcott().linear_part().with_nonlinear(vary(9e-6)), start=1150.0,
-                      stop=1310.0, unbalance=UNBALANCE, harmonics=6, tol=1e-9, max_step=0.1,
+                      stop=1310.0, unbalance=UNBALANCE, harmonics=6,
+                      continuation=rs.ContinuationOptions(tol=1e-9, max_step=0.1),
                       stability=None)
     folds = [f.parameter for f in direct.events("fold")]
     reached = [c for c in curves if min(c["mu"]) <= 9e-6]
@@ -255,12 +261,13 @@ def test_forcing_branch_matches_speed_branches_at_reduced_unbalance():
     W = 1250.0
     res = periodic_parameter(jeffcott(), "forcing", speed=W, start=1.0, stop=0.3,
                              unbalance=UNBALANCE, harmonics=6, name="forcing fraction",
-                             max_points=80)
+                             continuation=rs.ContinuationOptions(max_points=80))
     assert res.parameter[0] == pytest.approx(1.0) and res.parameter[-1] == pytest.approx(0.3)
     a = res.amplitude(DISK, "uy", "peak_to_peak")
     for frac in (0.9, 0.6):
         reduced = [(n, frac * me, ph) for n, me, ph in UNBALANCE]
         direct = periodic(jeffcott(), start=W, stop=W + 0.5, unbalance=reduced, harmonics=6,
-                          max_points=2, stability=None, bifurcations=False)
+                          continuation=rs.ContinuationOptions(max_points=2),
+                          stability=rs.StabilityOptions(None, bifurcations=False))
         assert np.interp(frac, res.parameter[::-1], a[::-1]) == pytest.approx(
             direct.amplitude(DISK, "uy", "peak_to_peak")[0], rel=1e-3)

@@ -55,7 +55,8 @@ def test_transient_free_vibration_is_a_cosine():
     q0 = np.zeros(rotor.ndof)
     q0[0] = 1e-5
     dt, t_end = 5e-6, 5e-3
-    t = rs.transient(rotor, t_end, dt, gravity=None, initial=(q0, np.zeros(rotor.ndof)))
+    t = rs.transient(rotor, t_end, dt, excitation=rs.Excitation(gravity=None),
+                     initial=(q0, np.zeros(rotor.ndof)))
     wn = math.sqrt(KX / M)
     x = t.displacement(0, "ux")
     # average acceleration: period error (wn dt)^2 / 12 = 6.7e-7 relative, i.e. a phase
@@ -66,8 +67,10 @@ def test_transient_free_vibration_is_a_cosine():
 
 def test_periodic_unbalance_response_is_the_analytic_one():
     rotor, me = linear_rotor(), 1e-4
-    res = rs.periodic(rotor, start=500.0, stop=600.0, gravity=None, unbalance=[(0, me, 0.0)],
-                      harmonics=1, max_points=30, stability=None, bifurcations=False)
+    res = rs.periodic(rotor, start=500.0, stop=600.0, excitation=rs.Excitation(gravity=None),
+                      unbalance=[(0, me, 0.0)], harmonics=1,
+                      continuation=rs.ContinuationOptions(max_points=30),
+                      stability=rs.StabilityOptions(None, bifurcations=False))
     W = res.parameter
     expected = me * W**2 / np.abs(KX - M * W**2)  # 1X orbit amplitude along x
     x = np.array([res.harmonic_amplitudes(i, 0, "ux")[1] for i in range(len(res))])
@@ -131,7 +134,8 @@ def test_rolling_rigid_rotor_modal_at_the_static_load_is_the_hertz_frequency():
 def test_rolling_rigid_rotor_transient_starts_at_the_static_equilibrium():
     rotor = rolling_rotor()
     s = rs.static(rotor, gravity=None, loads=LOAD)
-    t = rs.transient(rotor, 1e-3, 2e-5, speed=100.0, gravity=None, loads=LOAD)
+    t = rs.transient(rotor, 1e-3, 2e-5, speed=100.0,
+                     excitation=rs.Excitation(gravity=None, loads=LOAD))
     # both solves stop at relative residuals <= 1e-8 (transient start) and 1e-10 (static)
     assert t.displacement(0, "uy")[0] == pytest.approx(s.displacement[1], rel=1e-7)
     assert np.all(np.isfinite(t.q))
@@ -154,8 +158,10 @@ def test_static_uses_a_given_start():
 def test_periodic_uses_a_given_start():
     rotor = rolling_rotor()
     s = rs.static(rotor, gravity=None, loads=LOAD)
-    kwargs = {"start": 100.0, "stop": 101.0, "gravity": None, "loads": LOAD, "harmonics": 3,
-              "max_points": 3, "stability": None, "bifurcations": False}
+    kwargs = {"start": 100.0, "stop": 101.0, "harmonics": 3,
+              "excitation": rs.Excitation(gravity=None, loads=LOAD),
+              "continuation": rs.ContinuationOptions(max_points=3),
+              "stability": rs.StabilityOptions(None, bifurcations=False)}
     given = rs.periodic(rotor, x0=s.displacement, **kwargs)
     default = rs.periodic(rotor, **kwargs)
     assert given.options["x0_given"] and not default.options["x0_given"]
@@ -184,7 +190,8 @@ def test_bad_starts_are_refused_by_name(case):
     with pytest.raises(ModelError, match="static.x0: " + message):
         rs.static(linear_rotor(), x0=x0)
     with pytest.raises(ModelError, match="periodic.x0: " + message):
-        rs.periodic(rotor, start=100.0, stop=101.0, gravity=None, loads=LOAD, x0=x0)
+        rs.periodic(rotor, start=100.0, stop=101.0,
+                    excitation=rs.Excitation(gravity=None, loads=LOAD), x0=x0)
 
 
 def test_vtk_export_of_a_rigid_rotor(tmp_path):

@@ -38,8 +38,9 @@ def test_linear_steady_state_matches_unbalance_response():
     period = 2 * np.pi / W
     t_end = 60 * period
     res = transient(rotor, t_end, period / 200, speed=W, unbalance=unb,
-                    gravity=None, initial="zero", nodes=[3],
-                    times=np.linspace(t_end - 10 * period, t_end, 2001))
+                    excitation=rs.Excitation(gravity=None),
+                    output=rs.Output(times=np.linspace(t_end - 10 * period, t_end, 2001)),
+                    initial="zero", nodes=[3])
     ref = unbalance_response(rotor, [W], unb)
     for dof in ("ux", "uy"):
         x = res.displacement(3, dof)
@@ -74,7 +75,7 @@ def _loads(system, profile, unbalance):
     from rotorsim.analyses.transient.transient import _problem
 
     bound = profile.bind(0.0, 1.0)
-    _, loads = _problem(system, bound, 0.0, unbalance, None, (0, -1, 0), (), None, None)
+    _, loads = _problem(system, bound, 0.0, rs.Excitation(unbalance, gravity=None))
     return loads
 
 
@@ -96,8 +97,9 @@ def test_base_excitation_of_a_rigidly_mounted_rotor_is_a_rigid_motion():
     """A rotor on stiff supports follows its base: relative motion ~ w^2/wn^2 of the base
     amplitude (single-DOF transmissibility, below resonance)."""
     rotor, amp, w = _rotor(c=0.0), 1e-4, 30.0
-    res = transient(rotor, 0.5, 2e-4, base=BaseExcitation.harmonic(amp, w),
-                    gravity=None, initial="zero", nodes=[3])
+    res = transient(rotor, 0.5, 2e-4,
+                    excitation=rs.Excitation(base=BaseExcitation.harmonic(amp, w), gravity=None),
+                    initial="zero", nodes=[3])
     rel = np.max(np.abs(res.displacement(3, "uy")))
     wn = rs.modal(rotor, speed=0.0, num_modes=4).wn
     wy = min(wn[wn > 0])
@@ -155,7 +157,7 @@ def test_varying_compliance_frequency_in_the_spectrum():
     f_vc = rb.bearing.n_elements * rb.bearing.kappa * W
     period = 2 * np.pi / f_vc
     res = transient(model.rotor, 40 * period, period / 64, nonlinear=model.rolling_bearings,
-                    speed=W, nodes=[5], every=1)
+                    speed=W, nodes=[5], output=rs.Output(every=1))
     keep = res.t > 10 * period
     y = res.displacement(5, "uy")[keep]
     y = (y - y.mean()) * np.hanning(y.size)
@@ -192,9 +194,9 @@ def test_resume_equals_uninterrupted(tmp_path, monkeypatch):
 
     monkeypatch.setattr(module, "integrate", interrupted)
     with pytest.raises(Stop):
-        transient(rotor, 0.003, 2e-5, checkpoint=path, checkpoint_every=25, **kw)
+        transient(rotor, 0.003, 2e-5, checkpoint=rs.Checkpointing(path, every=25), **kw)
     monkeypatch.setattr(module, "integrate", original)
-    resumed = transient(rotor, 0.003, 2e-5, resume=path, **kw)
+    resumed = transient(rotor, 0.003, 2e-5, checkpoint=rs.Checkpointing(resume=path), **kw)
     np.testing.assert_array_equal(resumed.q, full.q)
     np.testing.assert_array_equal(resumed.bearing_loads, full.bearing_loads)
 
@@ -209,7 +211,7 @@ def test_resume_equals_uninterrupted(tmp_path, monkeypatch):
     (dict(initial="hot"), "initial"),
 ])
 def test_bad_input_is_rejected_up_front(kwargs, match):
-    args = dict(t_end=0.01, dt=1e-4, gravity=None, initial="zero")
+    args = dict(t_end=0.01, dt=1e-4, excitation=rs.Excitation(gravity=None), initial="zero")
     args.update(kwargs)
     with pytest.raises(ModelError, match=match):
         transient(_rotor(), **args)
@@ -221,8 +223,8 @@ def test_diverging_run_reports_time_and_dof(tmp_path):
     path = tmp_path / "ck.h5"
     with pytest.raises(ConvergenceError, match=r"t = .* DOF"):
         transient(model.rotor, 0.01, 5e-4, nonlinear=model.rolling_bearings, speed=3000.0,
-                  unbalance=[(5, 5e-3, 0.0)], method=stepper, checkpoint=path,
-                  checkpoint_every=1)
+                  unbalance=[(5, 5e-3, 0.0)], method=stepper,
+                  checkpoint=rs.Checkpointing(path, every=1))
     assert path.exists()
 
 
@@ -246,7 +248,8 @@ def test_memory_is_bounded_by_the_output_not_the_number_of_steps():
     for steps in (1_000, 10_000):
         tracemalloc.start()
         transient(_rotor(), steps * 1e-5, 1e-5, speed=300.0, unbalance=[(3, 1e-4, 0.0)],
-                  gravity=None, initial="zero", nodes=[3], every=10**9)
+                  excitation=rs.Excitation(gravity=None), output=rs.Output(every=10**9),
+                  initial="zero", nodes=[3])
         peaks.append(tracemalloc.get_traced_memory()[1])
         tracemalloc.stop()
     assert peaks[1] < 1.2 * peaks[0] + 200_000
@@ -255,7 +258,8 @@ def test_memory_is_bounded_by_the_output_not_the_number_of_steps():
 def test_rolling_element_histories_add_up_to_the_bearing_load():
     model = _rolling_model()
     rotor = model.rotor.with_nonlinear(model.rolling_bearings)
-    res = transient(rotor, 0.002, 2e-5, speed=300.0, nodes=[5], rolling_elements=True)
+    res = transient(rotor, 0.002, 2e-5, speed=300.0, nodes=[5],
+                    output=rs.Output(rolling_elements=True))
     b = model.rolling_bearings[0].bearing
     psi = b.element_angles(res.angle)
     loads, alpha = res.element_loads["DE"], res.contact_angles["DE"]

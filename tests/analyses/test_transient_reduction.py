@@ -79,6 +79,6 @@ def test_reduction_needs_nonlinear_dofs_and_a_valid_mode_count(default_rotor):
     with pytest.raises(ModelError, match="nonlinear"):
         rs.transient(rotor.linear_part().with_bearings(
             [rs.BearingElement(n=0, kxx=1e8), rs.BearingElement(n=24, kxx=1e8)]),
-            0.001, 1e-4, reduction=4, gravity=None, initial="zero")
+            0.001, 1e-4, reduction=4, excitation=rs.Excitation(gravity=None), initial="zero")
     with pytest.raises(ModelError, match="num_modes"):
         rs.transient(rotor, 0.001, 1e-4, reduction=10_000)

@@ -26,7 +26,7 @@ def labels(ds: h5py.Dataset) -> list[str]:
 
 def test_transient_columns_are_labelled(rotor, tmp_path):
     result = rs.transient(rotor, 0.01, 1e-4, speed=300.0, unbalance=[(8, 1e-4, 0.0)],
-                          gravity=None, initial="zero", nodes=[8, 3])
+                          excitation=rs.Excitation(gravity=None), initial="zero", nodes=[8, 3])
     path = rs.save(result, tmp_path / "run.h5")
     with h5py.File(path) as f:
         g = f["result"]

@@ -129,9 +129,10 @@ def test_the_model_file_branch_equals_the_python_branch(ball):
     loads = model.loads
     by_hand = rs.periodic_parameter(
         model.rotor.with_nonlinear(model.rolling_bearings), vary, speed=100 * math.pi,
-        start=1e-5, stop=1.6e-5, harmonics=4, max_points=12, stability=None, nodes=[5],
-        unbalance=list(loads.unbalance), loads=list(loads.point_loads),
-        gravity=loads.gravity)
+        start=1e-5, stop=1.6e-5, harmonics=4,
+        continuation=rs.ContinuationOptions(max_points=12), stability=None, nodes=[5],
+        unbalance=list(loads.unbalance),
+        excitation=rs.Excitation(loads=list(loads.point_loads), gravity=loads.gravity))
     assert from_file.parameter_name == "rolling_bearings.DE.diametral_clearance"
     np.testing.assert_allclose(from_file.parameter, by_hand.parameter, rtol=1e-12)
     np.testing.assert_allclose(from_file.coefficients, by_hand.coefficients, rtol=0,

@@ -48,7 +48,7 @@ def test_rotor_transient_reaches_t_end_with_every():
     shaft = [rs.ShaftElement(L=0.25, idl=0.0, odl=0.05, material=steel)] * 4
     rotor = rs.Rotor(shaft, bearing_elements=[rs.BearingElement(n=0, kxx=1e7, cxx=1e3),
                                               rs.BearingElement(n=4, kxx=1e7, cxx=1e3)])
-    res = rs.transient(rotor, 1.0, 0.3, every=5, initial="zero", nodes=[2],
+    res = rs.transient(rotor, 1.0, 0.3, output=rs.Output(every=5), initial="zero", nodes=[2],
                        unbalance=[(2, 1e-4, 0.0)], speed=50.0)
     assert res.t.tolist() == [0.0, 1.0] and res.stats["steps"] == 4
     assert res.speed.shape == (2,) and res.q.shape == (2, 6)

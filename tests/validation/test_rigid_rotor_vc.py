@@ -117,9 +117,10 @@ def test_periodic_static_start_converges_from_the_centred_start(fixed):
 def test_periodic_runs_from_the_centred_start_over_a_short_speed_range():
     rotor, bearing = textbook()
     clock = time.perf_counter()
-    res = rs.periodic(rotor, start=100.0, stop=110.0, gravity=None,
-                      loads=[(0, "uy", -LOAD)], harmonics=4, max_step=0.2, max_points=40,
-                      bifurcations=False)
+    res = rs.periodic(rotor, start=100.0, stop=110.0,
+                      excitation=rs.Excitation(gravity=None, loads=[(0, "uy", -LOAD)]),
+                      continuation=rs.ContinuationOptions(max_step=0.2, max_points=40),
+                      stability=rs.StabilityOptions(bifurcations=False), harmonics=4)
     assert time.perf_counter() - clock < 10.0
     assert res.parameter[0] == pytest.approx(100.0, rel=1e-12)
     assert res.parameter[-1] == pytest.approx(110.0, rel=1e-9)
@@ -176,8 +177,10 @@ def test_the_issue_reproduction_with_a_stub_shaft_starts():
     q, _ = static_start(system, system.matrices(100.0).K, f, 100.0, 0.0, Stats())
     y = system.dofs_of(0, ("uy",))[0]
     assert -q[y] == pytest.approx(hertz_deflection(bearing, LOAD), rel=1e-6)
-    res = rs.periodic(stub, start=100.0, stop=101.0, gravity=None, loads=[(0, "uy", -LOAD)],
-                      harmonics=3, max_points=3, stability=None, bifurcations=False)
+    res = rs.periodic(stub, start=100.0, stop=101.0,
+                      excitation=rs.Excitation(gravity=None, loads=[(0, "uy", -LOAD)]),
+                      continuation=rs.ContinuationOptions(max_points=3),
+                      stability=rs.StabilityOptions(None, bifurcations=False), harmonics=3)
     assert len(res) >= 2
 
 

@@ -38,12 +38,13 @@ WHERE = "periodic"
 
 @dataclass(frozen=True)
 class Stepping:
-    """Continuation settings of :func:`~rotorsim.analyses.periodic.periodic.periodic` (its
-    ``step``, ``max_step``, ``max_points``, ``tol`` and ``continuation`` arguments)."""
+    """Continuation settings of the periodic verbs (their
+    :class:`~rotorsim.options.ContinuationOptions`: ``step``, ``max_step``, ``max_points``
+    and ``tol``, or a full ``given`` solver Continuation with ``tol`` for the first point)."""
 
     step: float | None
-    max_step: float
-    max_points: int
+    max_step: float | None
+    max_points: int | None
     tol: float
     given: Continuation | None = None
 
@@ -59,6 +60,7 @@ class Stepping:
             ls = span if self.given.lam_scale == defaults.lam_scale else self.given.lam_scale
             return dataclasses.replace(self.given, lam_min=lo, lam_max=hi,
                                        direction=direction, x_scale=xs, lam_scale=ls)
+        assert self.max_step is not None and self.max_points is not None
         first = min(self.step if self.step is not None else 0.25 * self.max_step,
                     self.max_step)
         return Continuation(initial_step=first, max_step=self.max_step,

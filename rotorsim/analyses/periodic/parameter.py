@@ -28,9 +28,10 @@ from collections.abc import Callable, Sequence
 from typing import Any
 
 import numpy as np
-from numpy.typing import ArrayLike
 
-from rotorsim.analyses.periodic.branch import Stepping, first_point, judged, unknown_scales
+from rotorsim.analyses.keyword_check import checked_keywords
+from rotorsim.analyses.periodic.arguments import PeriodicDefaults, periodic_options
+from rotorsim.analyses.periodic.branch import first_point, judged, unknown_scales
 from rotorsim.analyses.periodic.events import floquet_events
 from rotorsim.analyses.periodic.excitation import plan_excitation
 from rotorsim.analyses.periodic.output import (
@@ -46,13 +47,20 @@ from rotorsim.analyses.periodic.variation import (
     parametric_residual,
     static_load_residual,
 )
-from rotorsim.assembly.loads import STANDARD_GRAVITY
 from rotorsim.assembly.system import assemble
 from rotorsim.errors import ConvergenceError, ModelError
 from rotorsim.harmonic_balance.bifurcation import BifurcationOptions, detect_bifurcations
 from rotorsim.harmonic_balance.residual import continuation_function, make_residual
 from rotorsim.harmonic_balance.solve import solve_point
 from rotorsim.model.rotor import Rotor
+from rotorsim.options import (
+    Checkpointing,
+    ContinuationOptions,
+    Excitation,
+    Harmonics,
+    Output,
+    StabilityOptions,
+)
 from rotorsim.results.periodic import PeriodicResult
 from rotorsim.solvers.continuation import continue_branch
 from rotorsim.solvers.stats import Stats
@@ -60,6 +68,17 @@ from rotorsim.solvers.stats import Stats
 WHERE = "periodic_parameter"
 
 
+DEFAULTS = PeriodicDefaults(
+    continuation=ContinuationOptions(max_step=0.05, max_points=200),
+    stability=StabilityOptions(tol=DEFAULT_TOL), checkpoint=Checkpointing(every=25),
+    unused={"harmonics": ("fundamental", "condense"), "excitation": ("base", "forces"),
+            "stability": ("modes", "tol"),
+            "output": ("every", "times", "rolling_elements")})
+"""Defaults of the group fields left at None, and the fields ``periodic_parameter`` does
+not use."""
+
+
+@checked_keywords
 def periodic_parameter(
     rotor: Rotor,
     vary: Callable[[float], Any] | str,
@@ -68,23 +87,14 @@ def periodic_parameter(
     start: float,
     stop: float,
     name: str = "parameter",
-    harmonics: int = 10,
-    samples: int | None = None,
+    harmonics: int | Harmonics = 10,
     unbalance: Sequence[tuple[int, float, float]] = (),
-    gravity: float | None = STANDARD_GRAVITY,
-    direction: ArrayLike = (0.0, -1.0, 0.0),
-    loads: Sequence[tuple[int, str, float]] = (),
-    step: float | None = None,
-    max_step: float = 0.05,
-    max_points: int = 200,
-    tol: float = 1e-10,
+    excitation: Excitation | None = None,
+    continuation: ContinuationOptions | None = None,
+    stability: str | StabilityOptions | None = "auto",
     nodes: Sequence[int] | None = None,
-    bifurcations: bool = True,
-    stability: str | None = "auto",
-    checkpoint: str | os.PathLike[str] | None = None,
-    checkpoint_every: int = 25,
-    resume: str | os.PathLike[str] | None = None,
-    progress: bool = False,
+    output: Output | None = None,
+    checkpoint: str | os.PathLike[str] | Checkpointing | None = None,
 ) -> PeriodicResult:
     """Branch of periodic responses over the model parameter ``mu`` (module docstring).
 
@@ -106,17 +116,22 @@ def periodic_parameter(
         Range of ``mu`` (in its own units).
     name : str
         Name of ``mu`` (``result.parameter_name``), e.g. ``"radial clearance [m]"``.
-    harmonics, samples, unbalance, gravity, direction, loads, nodes, bifurcations, progress
-        As in :func:`rotorsim.periodic`.
-    stability : {"auto", "hill", "hsu", "variational"} or None
+    harmonics, unbalance, nodes, output
+        As in :func:`rotorsim.periodic` (``output``: kept nodes and the progress bar).
+    excitation : Excitation, optional
+        Gravity and its direction, point loads, unbalance (no ``base`` motion, no
+        ``forces``), as in :func:`rotorsim.periodic`.
+    continuation : ContinuationOptions, optional
+        Continuation in ``mu``: steps in the scaled parameter (range 1; default
+        ``max_step=0.05``), point budget (default 200) and corrector tolerance.
+    stability : {"auto", "hill", "hsu", "variational"}, None or StabilityOptions
         Floquet multipliers at every point (as in :func:`rotorsim.periodic`, with the
-        parameter passed to the force); None skips them.
-    checkpoint, checkpoint_every, resume
+        parameter passed to the force; always the default stability model and
+        tolerance); None skips them. ``StabilityOptions(bifurcations=False)`` skips
+        the bifurcations.
+    checkpoint : path or Checkpointing, optional
         As in :func:`~rotorsim.solvers.continuation.continue_branch` (the first point is
-        recomputed identically on resume).
-    step, max_step, max_points, tol
-        Continuation in ``mu``: steps in the scaled parameter (range 1), point budget and
-        corrector tolerance.
+        recomputed identically on resume; default 25 points between checkpoints).
 
     Returns
     -------
@@ -133,6 +148,12 @@ def periodic_parameter(
         When the first point does not converge.
     """
     clock = time.perf_counter()
+    opts = periodic_options(WHERE, DEFAULTS, harmonics=harmonics, unbalance=unbalance,
+                            excitation=excitation, continuation=continuation,
+                            stability=stability, nodes=nodes, output=output,
+                            checkpoint=checkpoint)
+    h, e, c, ck = opts.harmonics, opts.excitation, opts.continuation, opts.checkpoint
+    unbalance, loads, tol = e.unbalance, e.loads, c.tol
     mode = vary if isinstance(vary, str) else "model"
     if not isinstance(rotor, Rotor) or mode not in ("model", "loads", "forcing") \
             or not (mode != "model" or callable(vary)):
@@ -153,10 +174,11 @@ def periodic_parameter(
     plan = plan_excitation(system.nonlinear.elements, unbalance=bool(unbalance), base=None,
                            varying_compliance=None, fundamental=None,
                            frequency_parameter=False)
+    harmonics, samples = h.count, h.samples
     check_discretization(harmonics, samples, plan, system, True, WHERE)
     scaled = [(n, d, float(start) * v) for n, d, v in loads] if mode == "loads" else loads
     rp = build_problem(system, plan, speed0=float(speed), fixed_speed=None, phi0=0.0,
-                       unbalance=list(unbalance), gravity=gravity, direction=direction,
+                       unbalance=list(unbalance), gravity=e.gravity, direction=e.direction,
                        loads=list(scaled), base=None, stats=stats)
     omega = float(plan.order * speed)
     standard = make_residual(rp.problem, harmonics, samples=samples, condense=True)
@@ -179,21 +201,22 @@ def periodic_parameter(
         residual = parametric_residual(rp, system, vary, harmonics,  # type: ignore[arg-type]
                                        samples, span, float(start))
     fun = continuation_function(residual, "param", omega=omega, stats=stats, terms=True)
-    stepping = Stepping(step, max_step, max_points, tol, None)
+    stepping = opts.stepping()
     options = stepping.options(to_p(float(start)), to_p(float(stop)),
                                unknown_scales(system, rp, residual, x0))
     branch = judged(continue_branch(fun, x0, to_p(float(start)), options,
-                                    checkpoint=checkpoint, checkpoint_every=checkpoint_every,
-                                    resume=resume, progress=progress),
+                                    checkpoint=ck.path, checkpoint_every=opts.checkpoint_every,
+                                    resume=ck.resume, progress=opts.output.progress),
                     to_p(float(stop)), lambda p: f"{name} {to_p(p):.6g}")
     recovery = Recovery(_AtOmega(residual, omega),  # type: ignore[arg-type]
-                        *kept_dofs(system, rp, nodes))
+                        *kept_dofs(system, rp, opts.output.nodes))
     lam = np.asarray(to_p(branch.lam.astype(float)), dtype=float)
-    floquet = ParameterStability(residual, omega, stability) if stability else None
+    method = opts.stability.method
+    floquet = ParameterStability(residual, omega, method) if method else None
     multipliers = floquet.at_points(branch) if floquet is not None \
         else np.zeros((len(branch), 0), dtype=complex)
     events: list[Any] = []
-    if bifurcations and len(branch) > 1:
+    if opts.stability.bifurcations and len(branch) > 1:
         events = list(detect_bifurcations(fun, branch, options=BifurcationOptions(
             kinds=("fold", "branch_point"))))
         if floquet is not None:

@@ -44,7 +44,12 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from rotorsim.analyses.keyword_check import checked_keywords
-from rotorsim.analyses.periodic.branch import Stepping, start_branch
+from rotorsim.analyses.periodic.arguments import (
+    PeriodicDefaults,
+    PeriodicOptions,
+    periodic_options,
+)
+from rotorsim.analyses.periodic.branch import start_branch
 from rotorsim.analyses.periodic.excitation import ExcitationPlan, HarmonicBase, plan_excitation
 from rotorsim.analyses.periodic.folds import ParameterMap
 from rotorsim.analyses.periodic.output import Recovery, kept_dofs, periodic_result
@@ -54,26 +59,36 @@ from rotorsim.analyses.periodic.problem import (
     check_discretization,
 )
 from rotorsim.analyses.periodic.resume import finished_result, resumed
-from rotorsim.analyses.periodic.stability import (
-    DEFAULT_TOL,
-    check_options,
-    stability_model,
-)
+from rotorsim.analyses.periodic.stability import DEFAULT_TOL, stability_model
 from rotorsim.analyses.statics.linearized_rotor import rolling_start
 from rotorsim.analyses.statics.nonlinear_static import start_point
-from rotorsim.assembly.loads import STANDARD_GRAVITY
 from rotorsim.assembly.system import RotorSystem, assemble
 from rotorsim.elements.base import NonlinearElement
 from rotorsim.errors import ModelError
 from rotorsim.harmonic_balance.bifurcation import BifurcationOptions, detect_bifurcations
 from rotorsim.harmonic_balance.residual import continuation_function, make_residual
 from rotorsim.model.rotor import Rotor
+from rotorsim.options import (
+    Checkpointing,
+    ContinuationOptions,
+    Excitation,
+    Harmonics,
+    Output,
+    StabilityOptions,
+)
 from rotorsim.results.periodic import PeriodicResult
-from rotorsim.solvers.continuation import Branch, Continuation
+from rotorsim.solvers.continuation import Branch
 from rotorsim.solvers.stats import Stats
 
 WHERE = "periodic"
 PARAMETERS = ("speed", "frequency")
+
+
+DEFAULTS = PeriodicDefaults(
+    continuation=ContinuationOptions(max_step=0.02, max_points=500),
+    stability=StabilityOptions(tol=DEFAULT_TOL), checkpoint=Checkpointing(every=25),
+    unused={"excitation": ("forces",), "output": ("every", "times", "rolling_elements")})
+"""Defaults of the group fields left at None, and the fields ``periodic`` does not use."""
 
 
 @checked_keywords
@@ -84,32 +99,17 @@ def periodic(
     stop: float,
     parameter: str = "speed",
     speed: float | None = None,
-    harmonics: int = 10,
-    samples: int | None = None,
     nonlinear: Sequence[NonlinearElement] = (),
+    harmonics: int | Harmonics = 10,
     unbalance: Sequence[tuple[int, float, float]] = (),
-    gravity: float | None = STANDARD_GRAVITY,
-    direction: ArrayLike = (0.0, -1.0, 0.0),
-    loads: Sequence[tuple[int, str, float]] = (),
-    base: HarmonicBase | None = None,
+    excitation: Excitation | None = None,
     varying_compliance: bool | None = None,
-    fundamental: float | None = None,
     shaft_angle: float = 0.0,
-    condense: bool = True,
-    step: float | None = None,
-    max_step: float = 0.02,
-    max_points: int = 500,
-    tol: float = 1e-10,
-    continuation: Continuation | None = None,
-    stability: str | None = "auto",
-    stability_modes: int | str | None = "auto",
-    stability_tol: float = DEFAULT_TOL,
-    bifurcations: bool = True,
+    continuation: ContinuationOptions | None = None,
+    stability: str | StabilityOptions | None = "auto",
     nodes: Sequence[int] | None = None,
-    checkpoint: str | os.PathLike[str] | None = None,
-    checkpoint_every: int = 25,
-    resume: str | os.PathLike[str] | None = None,
-    progress: bool = False,
+    output: Output | None = None,
+    checkpoint: str | os.PathLike[str] | Checkpointing | None = None,
     fold_map: bool | ParameterMap = False,
     x0: ArrayLike | None = None,
 ) -> PeriodicResult:
@@ -128,55 +128,48 @@ def periodic(
         ``base`` excitation.
     speed : float, optional
         Fixed spin speed [rad/s] for ``parameter="frequency"``.
-    harmonics : int
-        ``H >= 1`` harmonics of the fundamental, at least the harmonic of every forcing
-        (unbalance, base excitation); refused when the estimated memory exceeds half the
-        physical memory (:mod:`rotorsim.harmonic_balance.memory`).
-    samples : int, optional
-        AFT samples per period (default ``2**ceil(log2(8 H))``; increase for hard
-        contacts, check with ``harmonic_balance.sample_convergence``).
     nonlinear : sequence of NonlinearElement
         More nonlinear elements (with a Rotor).
+    harmonics : int or Harmonics
+        ``H >= 1`` harmonics of the fundamental, at least the harmonic of every forcing
+        (unbalance, base excitation); refused when the estimated memory exceeds half the
+        physical memory (:mod:`rotorsim.harmonic_balance.memory`). A
+        :class:`~rotorsim.options.Harmonics` also sets the AFT samples per period, the
+        fundamental and the condensation.
     unbalance : list of (node, me, angle)
-        Unbalances [kg m, rad] at order 1.
-    gravity, direction
-        Gravity [m/s^2] (None: none) and its direction (harmonic 0).
-    loads : list of (node, dof, value)
-        Constant point loads [N, N m] (harmonic 0).
-    base : HarmonicBase, optional
-        Housing displacement ``a cos(b phi + phase)`` (seed 002 eq 3.43); with
-        ``parameter="frequency"``, ``a cos(Omega t + phase)`` at the continued ``Omega``.
+        Unbalances [kg m, rad] at order 1 (or ``excitation.unbalance``, not both).
+    excitation : Excitation, optional
+        Gravity [m/s^2] and its direction, constant point loads [N, N m] (harmonic 0) and
+        the housing motion ``base``: a :class:`~.periodic_excitation.HarmonicBase`
+        displacement ``a cos(b phi + phase)`` (seed 002 eq 3.43), with
+        ``parameter="frequency"`` ``a cos(Omega t + phase)`` at the continued ``Omega``.
+        Default: standard gravity along ``-y``, nothing else.
     varying_compliance : bool, optional
         Rolling elements move with their cages (True), are frozen at ``shaft_angle``
         (False), or (None) move when the response stays periodic and are frozen otherwise
         (recorded in ``result.approximation``).
-    fundamental : float, optional
-        Order ``f = omega / W`` of the fundamental instead of the automatic one (e.g. half
-        of it for a period-2 branch); every forcing order must be a multiple of it.
     shaft_angle : float
         Shaft angle ``phi0`` at ``t = 0`` [rad] (and the frozen angle).
-    condense : bool
-        Exact condensation onto the nonlinear DOFs (the full system is for checks).
-    step, max_step, max_points, tol : float, float, int, float
-        Continuation: first and largest scaled arclength step (the parameter range is 1,
-        each DOF's scale is its typical static displacement), points, corrector tolerance
-        on the scaled residual.
-    continuation : Continuation, optional
-        Full continuation options; its bounds and direction are replaced by ``start`` and
-        ``stop``, its scales kept when not the default 1.
-    stability : {"auto", "hill", "hsu", "variational"} or None
-        Floquet method (:mod:`~.periodic_stability`); None skips stability.
-    stability_modes : "auto", int or None
-        Fixed-interface modes of the stability model (None: full system).
-    stability_tol : float
-        Stable when ``max |mu| < 1 + stability_tol``.
-    bifurcations : bool
-        Detect and locate bifurcations.
+    continuation : ContinuationOptions, optional
+        First and largest scaled arclength step (the parameter range is 1, each DOF's
+        scale is its typical static displacement; default ``max_step=0.02``), points
+        (default 500), corrector tolerance on the scaled residual, or the full solver
+        options (their bounds and direction are replaced by ``start`` and ``stop``, their
+        scales kept when not the default 1).
+    stability : {"auto", "hill", "hsu", "variational"}, None or StabilityOptions
+        Floquet method (:mod:`~.periodic_stability`); None skips stability. A
+        :class:`~rotorsim.options.StabilityOptions` also sets the fixed-interface modes of
+        the stability model, the tolerance (stable when ``max |mu| < 1 + tol``, default
+        1e-5) and whether bifurcations are detected and located.
     nodes : sequence of int, optional
-        Nodes whose DOFs are kept (default all); the nonlinear DOFs are always kept.
-    checkpoint, checkpoint_every, resume, progress
-        As in :func:`~rotorsim.solvers.continuation.continue_branch`. A finished run
-        resumes to its result, also when its checkpoint was replaced by the results file
+        Nodes whose DOFs are kept (default all); the nonlinear DOFs are always kept
+        (or ``output.nodes``, not both).
+    output : Output, optional
+        Kept nodes and the progress bar.
+    checkpoint : path or Checkpointing, optional
+        Checkpoint file, points between checkpoints (default 25) and resume, as in
+        :func:`~rotorsim.solvers.continuation.continue_branch`. A finished run resumes to
+        its result, also when its checkpoint was replaced by the results file
         (``rs.save(result, path)``; :mod:`~.periodic_resume`).
     fold_map : bool or ParameterMap
         Continue every fold of the branch in a second parameter (a jump map,
@@ -208,53 +201,62 @@ def periodic(
 
     Examples
     --------
+    >>> import rotorsim as rs
     >>> from rotorsim.io.model_file import load_model
     >>> m = load_model("models/rolling_ball.toml")
-    >>> res = periodic(m, start=300.0, stop=320.0, harmonics=4, max_points=4, nodes=[5],
-    ...                stability=None, bifurcations=False)
+    >>> res = periodic(m, start=300.0, stop=320.0, harmonics=4, nodes=[5],
+    ...                continuation=rs.ContinuationOptions(max_points=4),
+    ...                stability=rs.StabilityOptions(None, bifurcations=False))
     >>> res.parameter_name, round(res.order, 6), res.approximation == ""
     ('speed', 3.571948, True)
     >>> bool(res.amplitude(5, "uy", "mean")[0] < 0)      # sags under gravity
     True
     """
     clock = time.perf_counter()
+    opts = periodic_options(WHERE, DEFAULTS, harmonics=harmonics, unbalance=unbalance,
+                            excitation=excitation, continuation=continuation,
+                            stability=stability, nodes=nodes, output=output,
+                            checkpoint=checkpoint)
+    h, e, st, ck = opts.harmonics, opts.excitation, opts.stability, opts.checkpoint
     system = _system(model, nonlinear)
     frequency = _check_parameter(parameter, start, stop, speed)
-    check_options(stability, stability_modes, stability_tol)
     elements = () if system.nonlinear is None else system.nonlinear.elements
-    plan = plan_excitation(elements, unbalance=bool(unbalance), base=base,
-                           varying_compliance=varying_compliance, fundamental=fundamental,
+    plan = plan_excitation(elements, unbalance=bool(e.unbalance), base=opts.base,
+                           varying_compliance=varying_compliance, fundamental=h.fundamental,
                            frequency_parameter=frequency)
-    check_discretization(harmonics, samples, plan, system, condense, WHERE)
+    check_discretization(h.count, h.samples, plan, system, h.condense, WHERE)
     stats = Stats()
     q0 = start_point(system, x0, f"{WHERE}.x0") if x0 is not None else _static_guess(
-        model, nonlinear, system, gravity, direction, loads,
+        model, nonlinear, system, e,
         float(speed) if frequency and speed is not None else float(start), float(shaft_angle))
     rp = build_problem(system, plan, speed0=float(start),
                        fixed_speed=speed if frequency else None, phi0=float(shaft_angle),
-                       unbalance=list(unbalance), gravity=gravity, direction=direction,
-                       loads=list(loads), base=base, stats=stats, x0=q0)
-    residual = make_residual(rp.problem, harmonics, samples=samples,
-                             condense=condense and rp.problem.k > 0)
-    recovery = Recovery(residual, *kept_dofs(system, rp, nodes))
+                       unbalance=list(e.unbalance), gravity=e.gravity, direction=e.direction,
+                       loads=list(e.loads), base=opts.base, stats=stats, x0=q0)
+    residual = make_residual(rp.problem, h.count, samples=h.samples,
+                             condense=h.condense and rp.problem.k > 0)
+    recovery = Recovery(residual, *kept_dofs(system, rp, opts.output.nodes))
     to_lam = _lam_map(plan, frequency)
-    stepping = Stepping(step, max_step, max_points, tol, continuation)
+    stepping = opts.stepping()
     begun = start_branch(residual, system, rp, to_lam(start), to_lam(stop), stepping, stats)
-    options = _describe(locals())
-    done = None if resume is None else finished_result(resume)
-    if done is not None and resume is not None:
-        return resumed(done, options, resume)
-    branch = begun.trace(unit=_unit(plan, parameter, frequency), checkpoint=checkpoint,
-                         checkpoint_every=checkpoint_every, resume=resume,
-                         progress=progress)
-    sm = None if stability is None else stability_model(
-        residual, stability, modes=stability_modes, omega_max=float(np.max(branch.lam)),
-        tol=stability_tol)
-    result = periodic_result(system, rp, recovery, plan, branch, sm, bifurcations, frequency,
-                     options, stats, clock)
+    options = _describe(opts, parameter=parameter, start=start, stop=stop, speed=speed,
+                        samples=residual.samples, plan=plan,
+                        varying_compliance=varying_compliance, shaft_angle=shaft_angle,
+                        begun=begun, fold_map=fold_map, x0=x0)
+    done = None if ck.resume is None else finished_result(ck.resume)
+    if done is not None and ck.resume is not None:
+        return resumed(done, options, ck.resume)
+    branch = begun.trace(unit=_unit(plan, parameter, frequency), checkpoint=ck.path,
+                         checkpoint_every=opts.checkpoint_every, resume=ck.resume,
+                         progress=opts.output.progress)
+    sm = None if st.method is None else stability_model(
+        residual, st.method, modes=st.modes, omega_max=float(np.max(branch.lam)),
+        tol=st.tol)  # type: ignore[arg-type]
+    result = periodic_result(system, rp, recovery, plan, branch, sm, st.bifurcations,
+                             frequency, options, stats, clock)
     if fold_map is not False and result.bifurcations:
         result = _fold_map(result, residual, rp, system, branch, plan, frequency, fold_map,
-                           harmonics, samples)
+                           h.count, h.samples)
     return result
 
 
@@ -297,9 +299,7 @@ def _system(model: Any, nonlinear: Sequence[NonlinearElement]) -> RotorSystem:
 
 
 def _static_guess(model: Any, nonlinear: Sequence[NonlinearElement], system: RotorSystem,
-                  gravity: float | None, direction: ArrayLike,
-                  loads: Sequence[tuple[int, str, float]], speed: float, phi: float
-                  ) -> NDArray[np.float64] | None:
+                  e: Excitation, speed: float, phi: float) -> NDArray[np.float64] | None:
     """Start of the static Newton iteration from the robust rolling-bearing statics (as the
     transient's static start), or None (an assembled system, other nonlinear elements, or
     that solve fails): the centred start inside a clearance may have no useful tangent."""
@@ -307,7 +307,8 @@ def _static_guess(model: Any, nonlinear: Sequence[NonlinearElement], system: Rot
         model = model.rotor.with_nonlinear(tuple(getattr(model, "rolling_bearings", ())))
     if not isinstance(model, Rotor) or system.nonlinear is None:
         return None
-    return rolling_start(model, nonlinear, system, gravity, direction, list(loads), speed, phi)
+    return rolling_start(model, nonlinear, system, e.gravity, e.direction, list(e.loads),
+                         speed, phi)
 
 
 def _check_parameter(parameter: str, start: float, stop: float,
@@ -344,27 +345,29 @@ def _unit(plan: ExcitationPlan, parameter: str, frequency: bool) -> Any:
     return lambda lam: f"{parameter} {lam / order:.6g} rad/s"
 
 
-def _describe(arguments: dict[str, Any]) -> dict[str, Any]:
-    """JSON-able options of a run (from ``periodic``'s local variables)."""
-    a = arguments
-    base = a["base"]
+def _describe(opts: PeriodicOptions, *, parameter: str, start: float, stop: float,
+              speed: float | None, samples: int, plan: ExcitationPlan,
+              varying_compliance: bool | None, shaft_angle: float, begun: Any,
+              fold_map: Any, x0: Any) -> dict[str, Any]:
+    """JSON-able options of a run, the groups flattened into one table."""
+    e, h, st, nodes = opts.excitation, opts.harmonics, opts.stability, opts.output.nodes
     return {
-        "parameter": a["parameter"], "start": float(a["start"]), "stop": float(a["stop"]),
-        "speed": None if a["speed"] is None else float(a["speed"]),
-        "harmonics": int(a["harmonics"]), "samples": int(a["residual"].samples),
-        "unbalance": [[float(v) for v in u] for u in a["unbalance"]],
-        "gravity": a["gravity"], "direction": [float(v) for v in np.ravel(a["direction"])],
-        "loads": [[int(n), str(d), float(v)] for n, d, v in a["loads"]],
-        "base": None if base is None else base.describe(),
-        "varying_compliance": a["varying_compliance"], "fundamental": a["fundamental"],
-        "moving_elements": a["plan"].moving_elements, "shaft_angle": float(a["shaft_angle"]),
-        "condense": bool(a["condense"]),
-        "continuation": dataclasses.asdict(a["begun"].options), "run": a["begun"].identity,
-        "stability": a["stability"], "stability_modes": a["stability_modes"],
-        "stability_tol": float(a["stability_tol"]), "bifurcations": bool(a["bifurcations"]),
-        "fold_map_requested": a["fold_map"] is not False,
-        "nodes": None if a["nodes"] is None else [int(n) for n in a["nodes"]],
-        "x0_given": a["x0"] is not None,
+        "parameter": parameter, "start": float(start), "stop": float(stop),
+        "speed": None if speed is None else float(speed),
+        "harmonics": int(h.count), "samples": int(samples),
+        "unbalance": [[float(v) for v in u] for u in e.unbalance],
+        "gravity": e.gravity, "direction": [float(v) for v in np.ravel(e.direction)],
+        "loads": [[int(n), str(d), float(v)] for n, d, v in e.loads],
+        "base": None if opts.base is None else opts.base.describe(),
+        "varying_compliance": varying_compliance, "fundamental": h.fundamental,
+        "moving_elements": plan.moving_elements, "shaft_angle": float(shaft_angle),
+        "condense": bool(h.condense),
+        "continuation": dataclasses.asdict(begun.options), "run": begun.identity,
+        "stability": st.method, "stability_modes": st.modes,
+        "stability_tol": float(st.tol), "bifurcations": bool(st.bifurcations),  # type: ignore[arg-type]
+        "fold_map_requested": fold_map is not False,
+        "nodes": None if nodes is None else [int(n) for n in nodes],
+        "x0_given": x0 is not None,
     }
 
 

@@ -40,9 +40,9 @@ from rotorsim.harmonic_balance.memory import check_hill_memory
 from rotorsim.harmonic_balance.monodromy import hsu, variational
 from rotorsim.harmonic_balance.problem import HBProblem, as_dense
 from rotorsim.harmonic_balance.residual import HBResidual, make_residual
+from rotorsim.options.stability import METHODS
 from rotorsim.solvers.linear import factorize
 
-METHODS = ("auto", "hill", "hsu", "variational")
 HILL_LIMIT = 300
 """Largest Hill pencil (rows) that ``method="auto"`` solves densely at every point."""
 FULL_LIMIT = 40

@@ -18,7 +18,7 @@ from __future__ import annotations
 import dataclasses
 import os
 from collections.abc import Callable, Sequence
-from typing import Any
+from typing import Any, cast
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -33,7 +33,6 @@ from rotorsim.analyses.transient.loads import (
 from rotorsim.analyses.transient.speed_profile import BoundSpeed, SpeedProfile, as_speed_profile
 from rotorsim.analyses.transient.start import initial_state
 from rotorsim.assembly.loads import (
-    STANDARD_GRAVITY,
     gravity_load,
     nodal_load,
     rigid_translation,
@@ -43,6 +42,7 @@ from rotorsim.assembly.system import RotorSystem, assemble
 from rotorsim.elements.base import DOFS_PER_NODE, FloatArray, NonlinearElement
 from rotorsim.errors import ModelError
 from rotorsim.model.rotor import Rotor
+from rotorsim.options import Checkpointing, Excitation, Output
 from rotorsim.results.transient import TransientResult
 from rotorsim.solvers.threads import one_blas_thread
 from rotorsim.time_integration.adams import Adams
@@ -59,6 +59,11 @@ DENSE_STEPPING = 400
 then cost less than scipy.sparse's call overhead."""
 
 
+OUTPUT_DEFAULTS = Output(every=1)
+CHECKPOINT_DEFAULTS = Checkpointing(every=1000)
+"""Defaults of the group fields left at None."""
+
+
 @checked_keywords
 @one_blas_thread()  # the static start and the reduction too, not only the steps
 def transient(
@@ -69,22 +74,13 @@ def transient(
     nonlinear: Sequence[NonlinearElement] = (),
     speed: float | SpeedProfile | Callable[[float], float] = 0.0,
     unbalance: Sequence[tuple[int, float, float]] = (),
-    gravity: float | None = STANDARD_GRAVITY,
-    direction: ArrayLike = (0.0, -1.0, 0.0),
-    loads: Sequence[tuple[int, str, float]] = (),
-    forces: Callable[[float], ArrayLike] | None = None,
-    base: BaseExcitation | None = None,
+    excitation: Excitation | None = None,
     method: str | TimeStepper = "average_acceleration",
     initial: str | tuple[ArrayLike, ArrayLike] = "static",
     nodes: Sequence[int] | None = None,
-    every: int = 1,
-    times: ArrayLike | None = None,
-    checkpoint: str | os.PathLike[str] | None = None,
-    checkpoint_every: int = 1000,
-    resume: str | os.PathLike[str] | None = None,
-    progress: bool = False,
+    output: Output | None = None,
+    checkpoint: str | os.PathLike[str] | Checkpointing | None = None,
     reduction: int | None = None,
-    rolling_elements: bool = False,
     on_failure: str = "raise",
 ) -> TransientResult:
     """Integrate the rotor's equation of motion from 0 (or ``t0``) to ``t_end``.
@@ -106,16 +102,15 @@ def transient(
         coast-down), :class:`~.speed_profile.SpeedFunction` or any ``W(t)``.
     unbalance : list of (node, me, angle)
         Unbalances [kg m, rad] rotating with the shaft angle ``phi(t)``, with the
-        angular-acceleration term (module :mod:`~.transient_loads`).
-    gravity, direction
-        Gravity [m/s^2] (None for none) and its direction.
-    loads : list of (node, dof, value)
-        Constant point forces and moments [N, N m].
-    forces : callable, optional
-        ``forces(t)`` -> array (n_free,) of extra loads on the free DOFs [N, N m]
-        (``system.dofs_of(node, dofs)`` gives indices).
-    base : BaseExcitation, optional
-        Acceleration of the base (seed 002 eq 3.43); coordinates are then relative to it.
+        angular-acceleration term (module :mod:`~.transient_loads`); or
+        ``excitation.unbalance``, not both.
+    excitation : Excitation, optional
+        Gravity [m/s^2] (None for none) and its direction, constant point forces and
+        moments [N, N m], ``forces(t)`` -> array (n_free,) of extra loads on the free DOFs
+        (``system.dofs_of(node, dofs)`` gives indices) and ``base``: a
+        :class:`~.transient_loads.BaseExcitation` (acceleration of the base, seed 002
+        eq 3.43; coordinates are then relative to it). Default: standard gravity along
+        ``-y``, nothing else.
     method : str or TimeStepper
         ``"average_acceleration"`` (default, alias ``"newmark"``), ``"linear_acceleration"``,
         ``"hht"``,
@@ -126,22 +121,20 @@ def transient(
         on ALL DOFs (``6 * n_nodes``).
     nodes : sequence of int, optional
         Nodes whose DOFs are kept (default all); the nonlinear elements' DOFs are always
-        kept to compute the bearing loads.
-    every : int
-        Keep every ``every``-th step (ignored with ``times``).
-    times : array-like, optional
-        Sample times [s] (dense output by the stepper's interpolant).
-    checkpoint, checkpoint_every, resume, progress
+        kept to compute the bearing loads (or ``output.nodes``, not both).
+    output : Output, optional
+        Kept nodes; every n-th step (default 1, ignored with ``times``) or the sample
+        times [s] (dense output by the stepper's interpolant); the load and contact angle
+        of every rolling element of each bearing at every sample (``rolling_elements``:
+        ``result.element_loads``, ``result.contact_angles``); the progress bar.
+    checkpoint : path or Checkpointing, optional
         As in :func:`~rotorsim.time_integration.integrate.integrate`: an HDF5 checkpoint
-        every ``checkpoint_every`` steps, resume from one (same result as an uninterrupted
-        run), progress bar.
+        every ``every`` steps (default 1000), resume from one (same result as an
+        uninterrupted run).
     reduction : int, optional
         Craig-Bampton reduction of the linear part with this many fixed-interface modes,
         the nonlinear DOFs kept physical (:mod:`~.transient_reduction`); the accuracy check
         is in ``result.options["reduction"]``.
-    rolling_elements : bool
-        Also keep the load and contact angle of every rolling element of each bearing at
-        every sample (``result.element_loads``, ``result.contact_angles``).
     on_failure : {"raise", "stop"}
         When a step fails: raise, or return the run up to the last accepted step with
         ``status`` ``NOT_CONVERGED`` and the error in ``options["failure"]`` (what the
@@ -169,25 +162,25 @@ def transient(
     >>> rotor = rs.Rotor(shaft, bearing_elements=[rs.BearingElement(n=0, kxx=1e7, cxx=1e3),
     ...                                           rs.BearingElement(n=4, kxx=1e7, cxx=1e3)])
     >>> res = transient(rotor, 0.05, 1e-4, speed=300.0, unbalance=[(2, 1e-4, 0.0)],
-    ...                 gravity=None, initial="zero", nodes=[2])
+    ...                 excitation=rs.Excitation(gravity=None), initial="zero", nodes=[2])
     >>> res.q.shape, res.dof_labels[:2]
     ((501, 6), ['node 2 ux', 'node 2 uy'])
     """
+    ex, out, ck = _groups(unbalance, excitation, nodes, output, checkpoint)
     if not (isinstance(dt, int | float) and np.isfinite(dt) and dt > 0):
         raise ModelError(f"dt must be a positive number [s], got {dt!r}", f"{WHERE}.dt")
     system = _system(model, nonlinear)
     t0, t_end = _span(t_end)
     _check_step_count(dt, t_end - t0)
     profile = as_speed_profile(speed).bind(t0, t_end, max(4096, int((t_end - t0) / dt)))
-    problem, loads_fn = _problem(system, profile, t0, unbalance, gravity, direction, loads,
-                                 forces, base)
+    problem, loads_fn = _problem(system, profile, t0, ex)
     stepper = _stepper(method)
     start = None
     if initial == "static" and isinstance(model, Rotor) and system.nonlinear is not None:
-        start = rolling_start(model, nonlinear, system, gravity, direction, loads,
-                              profile.speed(t0), profile.angle(t0))
+        start = rolling_start(model, nonlinear, system, ex.gravity, ex.direction,
+                              list(ex.loads), profile.speed(t0), profile.angle(t0))
     q0, v0 = initial_state(system, initial, loads_fn.constant, profile, t0, start)
-    kept = _kept_dofs(system, nodes)
+    kept = _kept_dofs(system, out.nodes)
     basis, report = None, None
     if reduction is not None:
         from rotorsim.analyses.transient.reduction import reduce_problem
@@ -195,31 +188,47 @@ def transient(
         problem, basis, report = reduce_problem(system, problem, loads_fn, int(reduction),
                                                 profile.speed(t0))
         q0, v0 = basis.project(q0), basis.project(v0)
-    sample_times = None if times is None else np.asarray(times, dtype=float)
-    output = OutputSpec(times=sample_times, every=None if times is not None else every,
-                        dofs=kept if basis is None else None)
-    run = integrate(problem, stepper, (t0, t_end), q0, v0, dt=dt, output=output,
-                    checkpoint=checkpoint, checkpoint_every=checkpoint_every, resume=resume,
-                    progress=progress, on_failure=on_failure)
+    sample_times = None if out.times is None else np.asarray(out.times, dtype=float)
+    spec = OutputSpec(times=sample_times, every=None if out.times is not None else out.every,
+                      dofs=kept if basis is None else None)
+    run = integrate(problem, stepper, (t0, t_end), q0, v0, dt=dt, output=spec,
+                    checkpoint=ck.path, checkpoint_every=int(ck.every or 0), resume=ck.resume,
+                    progress=out.progress, on_failure=on_failure)
     if basis is not None:
         from rotorsim.analyses.transient.reduction import expand_run
 
         run = expand_run(run, basis, kept)
     options = {"t_span": [t0, t_end], "dt": dt, "method": stepper.name,
-               "speed": profile.describe(), "gravity": gravity,
-               "unbalance": [list(map(float, u)) for u in unbalance],
-               "base": None if base is None else list(base.direction),
-               "initial": initial if isinstance(initial, str) else "given", "every": every,
-               "reduction": report}
+               "speed": profile.describe(), "gravity": ex.gravity,
+               "unbalance": [list(map(float, u)) for u in ex.unbalance],
+               "base": None if ex.base is None else list(ex.base.direction),
+               "initial": initial if isinstance(initial, str) else "given",
+               "every": out.every, "reduction": report}
     if run.message:
         options["failure"] = run.message
     result = _result(system, run, profile, kept, options)
-    if rolling_elements and system.nonlinear is not None:
+    if out.rolling_elements and system.nonlinear is not None:
         from rotorsim.analyses.transient.element_histories import rolling_element_histories
 
         loads_, angles = rolling_element_histories(system, result)
         result = dataclasses.replace(result, element_loads=loads_, contact_angles=angles)
     return result
+
+
+def _groups(unbalance: Sequence[tuple[int, float, float]], excitation: Excitation | None,
+            nodes: Sequence[int] | None, output: Output | None,
+            checkpoint: str | os.PathLike[str] | Checkpointing | None
+            ) -> tuple[Excitation, Output, Checkpointing]:
+    """The option groups of a call: shortcuts merged, defaults filled, errors naming
+    ``transient.<keyword>``."""
+    ex = Excitation.coerce(excitation, f"{WHERE}.excitation").merged(WHERE,
+                                                                     unbalance=unbalance)
+    if ex.base is not None and not isinstance(ex.base, BaseExcitation):
+        raise ModelError(f"expected rs.BaseExcitation, got {type(ex.base).__name__}",
+                         f"{WHERE}.excitation.base")
+    out = Output.coerce(output, f"{WHERE}.output").merged(WHERE, nodes=nodes)
+    ck = Checkpointing.coerce(checkpoint, f"{WHERE}.checkpoint")
+    return ex, out.resolved(OUTPUT_DEFAULTS), ck.resolved(CHECKPOINT_DEFAULTS)
 
 
 def _system(model: Rotor | RotorSystem, nonlinear: Sequence[NonlinearElement]) -> RotorSystem:
@@ -261,10 +270,10 @@ def _span(t_span: float | Sequence[float]) -> tuple[float, float]:
     return t0, t_end
 
 
-def _problem(system: RotorSystem, profile: BoundSpeed, t0: float, unbalance: Sequence[Any],
-             gravity: float | None, direction: ArrayLike, loads: Sequence[Any],
-             forces: Callable[[float], ArrayLike] | None, base: BaseExcitation | None
+def _problem(system: RotorSystem, profile: BoundSpeed, t0: float, ex: Excitation
              ) -> tuple[SecondOrderProblem, TransientLoads]:
+    unbalance, forces = ex.unbalance, ex.forces
+    base = cast("BaseExcitation | None", ex.base)  # checked by _groups
     description = profile.describe()
     constant_speed = description["kind"] == "constant"
     if system.variable_bearings and not constant_speed:
@@ -273,9 +282,9 @@ def _problem(system: RotorSystem, profile: BoundSpeed, t0: float, unbalance: Seq
                          "(their matrices are evaluated once)", WHERE)
     mats = system.matrices(profile.speed(t0) if constant_speed else 0.0)
     constant = np.zeros(system.n_free)
-    if gravity is not None:
-        constant += gravity_load(system, gravity, direction)
-    for i, (node, dof, value) in enumerate(loads):
+    if ex.gravity is not None:
+        constant += gravity_load(system, ex.gravity, ex.direction)
+    for i, (node, dof, value) in enumerate(ex.loads):
         constant += nodal_load(system, int(node), str(dof), float(value),
                                where=f"loads[{i}]")
     if forces is not None and not callable(forces):
