@@ -54,8 +54,7 @@ def run_case(case: str, quick: bool) -> float:
     if str(ROOT) not in sys.path:
         sys.path.insert(0, str(ROOT))
     if case == "runup":
-        from rotorsim.io.analysis_spec import run_analysis
-        from rotorsim.io.model_file import load_model
+        from rotorsim.io.model_file import load_model, run_analysis
 
         model = load_model(ROOT / "models" / "default.toml")
         clock = time.perf_counter()

@@ -85,14 +85,18 @@ def solve(bearing: FlexibleRingRollerBearing, load: Any = LOAD) -> dict[str, Any
 def fe_loads(clearance: float, speed: float, fast: bool) -> dict[str, Any] | None:
     """Roller loads of the 2D ring finite-element model, or ``None`` when it is absent."""
     try:
-        from rotorsim.verification.ring_fe import SEED001_CASE, ring_fe_roller_loads
+        from rotorsim.verification.ring_fe import (
+            SEED001_CASE,
+            MeshOptions,
+            ring_fe_roller_loads,
+        )
     except ImportError:
         return None
     case = {**SEED001_CASE, "speed": speed, "F_x": LOAD[0]}
-    mesh = {"mesh_size": 2e-3, "max_size": 5e-3} if fast else {}
+    mesh = MeshOptions(mesh_size=2e-3, max_size=5e-3) if fast else None
     kn = seed_bearing(clearance).Kn  # the contact law of seed eq 16, whole roller
     t0 = time.perf_counter()
-    res = ring_fe_roller_loads(**case, clearance=clearance, Kn=kn, psi0=SEED["psi0"], **mesh)
+    res = ring_fe_roller_loads(**case, clearance=clearance, Kn=kn, psi0=SEED["psi0"], mesh=mesh)
     return {"inner_load": res.roller_loads, "outer_load": res.outer_loads,
             "wall_time": time.perf_counter() - t0, "n_dofs": res.summary["n_dofs"]}
 

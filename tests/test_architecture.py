@@ -259,7 +259,6 @@ def _missing_owners(rule: Rule) -> list[str]:
     return [o for o in rule.owners if not any(_within(m, (o,)) for m in modules)]
 
 
-@pytest.mark.xfail(strict=True, reason="io circle: fixed on branch i13-io")
 def test_no_import_cycle_in_io():
     cycles = import_cycles(IMPORTS, "rotorsim.io")
     assert not cycles, "\n".join(cycles)

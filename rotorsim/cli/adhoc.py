@@ -13,7 +13,8 @@ from rotorsim.cli.parser import SUBCOMMAND_TYPES
 def adhoc_job(model: Any, args: argparse.Namespace) -> tuple[str, Any]:
     """The model's first analysis of the subcommand's type (or a default one) with the
     command-line overrides applied."""
-    from rotorsim.io.analysis_spec import SPEC_TYPES, Grid
+    from rotorsim.io.analysis_spec import Grid
+    from rotorsim.io.spec_registry import SPEC_TYPES
     from rotorsim.units import to_si
 
     kind = SUBCOMMAND_TYPES[args.command]

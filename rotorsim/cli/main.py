@@ -153,7 +153,7 @@ def _run_one(model: Any, name: str, spec: Any, args: argparse.Namespace) -> str 
     from rotorsim.cli.completeness import incomplete_reason
     from rotorsim.cli.outputs import write_outputs
     from rotorsim.cli.summaries import summarize
-    from rotorsim.io.analysis_spec import run_analysis
+    from rotorsim.io.model_file import run_analysis
 
     spec = _with_restart(model.analyses[name] if spec is None else spec, name, args,
                          args.out / model.name)

@@ -1,10 +1,16 @@
-"""The function that runs each analysis type of a model file (used by
-:func:`rotorsim.io.analysis_spec.run_analysis`): ``runner(rotor, model, spec, fast,
-progress) -> result``, with a last ``restart`` argument (checkpoint keywords) for
-transients and periodic branches; analyses are imported when they run."""
+"""Run the analyses of a loaded model: :func:`run_analysis` and the function that runs
+each analysis spec type (:data:`RUNNERS`).
+
+A runner is ``runner(rotor, model, spec, fast, progress) -> result``, with a last
+``restart`` argument (checkpoint keywords) for transients and periodic branches; analyses
+are imported when they run, so importing this module stays light.
+"""
 
 from __future__ import annotations
 
+import dataclasses
+import functools
+import os
 from collections.abc import Callable
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
@@ -12,11 +18,32 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from rotorsim.elements.base import FloatArray
-from rotorsim.io.analysis_spec import FAST_POINTS, Grid
+from rotorsim.errors import ModelError
+from rotorsim.io.analysis_spec import AnalysisSpec, Grid
+from rotorsim.io.linear_specs import (
+    CampbellSpec,
+    CriticalSpeedMapSpec,
+    CriticalSpeedsSpec,
+    FrequencyResponseSpec,
+    ModalSpec,
+    StaticSpec,
+    UnbalanceSpec,
+)
+from rotorsim.io.long_specs import (
+    PeriodicParameterSpec,
+    PeriodicSpec,
+    RestartableSpec,
+    SweepSpec,
+    TransientSpec,
+)
+from rotorsim.io.restart import checkpoint_path, restart_options
 
 if TYPE_CHECKING:
-    from rotorsim.io.model_file import Model
+    from rotorsim.io.model import Model
     from rotorsim.model.rotor import Rotor
+
+FAST_POINTS = 7
+"""Grid size used by ``run_analysis(..., fast=True)``."""
 
 
 def _grid(grid: Grid, fast: bool) -> FloatArray:
@@ -152,9 +179,91 @@ def _sweep(rotor: Rotor, model: Model, spec: Any, fast: bool, progress: bool, *,
                  resume=spec.resume, progress=progress)
 
 
-RUNNERS: dict[str, Callable[..., Any]] = {
-    "modal": _modal, "campbell": _campbell, "critical_speeds": _critical_speeds,
-    "critical_speed_map": _critical_speed_map, "unbalance": _unbalance,
-    "frequency_response": _frequency_response, "static": _static, "transient": _transient,
-    "periodic": _periodic, "periodic_parameter": _periodic_parameter, "sweep": _sweep,
+RUNNERS: dict[type[AnalysisSpec], Callable[..., Any]] = {
+    ModalSpec: _modal, CampbellSpec: _campbell, CriticalSpeedsSpec: _critical_speeds,
+    CriticalSpeedMapSpec: _critical_speed_map, UnbalanceSpec: _unbalance,
+    FrequencyResponseSpec: _frequency_response, StaticSpec: _static,
+    TransientSpec: _transient, PeriodicSpec: _periodic,
+    PeriodicParameterSpec: _periodic_parameter, SweepSpec: _sweep,
 }
+"""The runner of each analysis spec type."""
+
+
+def runner_for(spec: AnalysisSpec) -> Callable[..., Any]:
+    """The runner of ``spec`` (of its class or the nearest base class in :data:`RUNNERS`).
+
+    Raises
+    ------
+    TypeError
+        ``spec`` is of no known analysis spec type.
+    """
+    for cls in type(spec).__mro__:
+        if cls in RUNNERS:
+            return RUNNERS[cls]
+    raise TypeError(f"no runner for {type(spec).__name__}; the spec types are "
+                    f"{', '.join(cls.__name__ for cls in RUNNERS)}")
+
+
+def run_analysis(model: Model, name: str, *, fast: bool = False, progress: bool = False,
+                 checkpoint_dir: str | os.PathLike[str] | None = None) -> Any:
+    """Run the analysis ``name`` of a loaded model.
+
+    Parameters
+    ----------
+    model : Model
+        From :func:`rotorsim.io.model_file.load_model`.
+    name : str
+        Key of the analysis in ``model.analyses``.
+    fast : bool
+        Shrink every grid to at most :data:`FAST_POINTS` points, a transient to a tenth of
+        its duration and a periodic branch to 10 points with at most 4 harmonics (tests,
+        smoke runs).
+    progress : bool
+        Show progress bars on sweeps that support them.
+    checkpoint_dir : path, optional
+        Folder of the checkpoint file ``<name>.checkpoint.h5`` of an analysis with
+        ``checkpoint`` or ``resume`` set (default ``results/<model name>``, where the
+        command line writes its results), and of the store ``<name>.h5`` a ``sweep``
+        writes point by point (kept in memory when neither ``checkpoint_dir`` nor
+        ``resume`` is given).
+
+    Returns
+    -------
+    result
+        The analysis result (``ModalResult``, ``CampbellResult``, ``CriticalSpeeds``,
+        ``CriticalSpeedMapResult``, ``FrequencyResponseResult``, ``StaticResult``,
+        ``TransientResult`` or ``PeriodicResult``).
+
+    Raises
+    ------
+    ModelError
+        ``name`` is not an analysis of the model.
+
+    Notes
+    -----
+    A model with rolling bearings is analysed on :meth:`Model.linearized` (the bearings
+    linearised at their static loads, computed once per model and speed: the spec's
+    ``speed`` for ``modal`` and ``static``, else 0); the result's ``options`` then hold
+    ``rolling_bearings`` (tags, loads, iterations). A ``static`` analysis returns that
+    nonlinear static equilibrium; a ``transient`` uses the full nonlinear bearings.
+    """
+    if name not in model.analyses:
+        raise ModelError(f"no analysis {name!r}; the model has {sorted(model.analyses)}",
+                         model.name)
+    spec = model.analyses[name]
+    runner = runner_for(spec)
+    folder = Path("results") / model.name if checkpoint_dir is None else Path(checkpoint_dir)
+    if isinstance(spec, RestartableSpec):
+        return runner(model.rotor.with_nonlinear(model.rolling_bearings), model, spec, fast,
+                      progress, restart_options(spec, checkpoint_path(folder, name)))
+    if isinstance(spec, SweepSpec):  # its store is the results file (in memory unless asked)
+        on_disk = checkpoint_dir is not None or spec.resume
+        runner = functools.partial(runner, store=folder / f"{name}.h5" if on_disk else None)
+    if not model.rolling_bearings:
+        return runner(model.rotor, model, spec, fast, progress)
+    linear = model.linearized(float(getattr(spec, "speed", None) or 0.0)
+                              if spec.type in ("modal", "static") else 0.0)
+    result = linear.static if spec.type == "static" else runner(linear.rotor, model, spec,
+                                                                  fast, progress)
+    return dataclasses.replace(result, options={**result.options,
+                                                "rolling_bearings": linear.describe()})

@@ -1,8 +1,13 @@
-"""Typed analysis specifications read from model files, and the runner that executes them.
+"""What every analysis spec of a model file shares: swept grids, the model's loads and the
+:class:`AnalysisSpec` base with its model-file (TOML) form.
 
 A model file names analyses (``[analyses.campbell]`` with ``type = "campbell"``); the
-loader turns each into one of the frozen specs below, in SI units with node numbers
-resolved. :func:`run_analysis` maps a spec onto the matching ``rotorsim`` call.
+loader turns each into a frozen spec, in SI units with node numbers resolved: the
+analyses run on the linearised rotor in :mod:`rotorsim.io.linear_specs`, the long,
+resumable ones in :mod:`rotorsim.io.long_specs`, the names of all in
+:mod:`rotorsim.io.spec_registry`. Specs are plain data and import no analysis;
+:func:`~rotorsim.io.analysis_runners.run_analysis` maps a spec onto the matching
+``rotorsim`` call.
 
 Examples
 --------
@@ -15,25 +20,13 @@ Examples
 
 from __future__ import annotations
 
-import dataclasses
-import functools
-import os
 from dataclasses import dataclass, fields
-from pathlib import Path
-from typing import TYPE_CHECKING, Any, ClassVar, Literal
+from typing import Any, ClassVar, Literal
 
 import numpy as np
 
 from rotorsim.assembly.loads import STANDARD_GRAVITY
 from rotorsim.elements.base import FloatArray
-from rotorsim.errors import ModelError
-from rotorsim.io.restart import checkpoint_path, restart_options
-
-if TYPE_CHECKING:
-    from rotorsim.io.model_file import Model
-
-FAST_POINTS = 7
-"""Grid size used by ``run_analysis(..., fast=True)``."""
 
 
 @dataclass(frozen=True)
@@ -151,253 +144,3 @@ def _toml_value(name: str, value: Any) -> Any:
     if name == "inputs":
         return [{"node": n, "dof": dof} for n, dof in value]
     return list(value) if isinstance(value, tuple) else value
-
-
-@dataclass(frozen=True, kw_only=True)
-class ModalSpec(AnalysisSpec):
-    """Modes at one speed: :func:`rotorsim.modal`."""
-
-    type: ClassVar[str] = "modal"
-    speed: float = 0.0
-    num_modes: int = 12
-
-
-@dataclass(frozen=True, kw_only=True)
-class CampbellSpec(AnalysisSpec):
-    """Campbell diagram over ``speeds`` [rad/s]: :func:`rotorsim.campbell`; ``harmonics``
-    are the excitation orders whose critical speeds are reported."""
-
-    type: ClassVar[str] = "campbell"
-    speeds: Grid
-    num_modes: int = 12
-    harmonics: tuple[float, ...] = (1.0,)
-
-
-@dataclass(frozen=True, kw_only=True)
-class CriticalSpeedsSpec(AnalysisSpec):
-    """Exact undamped critical speeds: :func:`rotorsim.critical_speeds`."""
-
-    type: ClassVar[str] = "critical_speeds"
-    harmonic: float = 1.0
-    num_modes: int = 8
-    whirl: str | None = None
-
-
-@dataclass(frozen=True, kw_only=True)
-class CriticalSpeedMapSpec(AnalysisSpec):
-    """Critical speeds against support stiffness [N/m]: :func:`rotorsim.critical_speed_map`.
-    ``bearings`` are indices into the rotor's bearings (default all)."""
-
-    type: ClassVar[str] = "critical_speed_map"
-    stiffness: Grid = Grid(1e5, 1e10, 30, "log")
-    num_modes: int = 4
-    harmonic: float = 1.0
-    bearings: tuple[int, ...] | None = None
-    gyroscopic: bool = True
-    speeds: Grid | None = None
-
-
-@dataclass(frozen=True, kw_only=True)
-class UnbalanceSpec(AnalysisSpec):
-    """Unbalance response over ``speeds`` [rad/s]: :func:`rotorsim.unbalance_response`;
-    ``unbalance=None`` uses the model's ``[[loads.unbalance]]``."""
-
-    type: ClassVar[str] = "unbalance"
-    speeds: Grid
-    unbalance: Unbalance | None = None
-
-
-@dataclass(frozen=True, kw_only=True)
-class FrequencyResponseSpec(AnalysisSpec):
-    """Receptances over ``frequencies`` [rad/s]: :func:`rotorsim.frequency_response`;
-    ``speed=None`` is synchronous excitation."""
-
-    type: ClassVar[str] = "frequency_response"
-    frequencies: Grid
-    inputs: tuple[tuple[int, str], ...]
-    speed: float | None = None
-
-
-@dataclass(frozen=True, kw_only=True)
-class StaticSpec(AnalysisSpec):
-    """Static deflection under the model's gravity and point loads: :func:`rotorsim.static`."""
-
-    type: ClassVar[str] = "static"
-    speed: float = 0.0
-
-
-@dataclass(frozen=True, kw_only=True)
-class RestartableSpec(AnalysisSpec):
-    """Checkpoint options of a long analysis (a transient or a periodic branch).
-
-    Parameters
-    ----------
-    checkpoint : bool
-        Write a checkpoint file (``<out>/<model>/<analysis>.checkpoint.h5`` on the command
-        line) every ``checkpoint_every`` steps or branch points and at the end.
-    checkpoint_every : int, optional
-        Steps (transient, default 1000) or branch points (periodic, default 25) between
-        checkpoints.
-    resume : bool
-        Continue from that checkpoint when it exists (same model and options, else a
-        :class:`~rotorsim.time_integration.checkpoint.CheckpointError`); the result equals
-        that of an uninterrupted run.
-    """
-
-    checkpoint: bool = False
-    checkpoint_every: int | None = None
-    resume: bool = False
-
-
-@dataclass(frozen=True, kw_only=True)
-class TransientSpec(RestartableSpec):
-    """Time integration: :func:`rotorsim.transient` over ``t_end`` [s] with step ``dt`` [s]
-    at constant ``speed`` [rad/s], or a linear ramp to ``speed_stop`` over ``ramp_time``
-    [s] (default ``t_end``); ``unbalance=None`` uses the model's ``[[loads.unbalance]]``;
-    rolling bearings act with their full nonlinear force. ``on_failure="stop"`` (default)
-    keeps the run up to a failed step with status ``NOT_CONVERGED``; ``"raise"`` raises."""
-
-    type: ClassVar[str] = "transient"
-    t_end: float
-    dt: float
-    speed: float = 0.0
-    speed_stop: float | None = None
-    ramp_time: float | None = None
-    method: str = "average_acceleration"
-    every: int = 1
-    initial: str = "static"
-    on_failure: str = "stop"
-    unbalance: Unbalance | None = None
-
-
-@dataclass(frozen=True, kw_only=True)
-class PeriodicSpec(RestartableSpec):
-    """Harmonic-balance branch over the speed range ``start`` .. ``stop`` [rad/s]:
-    :func:`rotorsim.periodic` with ``harmonics`` harmonics, Floquet stability
-    (``stability="none"`` skips it) and bifurcations; ``unbalance=None`` uses the model's
-    ``[[loads.unbalance]]``; rolling bearings act with their full nonlinear force."""
-
-    type: ClassVar[str] = "periodic"
-    start: float
-    stop: float
-    harmonics: int = 10
-    samples: int | None = None
-    max_points: int = 500
-    max_step: float = 0.02
-    varying_compliance: bool | None = None
-    stability: str = "auto"
-    unbalance: Unbalance | None = None
-
-
-@dataclass(frozen=True, kw_only=True)
-class PeriodicParameterSpec(RestartableSpec):
-    """Harmonic-balance branch at the fixed ``speed`` [rad/s] over the model parameter
-    ``vary`` from ``start`` to ``stop`` (SI): :func:`rotorsim.periodic_parameter` with
-    ``vary`` a key path of the model file
-    (:class:`~rotorsim.io.model_parameter.ModelParameter`), ``"loads"`` (a factor on the
-    model's point loads) or ``"forcing"`` (a factor on the unbalance)."""
-
-    type: ClassVar[str] = "periodic_parameter"
-    vary: str
-    speed: float
-    start: float
-    stop: float
-    harmonics: int = 10
-    samples: int | None = None
-    max_points: int = 200
-    max_step: float = 0.05
-    stability: str = "auto"
-    unbalance: Unbalance | None = None
-
-
-@dataclass(frozen=True, kw_only=True)
-class SweepSpec(AnalysisSpec):
-    """Parameter study :func:`rotorsim.sweep`: support stiffness [N/m] of ``bearings``
-    (indices, default all) over ``stiffness`` times spin speeds [rad/s] over ``speeds``
-    (default 0), evaluating ``"min_log_dec"`` or ``"critical_speeds"`` with ``num_modes``.
-    Points go to the results file as they finish (the file is the checkpoint); ``resume``
-    continues from it."""
-
-    type: ClassVar[str] = "sweep"
-    stiffness: Grid
-    speeds: Grid | None = None
-    bearings: tuple[int, ...] | None = None
-    evaluate: str = "min_log_dec"
-    num_modes: int = 6
-    resume: bool = False
-
-
-SPEC_TYPES: dict[str, type[AnalysisSpec]] = {
-    cls.type: cls for cls in (ModalSpec, CampbellSpec, CriticalSpeedsSpec,
-                              CriticalSpeedMapSpec, UnbalanceSpec, FrequencyResponseSpec,
-                              StaticSpec, TransientSpec, PeriodicSpec, PeriodicParameterSpec,
-                              SweepSpec)
-}
-"""Analysis ``type`` names of model files and their spec classes."""
-
-
-def run_analysis(model: Model, name: str, *, fast: bool = False, progress: bool = False,
-                 checkpoint_dir: str | os.PathLike[str] | None = None) -> Any:
-    """Run the analysis ``name`` of a loaded model.
-
-    Parameters
-    ----------
-    model : Model
-        From :func:`rotorsim.io.model_file.load_model`.
-    name : str
-        Key of the analysis in ``model.analyses``.
-    fast : bool
-        Shrink every grid to at most :data:`FAST_POINTS` points, a transient to a tenth of
-        its duration and a periodic branch to 10 points with at most 4 harmonics (tests,
-        smoke runs).
-    progress : bool
-        Show progress bars on sweeps that support them.
-    checkpoint_dir : path, optional
-        Folder of the checkpoint file ``<name>.checkpoint.h5`` of an analysis with
-        ``checkpoint`` or ``resume`` set (default ``results/<model name>``, where the
-        command line writes its results), and of the store ``<name>.h5`` a ``sweep``
-        writes point by point (kept in memory when neither ``checkpoint_dir`` nor
-        ``resume`` is given).
-
-    Returns
-    -------
-    result
-        The analysis result (``ModalResult``, ``CampbellResult``, ``CriticalSpeeds``,
-        ``CriticalSpeedMapResult``, ``FrequencyResponseResult``, ``StaticResult``,
-        ``TransientResult`` or ``PeriodicResult``).
-
-    Raises
-    ------
-    ModelError
-        ``name`` is not an analysis of the model.
-
-    Notes
-    -----
-    A model with rolling bearings is analysed on :meth:`Model.linearized` (the bearings
-    linearised at their static loads, computed once per model and speed: the spec's
-    ``speed`` for ``modal`` and ``static``, else 0); the result's ``options`` then hold
-    ``rolling_bearings`` (tags, loads, iterations). A ``static`` analysis returns that
-    nonlinear static equilibrium; a ``transient`` uses the full nonlinear bearings.
-    """
-    if name not in model.analyses:
-        raise ModelError(f"no analysis {name!r}; the model has {sorted(model.analyses)}",
-                         model.name)
-    spec = model.analyses[name]
-    from rotorsim.io.analysis_runners import RUNNERS
-
-    runner = RUNNERS[spec.type]
-    folder = Path("results") / model.name if checkpoint_dir is None else Path(checkpoint_dir)
-    if isinstance(spec, RestartableSpec):
-        return runner(model.rotor.with_nonlinear(model.rolling_bearings), model, spec, fast,
-                      progress, restart_options(spec, checkpoint_path(folder, name)))
-    if isinstance(spec, SweepSpec):  # its store is the results file (in memory unless asked)
-        on_disk = checkpoint_dir is not None or spec.resume
-        runner = functools.partial(runner, store=folder / f"{name}.h5" if on_disk else None)
-    if not model.rolling_bearings:
-        return runner(model.rotor, model, spec, fast, progress)
-    linear = model.linearized(float(getattr(spec, "speed", None) or 0.0)
-                              if spec.type in ("modal", "static") else 0.0)
-    result = linear.static if spec.type == "static" else runner(linear.rotor, model, spec,
-                                                                  fast, progress)
-    return dataclasses.replace(result, options={**result.options,
-                                                "rolling_bearings": linear.describe()})

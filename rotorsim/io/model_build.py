@@ -32,6 +32,7 @@ from rotorsim.io import analysis_spec as spec
 from rotorsim.io.model_schema import BearingTable, ModelTable, ShaftSegment
 from rotorsim.io.rolling_schema import BallTable, ProfileTable, RollerTable, RollingTable
 from rotorsim.io.schema_types import Located, format_path
+from rotorsim.io.spec_registry import SPEC_TYPES
 from rotorsim.model.material import Material
 from rotorsim.model.rotor import Rotor
 
@@ -331,7 +332,7 @@ def build_spec(table: Any, loc: tuple[str | int, ...], nodes: Nodes,
         "nodes": None if table.nodes is None else tuple(
             nodes.check(n, f"{where}.nodes[{i}]") for i, n in enumerate(table.nodes)),
     }
-    cls = spec.SPEC_TYPES[table.type]
+    cls = SPEC_TYPES[table.type]
     options: dict[str, Any] = {}
     for f in fields(cls):
         if f.name not in common and hasattr(table, f.name):

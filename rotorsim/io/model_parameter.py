@@ -19,7 +19,7 @@ from __future__ import annotations
 
 import copy
 import math
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from typing import Any
 
 from rotorsim.errors import ModelError
@@ -122,6 +122,9 @@ class ModelParameter:
         The parsed model file (``Model.data``).
     path : str
         Key path of the parameter (module docstring).
+    build : callable
+        ``build(data) -> Model`` that turns changed data into a model:
+        :func:`rotorsim.io.model.model_from_dict` (what :meth:`Model.parameter` passes).
 
     Raises
     ------
@@ -129,18 +132,18 @@ class ModelParameter:
         When ``path`` does not name a value of ``data``.
     """
 
-    def __init__(self, data: Mapping[str, Any], path: str) -> None:
+    def __init__(self, data: Mapping[str, Any], path: str,
+                 build: Callable[[Mapping[str, Any]], Any]) -> None:
         self.path = str(path)
+        self.build = build
         self.data = {k: v for k, v in data.items() if k != "analyses"}
         with_value(self.data, self.path, 0.0)  # resolves the path now
         self.elements_only = split_path(self.path)[0] == "rolling_bearings"
 
     def model(self, value: Any) -> Any:
         """The model with ``value`` (a number in SI, or a string with units) at the path."""
-        from rotorsim.io.model_file import model_from_dict
-
         try:
-            return model_from_dict(with_value(self.data, self.path, value))
+            return self.build(with_value(self.data, self.path, value))
         except ModelError as err:
             raise ModelError(f"with {self.path} = {value!r}: {err}", WHERE) from None
 

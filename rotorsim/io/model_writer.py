@@ -1,4 +1,4 @@
-"""Turn a loaded :class:`~rotorsim.io.model_file.Model` back into model-file content (SI).
+"""Turn a loaded :class:`~rotorsim.io.model.Model` back into model-file content (SI).
 
 The content is chosen so that loading it rebuilds bit-identical elements: a shaft segment
 per run of identical consecutive elements (its ``length`` only if ``length / n`` gives the
@@ -37,7 +37,7 @@ from rotorsim.model.material import Material
 from rotorsim.model.rotor import Rotor
 
 if TYPE_CHECKING:
-    from rotorsim.io.model_file import Model
+    from rotorsim.io.model import Model
 
 
 def model_to_dict(model: Model) -> dict[str, Any]:

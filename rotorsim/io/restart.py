@@ -8,7 +8,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 if TYPE_CHECKING:
-    from rotorsim.io.analysis_spec import RestartableSpec
+    from rotorsim.io.long_specs import RestartableSpec
 
 
 def checkpoint_path(folder: str | os.PathLike[str], name: str) -> Path:

@@ -14,14 +14,14 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from rotorsim.errors import ModelError
-from rotorsim.results.spectra import (
+from rotorsim.results.sampling import (
     MIN_SAMPLES,
     FloatArray,
     sampling_step,
-    single_sided,
     time_window,
     window_samples,
 )
+from rotorsim.results.spectra import single_sided
 
 if TYPE_CHECKING:
     from scipy.interpolate import CubicSpline

@@ -57,8 +57,8 @@ import scipy.sparse as sp
 from rotorsim.errors import ConvergenceError, ModelError
 from rotorsim.solvers.linear import DENSE_THRESHOLD, Factorization, factorize
 from rotorsim.time_integration.base import Counters, FloatArray, IntArray, State, cubic_hermite
+from rotorsim.time_integration.finite_checks import check_finite, finite_vector
 from rotorsim.time_integration.local_tangent import LocalMatrix
-from rotorsim.time_integration.newmark import _check_finite, _vector
 from rotorsim.time_integration.problem import SecondOrderProblem, combine, matrix_digest
 
 V_NEW, V_HISTORY = 3.0 / 8.0, (19.0 / 24.0, -5.0 / 24.0, 1.0 / 24.0)
@@ -131,18 +131,18 @@ class Adams:
             If ``M`` is singular or the initial force is not finite.
         """
         n = problem.n
-        q, v = _vector(q0, n, "q0"), _vector(v0, n, "v0")
+        q, v = finite_vector(q0, n, "q0"), finite_vector(v0, n, "v0")
         if not (math.isfinite(dt) and dt > 0):
             raise ModelError(f"dt must be positive and finite, got {dt!r}", "init")
         counters = Counters(residual_evaluations=int(not problem.is_linear))
         net = problem.forces(q, v, float(t0)).net
-        _check_finite(net, "initial net force", self.name, float(t0), 0, 0)
+        check_finite(net, "initial net force", self.name, float(t0), 0, 0)
         cache = _Cache()
         if a0 is None:
             a = -cache.mass(problem, self.name).solve(net)
             counters = counters.plus(Counters(factorizations=1, solves=1))
         else:
-            a = _vector(a0, n, "a0")
+            a = finite_vector(a0, n, "a0")
         spacing = float(dt) if self.startup == "constant" else math.nan
         return State(float(t0), q, v, a, net, dt=float(dt), counters=counters,
                      history=np.stack([a, a]), history_dt=spacing, cache=cache)
@@ -210,7 +210,7 @@ def _rk4_step(method: Adams, problem: SecondOrderProblem, state: State,
         nonlocal evaluations
         evaluations += 1
         a = -lu.solve(problem.forces(q, v, t).net)
-        _check_finite(a, "RK4 acceleration", method.name, t, step, 0)
+        check_finite(a, "RK4 acceleration", method.name, t, step, 0)
         return a
 
     k1q, k1v = state.v, state.a
@@ -257,11 +257,11 @@ class _AdamsStep:
         for k in range(m.max_iter):
             q, v = self.q_base + self.qc * a, self.v_base + self.vc * a
             res, kt, ct = self._residual(q, v, a)
-            _check_finite(res, "residual", m.name, self.t1, s.step + 1, k)
+            check_finite(res, "residual", m.name, self.t1, s.step + 1, k)
             da = -self._lu(kt, ct, k).solve(res)
             self.tally["solves"] += 1
             self.tally["iterations"] += 1
-            _check_finite(da, "correction", m.name, self.t1, s.step + 1, k)
+            check_finite(da, "correction", m.name, self.t1, s.step + 1, k)
             a = a + da
             dq = self.qc * np.abs(da)
             tol = m.newton_atol + m.newton_rtol * max(float(np.max(np.abs(q))),

@@ -18,7 +18,8 @@ whose LU factors are cached and reused while ``h``, ``s`` and the tangents are u
 (bitwise, by digest): a linear problem with a constant schedule is factorised once. When
 the tangents are :class:`~.local_tangent.LocalMatrix` (a rotor's bearings), only the
 constant part of ``S`` is factorised, once per ``h`` and ``s``, and each Newton iteration
-updates it by a low-rank (Woodbury) solve on the nonlinear DOFs.
+updates it by a low-rank (Woodbury) solve on the nonlinear DOFs. The iterations of one step
+are in :mod:`~rotorsim.time_integration.newmark_step`.
 
 References
 ----------
@@ -30,17 +31,14 @@ Struct. Dyn. 20 (1991) 871-887 (local error estimate).
 
 from __future__ import annotations
 
-import dataclasses
 import math
 from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
-import scipy.sparse as sp
-from numpy.typing import ArrayLike
 
 from rotorsim.errors import ConvergenceError, ModelError
-from rotorsim.solvers.linear import DENSE_THRESHOLD, Factorization, factorize
+from rotorsim.solvers.linear import factorize
 from rotorsim.time_integration.base import (
     Counters,
     FloatArray,
@@ -48,18 +46,9 @@ from rotorsim.time_integration.base import (
     State,
     cubic_hermite,
 )
-from rotorsim.time_integration.local_tangent import (
-    BaseFactors,
-    LocalMatrix,
-    LowRankSolve,
-    embed,
-)
-from rotorsim.time_integration.problem import (
-    ForceEvaluation,
-    SecondOrderProblem,
-    combine,
-    matrix_digest,
-)
+from rotorsim.time_integration.finite_checks import check_finite, finite_vector
+from rotorsim.time_integration.newmark_step import StepSolver
+from rotorsim.time_integration.problem import SecondOrderProblem
 
 
 @dataclass(frozen=True)
@@ -190,18 +179,18 @@ class Newmark:
             If ``M`` is singular (give ``a0`` then) or the initial force is not finite.
         """
         n = problem.n
-        q, v = (_vector(x, n, name) for x, name in ((q0, "q0"), (v0, "v0")))
+        q, v = (finite_vector(x, n, name) for x, name in ((q0, "q0"), (v0, "v0")))
         if not (math.isfinite(dt) and dt > 0):
             raise ModelError(f"dt must be positive and finite, got {dt!r}", "init")
         ev = problem.forces(q, v, float(t0))
         counters = Counters(residual_evaluations=int(not problem.is_linear))
-        _check_finite(ev.net, "initial net force", self.name, float(t0), 0, 0)
+        check_finite(ev.net, "initial net force", self.name, float(t0), 0, 0)
         if a0 is None:
             lu = factorize(problem.mass, where=f"{self.name}: initial acceleration")
             a = -lu.solve(ev.net)
             counters = counters.plus(Counters(factorizations=1, solves=1))
         else:
-            a = _vector(a0, n, "a0")
+            a = finite_vector(a0, n, "a0")
         return State(float(t0), q, v, np.asarray(a, dtype=float), ev.net, dt=float(dt),
                      counters=counters)
 
@@ -223,7 +212,7 @@ class Newmark:
                 dt: float) -> tuple[State, ConvergenceError | None]:
         """Try a step of size ``dt``: ``(new state, None)`` on success, else ``(state with
         the cost of the attempt added, the error)``."""
-        solver = _StepSolver(self, problem, state, dt)
+        solver = StepSolver(self, problem, state, dt)
         try:
             new = solver.solve()
         except ConvergenceError as failure:
@@ -239,168 +228,3 @@ class Newmark:
         """Local displacement error estimate ``c h^2 (a_new - a_old)`` (n,) [m, rad]."""
         h = new.t - old.t
         return (self.error_constant * h * h) * (new.a - old.a)
-
-
-@dataclass(frozen=True, eq=False)
-class _FactorCache:
-    """The iteration matrix's factors, and for local tangents those of its constant part."""
-
-    dt: float
-    spin: float
-    tangent: int
-    lu: Factorization | LowRankSolve
-    base: BaseFactors | None = None
-
-    def base_matches(self, dt: float, spin: float, dofs: IntArray) -> bool:
-        """True when the cached constant part was built for ``dt``, ``spin`` and ``dofs``."""
-        return (self.base is not None and (self.dt, self.spin) == (dt, spin)
-                and np.array_equal(self.base.dofs, dofs))
-
-
-class _StepSolver:
-    """Newton iterations of one step; tallies its own cost."""
-
-    def __init__(self, method: Newmark, problem: SecondOrderProblem, state: State,
-                 dt: float) -> None:
-        if not (math.isfinite(dt) and dt > 0):
-            raise ModelError(f"step size must be positive and finite, got {dt!r}",
-                             method.name)
-        self.m, self.p, self.s, self.dt = method, problem, state, dt
-        self.t1 = state.t + dt
-        self.bdt2, self.gdt = method.beta * dt * dt, method.gamma * dt
-        self.q_base = state.q + dt * state.v + ((0.5 - method.beta) * dt * dt) * state.a
-        self.v_base = state.v + ((1.0 - method.gamma) * dt) * state.a
-        self.spin = problem.spin(self.t1)
-        self.f1 = problem.external(self.t1)
-        self.history = method.alpha_f * state.force
-        if method.alpha_m != 0.0:
-            self.history = self.history + method.alpha_m * (problem.mass @ state.a)
-        self.cache: _FactorCache | None = state.cache
-        self.tally = {"factorizations": 0, "solves": 0, "residual_evaluations": 0,
-                      "iterations": 0}
-
-    def solve(self) -> State:
-        a = self.s.a
-        for k in range(self.m.max_iter):
-            q, v = self.q_base + self.bdt2 * a, self.v_base + self.gdt * a
-            ev = self._forces(q, v)
-            res = (1.0 - self.m.alpha_m) * (self.p.mass @ a) + self.history \
-                + (1.0 - self.m.alpha_f) * ev.net
-            _check_finite(res, "residual", self.m.name, self.t1, self.s.step + 1, k)
-            da = -self._lu(ev).solve(res)
-            self.tally["solves"] += 1
-            self.tally["iterations"] += 1
-            _check_finite(da, "Newton correction", self.m.name, self.t1, self.s.step + 1, k)
-            if self.p.is_linear:
-                a = a + da
-                q, v = self.q_base + self.bdt2 * a, self.v_base + self.gdt * a
-                return self._accepted(q, v, a, self._forces(q, v), k + 1)
-            dq = self.bdt2 * np.abs(da)
-            tol = self.m.newton_atol + self.m.newton_rtol * max(
-                float(np.max(np.abs(q))), float(np.max(np.abs(self.s.q))))
-            if float(np.max(dq)) <= tol:
-                return self._accepted(q, v, a, ev, k + 1)
-            a = a + da
-        worst = int(np.argmax(dq))
-        raise ConvergenceError(
-            f"Newton did not converge at t = {self.t1:.9g} s (h = {self.dt:.3g} s): "
-            f"|dq| = {dq[worst]:.3e} > {tol:.3e} at DOF {worst}", self.m.name,
-            step=self.s.step + 1, iteration=self.m.max_iter,
-            residual=float(np.max(np.abs(res))))
-
-    def charged(self, state: State) -> State:
-        """``state`` with the cost of this attempt and its factorisation cache."""
-        return self._with_cache(dataclasses.replace(
-            state, counters=state.counters.plus(Counters(**self.tally))))
-
-    def _forces(self, q: FloatArray, v: FloatArray) -> ForceEvaluation:
-        if not self.p.is_linear:
-            self.tally["residual_evaluations"] += 1
-        return self.p.forces(q, v, self.t1, spin=self.spin, external=self.f1)
-
-    def _lu(self, ev: ForceEvaluation) -> Factorization | LowRankSolve:
-        kt, ct = ev.stiffness_tangent, ev.damping_tangent
-        local = any(T is not None for T in (kt, ct)) and all(
-            T is None or isinstance(T, LocalMatrix) for T in (kt, ct))
-        # local tangents: the k x k update is rebuilt every iteration (cheaper than hashing)
-        tangent = -2 if local else (matrix_digest(kt) * 1_000_003 + matrix_digest(ct)) % (2 ** 63)
-        c = self.cache
-        if not local and c is not None and \
-                (c.dt, c.spin, c.tangent) == (self.dt, self.spin, tangent):
-            return c.lu
-        m, p = self.m, self.p
-        for name, T in (("dr/dq", kt), ("dr/dv", ct)):
-            row = _first_nonfinite_row(T)
-            if row >= 0:
-                raise ConvergenceError(f"tangent {name} is not finite at t = {self.t1:.9g} s "
-                                       f"(DOF {row})", m.name, step=self.s.step + 1,
-                                       iteration=self.tally["iterations"], residual=math.nan)
-        w = 1.0 - m.alpha_f
-        constant = [(1.0 - m.alpha_m, p.mass), (w * self.gdt, p.damping),
-                    (w * self.gdt * self.spin, p.gyroscopic), (w * self.bdt2, p.stiffness)]
-        updates = [(w * self.gdt, ct), (w * self.bdt2, kt)]
-        where = f"{m.name}: iteration matrix at t = {self.t1:.9g} s"
-        base = None
-        if local:
-            dofs, block = embed(updates)
-            base = c.base if c is not None and c.base_matches(self.dt, self.spin, dofs) \
-                else None
-            if base is None:
-                S0 = combine(constant, p.n)
-                dense = max(DENSE_THRESHOLD, p.n) if not sp.issparse(S0) else DENSE_THRESHOLD
-                base = BaseFactors.build(factorize(S0, where=where, dense_threshold=dense),
-                                         dofs)
-                self.tally["factorizations"] += 1
-            lu: Factorization | LowRankSolve = LowRankSolve.build(base, block, where)
-        else:
-            lu = factorize(combine(constant + updates, p.n), where=where)
-            self.tally["factorizations"] += 1
-        self.cache = _FactorCache(self.dt, self.spin, tangent, lu, base)
-        return lu
-
-    def _accepted(self, q: FloatArray, v: FloatArray, a: FloatArray, ev: ForceEvaluation,
-                  iterations: int) -> State:
-        _check_finite(ev.net, "net force", self.m.name, self.t1, self.s.step + 1, iterations)
-        counters = self.s.counters.plus(Counters(**self.tally, max_iterations=iterations))
-        new = dataclasses.replace(self.s, t=self.t1, q=q, v=v, a=a, force=ev.net,
-                                  step=self.s.step + 1, counters=counters)
-        return self._with_cache(new)
-
-    def _with_cache(self, state: State) -> State:
-        c = self.cache
-        if c is None:
-            return state
-        return dataclasses.replace(state, cache=c, factor_dt=c.dt, factor_spin=c.spin,
-                                   factor_tangent=c.tangent)
-
-
-def _vector(x: ArrayLike, n: int, name: str) -> FloatArray:
-    arr = np.array(x, dtype=float).reshape(-1)
-    if arr.shape != (n,) or not np.all(np.isfinite(arr)):
-        raise ModelError(f"must be {n} finite numbers, got shape {np.shape(x)}", name)
-    return arr
-
-
-def _first_nonfinite_row(T: object) -> int:
-    """Row of the first NaN/Inf entry of a dense or sparse matrix (-1 if none or None)."""
-    if T is None:
-        return -1
-    if isinstance(T, LocalMatrix):
-        bad_rows = ~np.isfinite(T.block).all(axis=-1)
-        return int(T.dofs[np.argmax(bad_rows)]) if bad_rows.any() else -1
-    if sp.issparse(T):
-        coo = sp.coo_matrix(T)
-        bad = ~np.isfinite(coo.data)
-        return int(coo.row[np.argmax(bad)]) if bad.any() else -1
-    rows = ~np.isfinite(np.asarray(T, dtype=float)).all(axis=-1)
-    return int(np.argmax(rows)) if rows.any() else -1
-
-
-def _check_finite(x: FloatArray, what: str, where: str, t: float, step: int,
-                  iteration: int) -> None:
-    """Raise ConvergenceError naming the first non-finite DOF of ``x``."""
-    bad = ~np.isfinite(x)
-    if bad.any():
-        dof = int(np.argmax(bad))
-        raise ConvergenceError(f"{what} is not finite at t = {t:.9g} s (DOF {dof})", where,
-                               step=step, iteration=iteration, residual=float("nan"))

@@ -5,7 +5,11 @@ modules themselves (they need scikit-fem, and meshio to write files):
 
 * :mod:`rotorsim.verification.ring_fe` -- 2D plane-stress finite-element model of a radial
   cylindrical roller bearing with flexible rings (seed 001 section 3, the counterpart of its
-  NX Nastran verification): :func:`~rotorsim.verification.ring_fe.ring_fe_roller_loads`,
+  NX Nastran verification): :func:`~rotorsim.verification.ring_fe.ring_fe_roller_loads`
+  with its option groups ``MeshOptions``, ``OuterRingSupport`` and ``NewtonOptions``,
   :class:`~rotorsim.verification.ring_fe.RingFEResult`,
   :func:`~rotorsim.verification.ring_fe.export_vtu`.
+
+``examples/seed001_ring_fe.py`` runs the seed 001 bearing with it (roller loads, mesh study,
+sensitivities).
 """

@@ -3,8 +3,10 @@
 Public functions
 ----------------
 * :func:`ring_fe_roller_loads` ``(Z, R_p, R_b, L, R_s, R_h, b, E, nu, rho, clearance, F_x,
-  speed=0.0, **options) -> RingFEResult``: roller loads of the bearing with both rings
-  modelled as plane-stress continua;
+  speed=0.0, *, F_y, Kn, psi0, cage_ratio, mesh, support, newton) -> RingFEResult``: roller
+  loads of the bearing with both rings modelled as plane-stress continua; the options are
+  grouped in :class:`MeshOptions`, :class:`OuterRingSupport` and :class:`NewtonOptions`
+  (:mod:`~rotorsim.verification.ring_options`, importable from here);
 * :func:`export_vtu` ``(result, path)``: the deformed rings and the roller loads for
   ParaView;
 * :data:`SEED001_CASE`: the bearing of seed 001 section 3.1 as keyword arguments.
@@ -28,17 +30,18 @@ reduced to the plane of the rollers, and is independent of the fast flexible-rin
   ``omega_c = kappa speed``, ``kappa = (1 - R_b/R_p)/2`` for a turning inner and a fixed
   outer ring) pushing each roller onto the outer raceway
   (:mod:`~rotorsim.verification.ring_contact`). The contact force is spread over a
-  raceway arc ``|s| <= a`` (``contact_half_width``) and the raceway deflection is its
-  work-conjugate mean (:mod:`~rotorsim.verification.ring_forms` explains why).
+  raceway arc ``|s| <= a`` (``MeshOptions.contact_half_width``) and the raceway deflection
+  is its work-conjugate mean (:mod:`~rotorsim.verification.ring_forms` explains why).
 * **Load**: ``F = (F_x, F_y)`` on the inner ring as a cosine traction on the half of the
   bore facing the load (seed 001 section 3.1: ``q_x = q_0 b cos phi``). The inner ring is
   held by the rollers only; a tangential spring at one bore node (on the unloaded side)
   removes its free rotation (the contact and bore loads have no moment about the axis, so
   the spring carries nothing: its force is reported in ``stats``).
-* **Outer ring support** (``support``): ``"faces"`` (default) a soft elastic support of
-  the ring faces of total lateral stiffness ``support_stiffness`` (default ``1e-3 E b``):
-  the plane counterpart of the soft cylinders glued to the outer ring in the NX model and of
-  the small nodal springs of seed 001 section 2.5, so that the outer ring deforms freely;
+* **Outer ring support** (``OuterRingSupport.kind``): ``"faces"`` (default) a soft elastic
+  support of the ring faces of total lateral stiffness ``OuterRingSupport.stiffness``
+  (default ``1e-3 E b``): the plane counterpart of the soft cylinders glued to the outer
+  ring in the NX model and of the small nodal springs of seed 001 section 2.5, so that the
+  outer ring deforms freely;
   ``"housing"`` a Winkler housing on ``r = R_h`` of the same total stiffness;
   ``"clamped"`` the outer surface fixed (the rigid housing of seed 001's rigid-ring NX
   model).
@@ -68,6 +71,22 @@ from rotorsim.errors import ModelError, Status
 from rotorsim.solvers.stats import Stats
 from rotorsim.verification.ring_model import RingModel, build_ring_model
 from rotorsim.verification.ring_newton import solve_contacts
+from rotorsim.verification.ring_options import (
+    MeshOptions,
+    NewtonOptions,
+    OuterRingSupport,
+    grouped_options,
+)
+
+__all__ = [
+    "SEED001_CASE",
+    "MeshOptions",
+    "NewtonOptions",
+    "OuterRingSupport",
+    "RingFEResult",
+    "export_vtu",
+    "ring_fe_roller_loads",
+]
 
 FloatArray = NDArray[np.float64]
 IntArray = NDArray[np.int64]
@@ -168,10 +187,9 @@ def ring_fe_roller_loads(
     Z: int, R_p: float, R_b: float, L: float, R_s: float, R_h: float, b: float,
     E: float, nu: float, rho: float, clearance: float, F_x: float, speed: float = 0.0, *,
     F_y: float = 0.0, Kn: float | None = None, psi0: float = 0.0,
-    cage_ratio: float | None = None, contact_half_width: float | None = None,
-    mesh_size: float | None = None, max_size: float | None = None, growth: float = 1.3,
-    support: str = "faces", support_stiffness: float | None = None,
-    tol: float = 1e-10, max_iter: int = 50,
+    cage_ratio: float | None = None, mesh: MeshOptions | None = None,
+    support: OuterRingSupport | None = None, newton: NewtonOptions | None = None,
+    **moved: Any,
 ) -> RingFEResult:
     """Roller loads of a radial roller bearing whose two rings are 2D elastic continua.
 
@@ -201,22 +219,14 @@ def ring_fe_roller_loads(
         Angle of roller 0 [rad] from +x.
     cage_ratio : float, optional
         ``omega_c / speed``; default ``(1 - R_b / R_p) / 2``.
-    contact_half_width : float, optional
-        Half-width ``a`` [m] of the raceway arc that carries a roller load; default a
-        quarter of the thinner ring's radial thickness.
-    mesh_size : float, optional
-        Element size in the contact patches and at the raceways [m]; default ``a / 3``.
-    max_size : float, optional
-        Largest element size [m]; default a third of the thinner ring thickness.
-    growth : float
-        Size ratio of neighbouring elements in the graded zones.
-    support : {"faces", "housing", "clamped"}
-        Support of the outer ring (module docstring).
-    support_stiffness : float, optional
-        Total lateral stiffness of the ``"faces"``/``"housing"`` support [N/m]; default
-        ``1e-3 E b``.
-    tol, max_iter : float, int
-        Newton tolerance (relative residual) and iteration limit.
+    mesh : MeshOptions, optional
+        Contact patch half-width ``a`` and element sizes (default ``MeshOptions()``).
+    support : OuterRingSupport, optional
+        Support of the outer ring (default ``OuterRingSupport()``: soft faces, module
+        docstring).
+    newton : NewtonOptions, optional
+        Newton tolerance (relative residual) and iteration limit (default
+        ``NewtonOptions()``).
 
     Returns
     -------
@@ -226,23 +236,28 @@ def ring_fe_roller_loads(
     ------
     ModelError
         Invalid geometry or options.
+    TypeError
+        For a keyword that moved into an option group (the message names the group), or
+        an unknown support kind.
     ConvergenceError
         If Newton's method fails.
 
     Examples
     --------
-    >>> r = ring_fe_roller_loads(**SEED001_CASE, clearance=10e-6, mesh_size=3e-3,
-    ...                          max_size=7e-3)
+    >>> r = ring_fe_roller_loads(**SEED001_CASE, clearance=10e-6,
+    ...                          mesh=MeshOptions(mesh_size=3e-3, max_size=7e-3))
     >>> r.roller_loads.shape, bool(abs(r.force_sum[0] - 5000.0) < 1e-4)
     ((24,), True)
     """
+    mesh, support, newton = grouped_options(mesh, support, newton, moved)
     stats = Stats()
     model = build_ring_model(
         Z=Z, R_p=R_p, R_b=R_b, L=L, R_s=R_s, R_h=R_h, b=b, E=E, nu=nu, rho=rho,
         clearance=clearance, load=(F_x, F_y), speed=speed, Kn=Kn, psi0=psi0,
-        cage_ratio=cage_ratio, contact_half_width=contact_half_width, mesh_size=mesh_size,
-        max_size=max_size, growth=growth, support=support,
-        support_stiffness=support_stiffness)
+        cage_ratio=cage_ratio, contact_half_width=mesh.contact_half_width,
+        mesh_size=mesh.mesh_size, max_size=mesh.max_size, growth=mesh.growth,
+        support=support.kind, support_stiffness=support.stiffness)
+    tol, max_iter = newton.tol, newton.max_iter
     if not (tol > 0.0 and isinstance(max_iter, int) and max_iter >= 1):
         raise ModelError(f"tol must be > 0 and max_iter an integer >= 1, got {tol!r}, "
                          f"{max_iter!r}", "ring_fe_roller_loads")

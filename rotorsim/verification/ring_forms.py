@@ -24,8 +24,8 @@ thickness) averages the local indentation away while leaving the ring's bending 
 deformation (the "structural" deflection of seed 001 eqs 8-11 and of its ring-beam model,
 section 2.5) intact. For the seed 001 bearing, ``a`` from 0.5 to 7 mm changes the largest
 roller load by -3.4 % to +1.2 % around the default ``a = 3.6`` mm with a 40 um preload, and
-by less than 0.2 % with a 10 um clearance (:mod:`~rotorsim.verification.ring_seed001`
-prints this study).
+by less than 0.2 % with a 10 um clearance (``examples/seed001_ring_fe.py`` prints this
+study).
 
 References
 ----------

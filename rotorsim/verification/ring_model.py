@@ -157,8 +157,10 @@ def _rotation_restraint(rm: RingMesh, load: FloatArray, k: float
 def build_ring_model(**data: Any) -> RingModel:
     """Check the bearing data, mesh the rings and assemble the contact system.
 
-    Keyword arguments are those of :func:`~rotorsim.verification.ring_fe.
-    ring_fe_roller_loads` with ``load = (F_x, F_y)``.
+    Keyword arguments are the bearing data of :func:`~rotorsim.verification.ring_fe.
+    ring_fe_roller_loads` with ``load = (F_x, F_y)``, the fields of its ``MeshOptions``
+    (``contact_half_width``, ``mesh_size``, ``max_size``, ``growth``) and its
+    ``OuterRingSupport`` as ``support`` (the kind) and ``support_stiffness``.
     """
     _check(data)
     o = _resolve(data)

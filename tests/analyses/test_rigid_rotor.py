@@ -99,7 +99,7 @@ num_modes = 2
 """)
     model = rs.load_model(path)
     assert model.rotor.shaft_elements == ()
-    from rotorsim.io.analysis_spec import run_analysis
+    from rotorsim.io.model_file import run_analysis
 
     wn = np.sort(run_analysis(model, "modes").wn)
     np.testing.assert_allclose(wn, [math.sqrt(KX / M), math.sqrt(KY / M)], rtol=1e-10)

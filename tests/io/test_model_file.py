@@ -16,11 +16,11 @@ from rotorsim.elements.disk import DiskElement, PointMass
 from rotorsim.elements.linear_bearing import BearingElement
 from rotorsim.elements.shaft import ShaftElement
 from rotorsim.errors import ModelError
-from rotorsim.io.analysis_spec import (
+from rotorsim.io.analysis_spec import Grid
+from rotorsim.io.linear_specs import (
     CampbellSpec,
     CriticalSpeedMapSpec,
     FrequencyResponseSpec,
-    Grid,
     UnbalanceSpec,
 )
 from rotorsim.io.model_file import Model, load_model, model_from_dict, run_analysis, save_model

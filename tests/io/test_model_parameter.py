@@ -46,7 +46,7 @@ def test_paths_select_entries_by_tag_name_or_index(ball):
 ])
 def test_bad_paths_are_refused_naming_the_path(ball, path, fragment):
     with pytest.raises(ModelError, match="parameter") as err:
-        ModelParameter(ball.data, path)
+        ModelParameter(ball.data, path, model_from_dict)
     assert fragment in str(err.value)
 
 
@@ -61,7 +61,8 @@ def test_si_values_of_any_dimension():
 
 
 def test_a_parameter_rebuilds_the_model_with_the_value(ball):
-    clearance = ModelParameter(ball.data, "rolling_bearings.DE.diametral_clearance")
+    clearance = ModelParameter(ball.data, "rolling_bearings.DE.diametral_clearance",
+                               model_from_dict)
     elements = clearance(14e-6)   # a path into rolling_bearings: the bearings only
     assert [e.tag for e in elements] == ["DE", "NDE"]
     assert elements[0].bearing.diametral_clearance == pytest.approx(14e-6, rel=1e-15)

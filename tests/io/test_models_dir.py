@@ -15,8 +15,9 @@ import scipy.linalg
 
 from rotorsim.assembly.system import assemble
 from rotorsim.errors import Status
-from rotorsim.io.analysis_spec import FAST_POINTS, SPEC_TYPES, run_analysis
-from rotorsim.io.model_file import load_model
+from rotorsim.io.analysis_runners import FAST_POINTS
+from rotorsim.io.model_file import load_model, run_analysis
+from rotorsim.io.spec_registry import SPEC_TYPES
 from rotorsim.results.campbell import CampbellResult
 from rotorsim.results.critical_speeds import CriticalSpeedMapResult, CriticalSpeeds
 from rotorsim.results.frequency_response import FrequencyResponseResult

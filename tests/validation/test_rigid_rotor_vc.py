@@ -136,7 +136,7 @@ def test_periodic_runs_from_the_centred_start_over_a_short_speed_range():
 
 @pytest.mark.validation  # against the Hertz law solved in this file
 def test_every_analysis_of_the_model_file_runs():
-    from rotorsim.io.analysis_spec import run_analysis
+    from rotorsim.io.model_file import run_analysis
 
     model = rs.load_model(MODEL)
     static = run_analysis(model, "static")

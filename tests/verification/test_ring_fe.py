@@ -4,8 +4,8 @@ Checks: the contact law and its derivatives, the mesh and the operators, a linea
 case against Lame's thick-ring solution, equilibrium, mesh convergence, the rigid-ring limit
 against :class:`~rotorsim.elements.rolling.roller.bearing.RollerBearing`, and the seed 001 bearing
 against the statements of its section 3.1. Tests use coarse meshes (the mesh study shows
-they are within 1e-4 of the finest mesh); ``python -m rotorsim.verification.ring_seed001``
-runs the fine ones.
+they are within 1e-4 of the finest mesh); ``python examples/seed001_ring_fe.py`` runs the
+fine ones.
 """
 
 from __future__ import annotations
@@ -22,11 +22,18 @@ from rotorsim.errors import ModelError
 from rotorsim.solvers.linear import factorize
 from rotorsim.verification import ring_forms as forms
 from rotorsim.verification.ring_contact import RollerContactLaw
-from rotorsim.verification.ring_fe import SEED001_CASE, export_vtu, ring_fe_roller_loads
+from rotorsim.verification.ring_fe import (
+    SEED001_CASE,
+    MeshOptions,
+    NewtonOptions,
+    OuterRingSupport,
+    export_vtu,
+    ring_fe_roller_loads,
+)
 from rotorsim.verification.ring_mesh import angular_grid, bearing_rings_mesh, radial_grid
 from rotorsim.verification.ring_reference import rigid_ring_bearing, rigid_ring_roller_loads
 
-COARSE = {"mesh_size": 3e-3, "max_size": 7e-3}
+COARSE = MeshOptions(mesh_size=3e-3, max_size=7e-3)
 """Coarse test mesh (about 15k DOFs)."""
 SEED_RADII = {"bore": 0.054, "inner_raceway": 0.0685, "outer_raceway": 0.0815,
               "housing": 0.097}
@@ -35,7 +42,7 @@ SEED_RADII = {"bore": 0.054, "inner_raceway": 0.0685, "outer_raceway": 0.0815,
 @pytest.fixture(scope="module")
 def seed_results():
     """The seed 001 bearing at 12000 rpm, both clearances, coarse mesh."""
-    return {g: ring_fe_roller_loads(**SEED001_CASE, clearance=g, **COARSE)
+    return {g: ring_fe_roller_loads(**SEED001_CASE, clearance=g, mesh=COARSE)
             for g in (-40e-6, 10e-6)}
 
 
@@ -170,7 +177,8 @@ def test_equilibrium_of_the_rollers_and_the_load(seed_results):
 
 def test_oblique_load_shifted_rollers_and_housing_support():
     res = ring_fe_roller_loads(**{**SEED001_CASE, "F_x": 3000.0}, F_y=-4000.0, clearance=5e-6,
-                               psi0=0.05, support="housing", support_stiffness=6e8, **COARSE)
+                               psi0=0.05, support=OuterRingSupport("housing", 6e8),
+                               mesh=COARSE)
     assert np.allclose(res.force_sum, [3000.0, -4000.0], rtol=0, atol=1e-3)
     assert abs(res.stats["rotation_restraint_force"]) < 1e-3
     loaded = res.roller_angles[np.argmax(res.roller_loads)]
@@ -180,10 +188,10 @@ def test_oblique_load_shifted_rollers_and_housing_support():
 def test_mesh_convergence(seed_results):
     """Halving every element size (3 -> 1.5 mm at the contacts, 7 -> 3.5 mm elsewhere)
     changes each roller load by < 0.1 % of the largest. Measured 3e-4 (-40 um) and 1e-4
-    (+10 um); the study of ring_seed001 finds 5e-5 from 1.8 to 0.6 mm."""
+    (+10 um); the study of examples/seed001_ring_fe.py finds 5e-5 from 1.8 to 0.6 mm."""
     for g, coarse in seed_results.items():
-        fine = ring_fe_roller_loads(**SEED001_CASE, clearance=g, mesh_size=1.5e-3,
-                                    max_size=3.5e-3)
+        fine = ring_fe_roller_loads(**SEED001_CASE, clearance=g,
+                                    mesh=MeshOptions(mesh_size=1.5e-3, max_size=3.5e-3))
         assert fine.summary["n_dofs"] > 2 * coarse.summary["n_dofs"]
         change = np.abs(fine.roller_loads - coarse.roller_loads).max() / fine.max_roller_load
         print(f"g = {g * 1e6:+.0f} um: {coarse.summary['n_dofs']} -> "
@@ -198,7 +206,7 @@ def test_rigid_ring_limit_matches_roller_bearing(clearance, speed):
     ring compliance ``c/1e6`` changes the loads by ``k_contact c / 1e6 ~ 3e-6`` relative;
     tolerance 2e-5 of the largest load."""
     case = {**SEED001_CASE, "E": 2e17, "speed": speed}
-    fe = ring_fe_roller_loads(**case, clearance=clearance, **COARSE)
+    fe = ring_fe_roller_loads(**case, clearance=clearance, mesh=COARSE)
     bearing = rigid_ring_bearing(24, 0.075, 0.0065, 0.016, clearance, rho=7850.0, speed=speed)
     eq = bearing_equilibrium(bearing, [5000.0, 0.0, 0.0, 0.0, 0.0], tol=1e-12)
     psi = bearing.element_angles(0.0)
@@ -232,8 +240,8 @@ def test_seed001_rigid_rings_overestimate_the_preloaded_loads(seed_results):
 
 def test_clamped_outer_ring_is_stiffer(seed_results):
     """A clamped outer surface cannot expand under the preload: larger loads."""
-    clamped = ring_fe_roller_loads(**SEED001_CASE, clearance=-40e-6, support="clamped",
-                                   **COARSE)
+    clamped = ring_fe_roller_loads(**SEED001_CASE, clearance=-40e-6,
+                                   support=OuterRingSupport("clamped"), mesh=COARSE)
     assert clamped.max_roller_load > 1.2 * seed_results[-40e-6].max_roller_load
     assert np.allclose(clamped.force_sum, [5000.0, 0.0], rtol=0, atol=1e-3)
 
@@ -253,8 +261,37 @@ def test_invalid_input_names_the_problem():
     with pytest.raises(ModelError, match="R_s < R_p - R_b"):
         ring_fe_roller_loads(**{**SEED001_CASE, "R_s": 0.07}, clearance=0.0)
     with pytest.raises(TypeError, match="unknown support"):
-        ring_fe_roller_loads(**SEED001_CASE, clearance=0.0, support="glued")
+        ring_fe_roller_loads(**SEED001_CASE, clearance=0.0, support=OuterRingSupport("glued"))
     with pytest.raises(ModelError, match="clearance"):
         ring_fe_roller_loads(**SEED001_CASE, clearance=0.04)
     with pytest.raises(ModelError, match="contact_half_width"):
-        ring_fe_roller_loads(**SEED001_CASE, clearance=0.0, contact_half_width=8e-3)
+        ring_fe_roller_loads(**SEED001_CASE, clearance=0.0,
+                             mesh=MeshOptions(contact_half_width=8e-3))
+
+
+@pytest.mark.parametrize(("keyword", "value", "home"), [
+    ("mesh_size", 3e-3, "mesh=MeshOptions(mesh_size=...)"),
+    ("contact_half_width", 2e-3, "mesh=MeshOptions(contact_half_width=...)"),
+    ("growth", 1.5, "mesh=MeshOptions(growth=...)"),
+    ("support_stiffness", 6e8, "support=OuterRingSupport(stiffness=...)"),
+    ("tol", 1e-8, "newton=NewtonOptions(tol=...)"),
+    ("max_iter", 20, "newton=NewtonOptions(max_iter=...)"),
+    ("support", "clamped", "support=OuterRingSupport(kind='clamped')"),
+])
+def test_old_keywords_name_their_option_group(keyword, value, home):
+    """The keywords grouped into option dataclasses raise a TypeError naming the group."""
+    with pytest.raises(TypeError) as info:
+        ring_fe_roller_loads(**SEED001_CASE, clearance=0.0, **{keyword: value})
+    message = str(info.value)
+    assert message.startswith("ring_fe_roller_loads: ") and keyword in message
+    assert message.endswith(f"moved to {home}")
+
+
+def test_option_groups_are_checked():
+    with pytest.raises(TypeError, match="unexpected keyword argument 'mesh_sise'"):
+        ring_fe_roller_loads(**SEED001_CASE, clearance=0.0, mesh_sise=3e-3)
+    with pytest.raises(TypeError, match="mesh must be a MeshOptions"):
+        ring_fe_roller_loads(**SEED001_CASE, clearance=0.0, mesh={"mesh_size": 3e-3})
+    with pytest.raises(ModelError, match="tol must be > 0"):
+        ring_fe_roller_loads(**SEED001_CASE, clearance=10e-6, mesh=COARSE,
+                             newton=NewtonOptions(tol=0.0))

@@ -26,7 +26,6 @@ otherwise describe a spurious contact on the far side of the groove.
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, field
 from functools import cached_property
 from typing import Any, NamedTuple
@@ -36,23 +35,13 @@ from numpy.typing import ArrayLike
 
 from rotorsim.elements.base import frozen_scalar
 from rotorsim.elements.rolling import geometry
+from rotorsim.elements.rolling.ball.checks import CAGES, ResolvedGeometry, resolve_geometry
 from rotorsim.elements.rolling.ball.tangent import assemble, ball_sums, directions
 from rotorsim.elements.rolling.contact.hertz_point import ball_bearing_constant
 from rotorsim.elements.rolling.state import BearingState, FloatArray
 from rotorsim.errors import ModelError
 
-CAGES = ("rotating", "fixed")
-
-
-class _Resolved(NamedTuple):
-    a0: float  # distance of the groove curvature centres, A0 [m]
-    clearance: float  # radial clearance r_L [m]
-    arm: float  # radius of the inner groove curvature centres r_j [m]
-    kappa: float  # cage ratio
-    sin0: float  # sin(alpha0)
-    cos0: float  # cos(alpha0)
-    axial0: float  # A0 sin(alpha0): unloaded axial groove-centre offset [m]
-    radial0: float  # A0 cos(alpha0) - r_L: unloaded radial offset [m]
+__all__ = ["CAGES", "BallBearing"]
 
 
 class _Constants(NamedTuple):
@@ -141,91 +130,10 @@ class BallBearing:
     cage: str = "rotating"
     groove_center_radius: float | None = None
     tag: str | None = None
-    _geo: _Resolved = field(init=False, repr=False)
+    _geo: ResolvedGeometry = field(init=False, repr=False)
 
     def __post_init__(self) -> None:
-        where = self.label
-        if (isinstance(self.n_balls, bool) or not isinstance(self.n_balls, int | np.integer)
-                or self.n_balls < 1):
-            raise ModelError(f"n_balls must be an integer >= 1, got {self.n_balls!r}", where)
-        for key in ("pitch_diameter", "ball_diameter", "Kn", "contact_angle", "exponent",
-                    "psi0"):
-            _finite(getattr(self, key), key, where)
-        if not 0.0 < self.ball_diameter < self.pitch_diameter:
-            raise ModelError(f"ball_diameter {self.ball_diameter} m must be in (0, "
-                             f"pitch_diameter {self.pitch_diameter} m)", where)
-        if self.Kn <= 0:
-            raise ModelError(f"Kn must be positive, got {self.Kn}", where)
-        if self.exponent < 1.0:
-            raise ModelError(f"exponent must be >= 1 (3/2 for balls; below 1 the contact "
-                             f"stiffness is infinite at first contact), got {self.exponent}",
-                             where)
-        if not 0.0 <= self.contact_angle <= 0.5 * math.pi:
-            raise ModelError(f"contact_angle {self.contact_angle} rad "
-                             f"({math.degrees(self.contact_angle):.4g} deg) outside "
-                             "[0, 90] deg (give it in radians)", where)
-        if self.cage not in CAGES:
-            raise TypeError(f"{where}: cage must be one of {CAGES}, got {self.cage!r}")
-        a0 = self._resolve_a0(where)
-        clearance = self._resolve_clearance(where)
-        arm = self._resolve_arm(a0, where)
-        kappa = (geometry.cage_ratio(self.ball_diameter, self.pitch_diameter,
-                                     self.contact_angle) if self.cage == "rotating" else 0.0)
-        sin0, cos0 = math.sin(self.contact_angle), math.cos(self.contact_angle)
-        object.__setattr__(self, "_geo", _Resolved(a0, clearance, arm, kappa, sin0, cos0,
-                                                   a0 * sin0, a0 * cos0 - clearance))
-
-    def _resolve_a0(self, where: str) -> float:
-        if (self.f_i is None) != (self.f_o is None):
-            raise ModelError("give both groove curvature factors f_i and f_o", where)
-        from_f = None
-        if self.f_i is not None and self.f_o is not None:
-            for key in ("f_i", "f_o"):
-                value = _finite(getattr(self, key), key, where)
-                if value <= 0.5:
-                    raise ModelError(f"{key} = {value} must be > 0.5 (groove radius larger "
-                                     "than the ball radius)", where)
-            from_f = (self.f_i + self.f_o - 1.0) * self.ball_diameter
-        if self.A0 is None:
-            if from_f is None:
-                raise ModelError("give A0 or the groove curvature factors f_i and f_o", where)
-            return from_f
-        a0 = _finite(self.A0, "A0", where)
-        if not 0.0 < a0 < self.ball_diameter:
-            raise ModelError(f"A0 = {a0} m must be in (0, ball_diameter)", where)
-        if from_f is not None and not math.isclose(a0, from_f, rel_tol=1e-9):
-            raise ModelError(f"A0 = {a0} m disagrees with (f_i + f_o - 1) d = {from_f} m",
-                             where)
-        return a0
-
-    def _resolve_clearance(self, where: str) -> float:
-        radial = self.radial_clearance
-        diametral = self.diametral_clearance
-        if radial is None:
-            radial = 0.0 if diametral is None else 0.5 * _finite(diametral,
-                                                                  "diametral_clearance", where)
-        else:
-            _finite(radial, "radial_clearance", where)
-            if diametral is not None and not math.isclose(2.0 * radial, diametral,
-                                                          rel_tol=1e-9, abs_tol=1e-15):
-                raise ModelError(f"diametral_clearance {diametral} m must equal 2 x "
-                                 f"radial_clearance {radial} m (give one of them)", where)
-        if abs(radial) >= 0.5 * self.ball_diameter:
-            raise ModelError(f"radial clearance {radial} m exceeds the ball radius: check "
-                             "the units (metres)", where)
-        problem = geometry.interference_problem(radial, self.ball_diameter, "ball")
-        if problem is not None:
-            raise ModelError(problem, where)
-        return float(radial)
-
-    def _resolve_arm(self, a0: float, where: str) -> float:
-        if self.groove_center_radius is not None:
-            arm = _finite(self.groove_center_radius, "groove_center_radius", where)
-            if arm <= 0:
-                raise ModelError(f"groove_center_radius must be positive, got {arm}", where)
-            return arm
-        offset = 0.5 * a0 if self.f_i is None else (self.f_i - 0.5) * self.ball_diameter
-        return 0.5 * self.pitch_diameter + offset * math.cos(self.contact_angle)
+        object.__setattr__(self, "_geo", resolve_geometry(self))
 
     @classmethod
     def from_geometry(cls, *, n_balls: int, pitch_diameter: float, ball_diameter: float,
@@ -408,15 +316,3 @@ def _rows(axial: FloatArray, radial: FloatArray, dist: FloatArray, load: FloatAr
     np.multiply(load, cos_a, out=rows[..., 3, :])  # radial force
     np.multiply(load, sin_a, out=rows[..., 4, :])  # axial force
     return rows, sin_a, cos_a
-
-
-def _finite(value: object, key: str, where: str) -> float:
-    if isinstance(value, str | bytes | bool):  # SI numbers only; units are read at the edges
-        raise ModelError(f"{key} must be a number, got {value!r}", where)
-    try:
-        number = float(value)  # type: ignore[arg-type]
-    except (TypeError, ValueError):
-        raise ModelError(f"{key} must be a number, got {value!r}", where) from None
-    if not math.isfinite(number):
-        raise ModelError(f"{key} must be finite, got {value!r}", where)
-    return number

@@ -30,13 +30,17 @@ import dataclasses
 import math
 from dataclasses import dataclass, field
 from functools import cached_property
-from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike
 
 from rotorsim.elements.rolling.condensation import InnerNewton
 from rotorsim.elements.rolling.contact.hertz_line import LINE_EXPONENT
+from rotorsim.elements.rolling.flexible_ring.checks import (
+    CAGE_LAWS,
+    check_parameters,
+    ring_sections,
+)
 from rotorsim.elements.rolling.flexible_ring.geometry import (
     FloatArray,
     RingSection,
@@ -46,30 +50,11 @@ from rotorsim.elements.rolling.flexible_ring.geometry import (
 from rotorsim.elements.rolling.flexible_ring.roller import RollerPotential
 from rotorsim.elements.rolling.flexible_ring.solve import solve_state
 from rotorsim.elements.rolling.flexible_ring.state import FlexibleRingState
-from rotorsim.elements.rolling.geometry import (
-    cage_ratio,
-    element_angles,
-    interference_problem,
-)
-from rotorsim.elements.rolling.roller.profile import (
-    CircularCrown,
-    LogarithmicProfile,
-    RollerProfile,
-    StraightProfile,
-)
+from rotorsim.elements.rolling.geometry import cage_ratio, element_angles
+from rotorsim.elements.rolling.roller.profile import RollerProfile, StraightProfile
 from rotorsim.errors import ModelError
 
-CAGE_LAWS = ("rotating", "fixed")
-"""Roller placement: cage turning at ``kappa phi`` or rollers held at ``psi0 + 2 pi j/N``."""
-
-
-def _number(value: Any, name: str, where: str, *, positive: bool = False) -> float:
-    ok = not isinstance(value, bool) and isinstance(value, int | float | np.floating) \
-        and math.isfinite(value) and (value > 0.0 or not positive)
-    if not ok:
-        kind = "a positive finite" if positive else "a finite"
-        raise ModelError(f"{name} must be {kind} number, got {value!r}", where)
-    return float(value)
+__all__ = ["CAGE_LAWS", "FlexibleRingRollerBearing"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -177,41 +162,7 @@ class FlexibleRingRollerBearing:
     tag: str = ""
 
     def __post_init__(self) -> None:
-        where = self.label
-        if isinstance(self.n_rollers, bool) or not isinstance(self.n_rollers, int | np.integer) \
-                or self.n_rollers < 1:
-            raise ModelError(f"n_rollers must be an integer >= 1, got {self.n_rollers!r}", where)
-        r_p = _number(self.pitch_radius, "pitch_radius", where, positive=True)
-        r_b = _number(self.roller_radius, "roller_radius", where, positive=True)
-        _number(self.effective_length, "effective_length", where, positive=True)
-        if r_b >= r_p:
-            raise ModelError(f"roller_radius {r_b} m must be smaller than pitch_radius {r_p} m",
-                             where)
-        g = _number(self.diametral_clearance, "diametral_clearance", where)
-        if abs(g) >= r_b:
-            raise ModelError(f"diametral_clearance {g} m exceeds the roller radius: check the "
-                             "units (metres)", where)
-        problem = interference_problem(0.5 * g, 2.0 * r_b, "roller")
-        if problem is not None:
-            raise ModelError(problem, where)
-        for name in ("E", "rho"):
-            _number(getattr(self, name), name, where, positive=True)
-        for name in ("ring_modulus", "roller_mass", "contact_constant", "cage_ratio"):
-            if getattr(self, name) is not None:
-                _number(getattr(self, name), name, where, positive=name != "cage_ratio")
-        if _number(self.exponent, "exponent", where) < 1.0:
-            raise ModelError(f"exponent must be >= 1, got {self.exponent!r}", where)
-        for name in ("psi0", "speed"):
-            _number(getattr(self, name), name, where)
-        if self.cage not in CAGE_LAWS:
-            raise TypeError(f"{where}: unknown cage {self.cage!r}; valid: {CAGE_LAWS}")
-        if not isinstance(self.profile, StraightProfile | CircularCrown | LogarithmicProfile):
-            raise TypeError(f"{where}: profile must be a StraightProfile, CircularCrown or "
-                            f"LogarithmicProfile, got {type(self.profile).__name__}")
-        self.slices  # noqa: B018 - validates the slicing
-        self.sections  # noqa: B018 - validates the rings
-        self.newton  # noqa: B018 - validates tol and max_iter
-        line_contact_constant(self.E, self.nu, self.effective_length, self.exponent)
+        check_parameters(self)
 
     # ------------------------------------------------------------------ geometry
     @property
@@ -228,35 +179,7 @@ class FlexibleRingRollerBearing:
     @cached_property
     def sections(self) -> tuple[RingSection | None, RingSection | None]:
         """Inner and outer ring sections (``None`` for rigid rings without geometry)."""
-        where = self.label
-        inner_race = self.pitch_radius - self.roller_radius
-        outer_race = self.pitch_radius + self.roller_radius
-        out: list[RingSection | None] = []
-        for side, given, radius, race in (
-                ("inner", self.inner_ring, self.shaft_radius, inner_race),
-                ("outer", self.outer_ring, self.housing_radius, outer_race)):
-            name = "shaft_radius" if side == "inner" else "housing_radius"
-            if given is not None and radius is not None:
-                raise ModelError(f"give {side}_ring or {name}, not both", where)
-            if radius is not None:
-                r = _number(radius, name, where, positive=True)
-                if side == "inner" and r >= race:
-                    raise ModelError(f"shaft_radius R_s = {r} m must be smaller than the inner "
-                                     f"raceway radius R_p - R_b = {race:.6g} m", where)
-                if side == "outer" and r <= race:
-                    raise ModelError(f"housing_radius R_h = {r} m must exceed the outer "
-                                     f"raceway radius R_p + R_b = {race:.6g} m", where)
-                if self.ring_width is None:
-                    raise ModelError(f"ring_width b is needed with {name}", where)
-                lo, hi = (r, race) if side == "inner" else (race, r)
-                given = RingSection.rectangular(lo, hi, self.ring_width, where)
-            if given is None and not self.rigid_rings:
-                raise ModelError(f"the {side} ring needs {name} and ring_width, or "
-                                 f"{side}_ring=RingSection(...) (or rigid_rings=True)", where)
-            if given is not None:
-                given.validate(f"{where} {side}_ring")
-            out.append(given)
-        return out[0], out[1]
+        return ring_sections(self)
 
     @property
     def n_elements(self) -> int:

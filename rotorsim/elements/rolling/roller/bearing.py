@@ -40,14 +40,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from rotorsim.elements.rolling.contact.hertz_line import (
-    LINE_EXPONENT,
-    _slice_sums,
-    _tilted,
-    line_moments,
-    slice_weights,
-    tilted_line_integrals,
-)
+from rotorsim.elements.rolling.contact.hertz_line import LINE_EXPONENT
 from rotorsim.elements.rolling.geometry import cage_ratio, element_angles
 from rotorsim.elements.rolling.roller.checks import (
     check_options,
@@ -56,7 +49,6 @@ from rotorsim.elements.rolling.roller.checks import (
     resolve_kn,
 )
 from rotorsim.elements.rolling.roller.integrals import (
-    LineIntegrals,
     RollerConstants,
     RollerLoads,
     assemble_tangent,
@@ -66,11 +58,8 @@ from rotorsim.elements.rolling.roller.integrals import (
     tilt_limits,
     unit_load_directions,
 )
-from rotorsim.elements.rolling.roller.profile import (
-    RollerProfile,
-    StraightProfile,
-    slice_centres,
-)
+from rotorsim.elements.rolling.roller.line_load import RollerLineLoad
+from rotorsim.elements.rolling.roller.profile import RollerProfile, StraightProfile
 from rotorsim.elements.rolling.state import BearingState
 from rotorsim.errors import ModelError
 
@@ -221,12 +210,10 @@ class RollerBearing:
         return element_angles(self.n_rollers, phi, self.kappa, self.psi0)
 
     @cached_property
-    def _slice_xi(self) -> FloatArray:
-        return slice_centres(int(self.n_slices))
-
-    @cached_property
-    def _slice_drop(self) -> FloatArray:
-        return self.profile.drop(self._slice_xi, self.effective_length)
+    def _line(self) -> RollerLineLoad:
+        """The line load along the rollers for :attr:`model` (:mod:`.line_load`)."""
+        return RollerLineLoad(self.model, self.exponent, self.n_slices, self.profile,
+                              self.effective_length)
 
     def _inputs(self, delta: ArrayLike, psi: ArrayLike) -> tuple[FloatArray, FloatArray]:
         """Check shapes; return ``delta (S, 5)`` and ``psi (S, Z)``."""
@@ -275,33 +262,7 @@ class RollerBearing:
         v = h.ca0 * (x * c + y * s - h.clearance) + h.sa0 * z + h.r_sa0 * (rx_s - ry_c)
         return v, h.length * (ry_c - rx_s)
 
-    # ------------------------------------------------------------------ integrals
-    def _integrals(self, v: FloatArray, lw: FloatArray, energy_only: bool = False
-                   ) -> LineIntegrals:
-        n = float(self.exponent)
-        if self.model == "tilt_integral":
-            return LineIntegrals(*tilted_line_integrals(v, lw, n, energy_only))
-        return LineIntegrals(*line_moments(self._slice_deflection(v, lw), self._slice_xi, n,
-                                           energy_only))
-
-    def _load_integrals(self, v: FloatArray, lw: FloatArray) -> tuple[FloatArray, ...]:
-        """``int delta^n``, ``int xi delta^n`` and ``int xi^p delta^(n-1)`` (p = 0, 1, 2)
-        (..., Z) of :meth:`_integrals`, without the energy and the peak deflection."""
-        n = float(self.exponent)
-        if self.model == "tilt_integral":
-            return _tilted(v, lw, n, True, False)[1:6]
-        return _slice_sums(self._slice_deflection(v, lw), self._slice_weights, n, False)[1:6]
-
-    def _slice_deflection(self, v: FloatArray, lw: FloatArray) -> FloatArray:
-        """``V + xi_k L omega - c(xi_k)`` at the slice centres (..., Z, K)."""
-        return np.asarray(v[..., None] + lw[..., None] * self._slice_xi - self._slice_drop)
-
-    @cached_property
-    def _slice_weights(self) -> FloatArray:
-        weights = slice_weights(self._slice_xi)
-        weights.flags.writeable = False
-        return weights
-
+    # ------------------------------------------------------------------ force
     def _force_stiffness(self, d: FloatArray, c: FloatArray, s: FloatArray
                          ) -> tuple[FloatArray, FloatArray]:
         """Force (..., S, 5) and exact tangent (..., S, 5, 5) only, as :meth:`state`,
@@ -324,7 +285,7 @@ class RollerBearing:
     def _force_block(self, d: FloatArray, c: FloatArray, s: FloatArray
                      ) -> tuple[FloatArray, FloatArray]:
         h = self._hot
-        rows = roller_rows(h, *self._load_integrals(*self._approach(d, c, s)))
+        rows = roller_rows(h, *self._line.load_integrals(*self._approach(d, c, s)))
         force, tangent = force_stiffness(rows, c, s, h.ca, h.sa)
         return force, h.n_kn * tangent
 
@@ -335,7 +296,7 @@ class RollerBearing:
         parts = []
         for block in self._blocks(d.shape[0]):
             _, _, v, lw = self._kinematics(d[block], p[block])
-            parts.append(self._integrals(v, lw, energy_only=True).energy.sum(axis=1))
+            parts.append(self._line.integrals(v, lw, energy_only=True).energy.sum(axis=1))
         return np.asarray(self.kn * np.concatenate(parts))
 
     def state(self, delta: ArrayLike, psi: ArrayLike) -> BearingState:
@@ -357,7 +318,7 @@ class RollerBearing:
 
     def _state_block(self, d: FloatArray, p: FloatArray) -> BearingState:
         c, s, v, lw = self._kinematics(d, p)
-        ints = self._integrals(v, lw)
+        ints = self._line.integrals(v, lw)
         h = self._hot
         rows = roller_rows(h, ints.load, ints.load_moment, ints.tangent0, ints.tangent1,
                            ints.tangent2)
@@ -385,19 +346,19 @@ class RollerBearing:
         array([ 9.25,  9.75, 10.25, 10.75])
         """
         _, _, v, lw = self._kinematics(*self._inputs(delta, psi))
-        return self._slice_deflection(v, lw)
+        return self._line.slice_deflection(v, lw)
 
     def roller_loads(self, delta: ArrayLike, psi: ArrayLike) -> RollerLoads:
         """Per-roller load, eccentricity (seed 000 eq 9) and loaded zone (eq 8)."""
         _, _, v, lw = self._kinematics(*self._inputs(delta, psi))
-        ints = self._integrals(v, lw)
+        ints = self._line.integrals(v, lw)
         q = self.kn * ints.load
         loaded = ints.load > 0.0
         ecc = np.where(loaded, self.effective_length * ints.load_moment
                        / np.where(loaded, ints.load, 1.0), 0.0)
         if self.model == "tilt_integral":
             return RollerLoads(q, ecc, tilt_limits(v, lw))
-        xi, dk = self._slice_xi, self._slice_deflection(v, lw)
+        xi, dk = self._line.xi, self._line.slice_deflection(v, lw)
         pos = np.maximum(dk, 0.0)
         slice_load = (self.kn / self.n_slices) * pos**self.exponent
         half = 0.5 / self.n_slices

@@ -61,8 +61,8 @@ def _evaluate(x: FloatArray, mask: Mask | None, model: Any, v: FloatArray, lw: F
     if mask is not None:
         v, lw, fn = v[mask], lw[mask], fn[mask]
     a2, b2 = 2.0 * x[..., 0], 2.0 * x[..., 1]
-    inner = model._integrals(2.0 * v - a2, 2.0 * lw - b2)
-    outer = model._integrals(a2, b2)
+    inner = model._line.integrals(2.0 * v - a2, 2.0 * lw - b2)
+    outer = model._line.integrals(a2, b2)
     kn, n = model.kn, float(model.exponent)
     energy = 0.5 * kn * (inner.energy + outer.energy) - fn * x[..., 0]
     grad = np.stack([kn * (outer.load - inner.load) - fn,
@@ -95,8 +95,8 @@ def _peak(model: Any, v: FloatArray, lw: FloatArray) -> FloatArray:
     """Largest deflection ``max_xi (v + xi lw - c(xi))`` along each roller [m]."""
     if model.model == "tilt_integral":
         return np.asarray(v + 0.5 * np.abs(lw))
-    return np.asarray((v[..., None] + lw[..., None] * model._slice_xi
-                       - model._slice_drop).max(axis=-1))
+    return np.asarray((v[..., None] + lw[..., None] * model._line.xi
+                       - model._line.drop).max(axis=-1))
 
 
 def _block_state(model: Any, d: FloatArray, p: FloatArray, fc: FloatArray,

@@ -1,0 +1,116 @@
+"""Specs of the long analyses, each of which can resume: time integration and
+harmonic-balance branches (checkpoint files, :class:`RestartableSpec`) and parameter
+sweeps (their results store is the checkpoint).
+
+Transients and periodic branches run with the rolling bearings' full nonlinear force.
+Each spec holds the options of one ``rotorsim`` verb in SI units; the common reporting
+options are those of :class:`~rotorsim.io.analysis_spec.AnalysisSpec`.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import ClassVar
+
+from rotorsim.io.analysis_spec import AnalysisSpec, Grid, Unbalance
+
+
+@dataclass(frozen=True, kw_only=True)
+class RestartableSpec(AnalysisSpec):
+    """Checkpoint options of a long analysis (a transient or a periodic branch).
+
+    Parameters
+    ----------
+    checkpoint : bool
+        Write a checkpoint file (``<out>/<model>/<analysis>.checkpoint.h5`` on the command
+        line) every ``checkpoint_every`` steps or branch points and at the end.
+    checkpoint_every : int, optional
+        Steps (transient, default 1000) or branch points (periodic, default 25) between
+        checkpoints.
+    resume : bool
+        Continue from that checkpoint when it exists (same model and options, else a
+        :class:`~rotorsim.time_integration.checkpoint.CheckpointError`); the result equals
+        that of an uninterrupted run.
+    """
+
+    checkpoint: bool = False
+    checkpoint_every: int | None = None
+    resume: bool = False
+
+
+@dataclass(frozen=True, kw_only=True)
+class TransientSpec(RestartableSpec):
+    """Time integration: :func:`rotorsim.transient` over ``t_end`` [s] with step ``dt`` [s]
+    at constant ``speed`` [rad/s], or a linear ramp to ``speed_stop`` over ``ramp_time``
+    [s] (default ``t_end``); ``unbalance=None`` uses the model's ``[[loads.unbalance]]``;
+    rolling bearings act with their full nonlinear force. ``on_failure="stop"`` (default)
+    keeps the run up to a failed step with status ``NOT_CONVERGED``; ``"raise"`` raises."""
+
+    type: ClassVar[str] = "transient"
+    t_end: float
+    dt: float
+    speed: float = 0.0
+    speed_stop: float | None = None
+    ramp_time: float | None = None
+    method: str = "average_acceleration"
+    every: int = 1
+    initial: str = "static"
+    on_failure: str = "stop"
+    unbalance: Unbalance | None = None
+
+
+@dataclass(frozen=True, kw_only=True)
+class PeriodicSpec(RestartableSpec):
+    """Harmonic-balance branch over the speed range ``start`` .. ``stop`` [rad/s]:
+    :func:`rotorsim.periodic` with ``harmonics`` harmonics, Floquet stability
+    (``stability="none"`` skips it) and bifurcations; ``unbalance=None`` uses the model's
+    ``[[loads.unbalance]]``; rolling bearings act with their full nonlinear force."""
+
+    type: ClassVar[str] = "periodic"
+    start: float
+    stop: float
+    harmonics: int = 10
+    samples: int | None = None
+    max_points: int = 500
+    max_step: float = 0.02
+    varying_compliance: bool | None = None
+    stability: str = "auto"
+    unbalance: Unbalance | None = None
+
+
+@dataclass(frozen=True, kw_only=True)
+class PeriodicParameterSpec(RestartableSpec):
+    """Harmonic-balance branch at the fixed ``speed`` [rad/s] over the model parameter
+    ``vary`` from ``start`` to ``stop`` (SI): :func:`rotorsim.periodic_parameter` with
+    ``vary`` a key path of the model file
+    (:class:`~rotorsim.io.model_parameter.ModelParameter`), ``"loads"`` (a factor on the
+    model's point loads) or ``"forcing"`` (a factor on the unbalance)."""
+
+    type: ClassVar[str] = "periodic_parameter"
+    vary: str
+    speed: float
+    start: float
+    stop: float
+    harmonics: int = 10
+    samples: int | None = None
+    max_points: int = 200
+    max_step: float = 0.05
+    stability: str = "auto"
+    unbalance: Unbalance | None = None
+
+
+@dataclass(frozen=True, kw_only=True)
+class SweepSpec(AnalysisSpec):
+    """Parameter study :func:`rotorsim.sweep`: support stiffness [N/m] of ``bearings``
+    (indices, default all) over ``stiffness`` times spin speeds [rad/s] over ``speeds``
+    (default 0), evaluating ``"min_log_dec"`` or ``"critical_speeds"`` with ``num_modes``.
+    Points go to the results file as they finish (the file is the checkpoint); ``resume``
+    continues from it."""
+
+    type: ClassVar[str] = "sweep"
+    stiffness: Grid
+    speeds: Grid | None = None
+    bearings: tuple[int, ...] | None = None
+    evaluate: str = "min_log_dec"
+    num_modes: int = 6
+    resume: bool = False
