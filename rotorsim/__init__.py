@@ -38,7 +38,11 @@ from rotorsim.analyses.linear.modal import modal
 from rotorsim.analyses.periodic.excitation import HarmonicBase
 from rotorsim.analyses.periodic.parameter import periodic_parameter
 from rotorsim.analyses.periodic.periodic import periodic
-from rotorsim.analyses.statics.bearing_statics import bearing_equilibrium, stiffness_over_pass
+from rotorsim.analyses.statics.bearing_statics import (
+    bearing_equilibrium,
+    linearize_at_load,
+    stiffness_over_pass,
+)
 from rotorsim.analyses.statics.linearized_rotor import (
     LinearizationPoint,
     LinearizedRotor,
@@ -178,6 +182,7 @@ __all__ = [
     "ellipse",
     "export_vtk",
     "frequency_response",
+    "linearize_at_load",
     "linearize_rolling_bearings",
     "load",
     "load_model",

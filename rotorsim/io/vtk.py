@@ -42,7 +42,6 @@ from __future__ import annotations
 
 import base64
 import os
-import xml.etree.ElementTree as ET
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -336,6 +335,8 @@ def _add_field_data(path: Path, field_data: dict[str, NDArray[Any]]) -> None:
     """Insert a ``FieldData`` block into a VTU written by meshio (whose VTU writer drops
     field data). Arrays are Float64 in VTK's uncompressed binary form: base64 of a UInt32
     byte count followed by the values, native byte order as declared in the file."""
+    import xml.etree.ElementTree as ET  # slow to import: on first use
+
     tree = ET.parse(path)
     grid = tree.getroot().find("UnstructuredGrid")
     if grid is None:
@@ -353,6 +354,8 @@ def _add_field_data(path: Path, field_data: dict[str, NDArray[Any]]) -> None:
 
 def _write_pvd(path: Path, files: list[Path], times: FloatArray | None = None) -> None:
     """Collection of ``files``; time step = index, or ``times`` [s] (exact repr)."""
+    import xml.etree.ElementTree as ET  # slow to import: on first use
+
     root = ET.Element("VTKFile", type="Collection", version="0.1", byte_order="LittleEndian")
     collection = ET.SubElement(root, "Collection")
     for k, file in enumerate(files):

@@ -8,7 +8,6 @@ from typing import Any
 import numpy as np
 from numpy.polynomial import polynomial as poly
 from numpy.typing import NDArray
-from scipy.optimize import brentq
 
 from rotorsim.results.critical_speeds import (
     CriticalSpeeds,
@@ -158,4 +157,6 @@ def _root_in_interval(s: FloatArray, f: FloatArray, good: NDArray[np.bool_], i: 
     coef = poly.polyfit(x, y, deg=x.size - 1)
     if poly.polyval(0.0, coef) * poly.polyval(1.0, coef) >= 0.0:  # rounding: use the line
         return float(f[i] / (f[i] - f[i + 1]))
+    from scipy.optimize import brentq  # slow to import: on first use
+
     return float(brentq(lambda t: float(poly.polyval(t, coef)), 0.0, 1.0, xtol=1e-14))

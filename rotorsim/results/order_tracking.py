@@ -8,10 +8,10 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 from numpy.typing import ArrayLike
-from scipy.interpolate import CubicSpline
 
 from rotorsim.errors import ModelError
 from rotorsim.results.sampling import (
@@ -22,6 +22,9 @@ from rotorsim.results.sampling import (
     window_samples,
 )
 from rotorsim.results.spectra import single_sided
+
+if TYPE_CHECKING:
+    from scipy.interpolate import CubicSpline
 
 
 @dataclass(frozen=True, eq=False)
@@ -152,6 +155,8 @@ def waterfall(t: ArrayLike, x: ArrayLike, speed: ArrayLike, *, segment: float,
 def _angle_grid(t: FloatArray, angle: FloatArray, revolutions: int, per_rev: int
                 ) -> tuple[FloatArray, CubicSpline]:
     """Uniform angles of whole blocks from ``angle[0]``, and the spline ``t(angle)``."""
+    from scipy.interpolate import CubicSpline  # slow to import: on first use
+
     n_blocks = int((angle[-1] - angle[0]) / (2.0 * math.pi * revolutions) + 1e-9)
     if n_blocks < 1:
         raise ModelError(f"the record turns {(angle[-1] - angle[0]) / (2 * math.pi):.3g} "
@@ -223,6 +228,8 @@ def order_track(t: ArrayLike, x: ArrayLike, angle: ArrayLike, orders: ArrayLike,
     if R < 1 or per_rev < 4:
         raise ModelError(f"need revolutions_per_block >= 1 and samples_per_revolution >= 4, "
                          f"got {R} and {per_rev}", "order_track")
+    from scipy.interpolate import CubicSpline  # slow to import: on first use
+
     grid, time_of = _angle_grid(t, angle, R, per_rev)
     t_grid = time_of(grid[:-1])
     x_grid = CubicSpline(t, x)(t_grid) if interpolation == "cubic" else np.interp(t_grid, t, x)

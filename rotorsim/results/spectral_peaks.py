@@ -11,7 +11,6 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
-from scipy import optimize
 
 from rotorsim.errors import ModelError
 from rotorsim.results.sampling import FloatArray, window_samples
@@ -70,6 +69,8 @@ def _ratio_offset(w: FloatArray, ratio: float) -> float:
     lo, hi = gap(0.0), gap(0.5)
     if lo >= 0.0 or hi <= 0.0:  # outside the single-sinusoid range: noise or two peaks
         return 0.0 if lo >= 0.0 else 0.5
+    from scipy import optimize  # slow to import: on first use
+
     return float(optimize.brentq(gap, 0.0, 0.5, xtol=1e-13))
 
 

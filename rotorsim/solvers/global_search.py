@@ -17,7 +17,6 @@ from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
-from scipy.stats import qmc
 
 from rotorsim.errors import ModelError
 from rotorsim.solvers.minimize import BatchEnergyFunction, FloatArray, LocalMinimum, scales
@@ -229,6 +228,8 @@ class GlobalSearch:
                 extra: ArrayLike | None) -> FloatArray:
         if self.n_starts < 1:
             raise ModelError(f"n_starts must be >= 1, got {self.n_starts}", "GlobalSearch")
+        from scipy.stats import qmc  # scipy.stats takes ~0.4 s to import: on first use
+
         m = int(np.ceil(np.log2(self.n_starts)))
         unit = qmc.Sobol(lo.size, scramble=True, seed=self.seed).random_base2(m)
         points = lo + unit[: self.n_starts] * (hi - lo)

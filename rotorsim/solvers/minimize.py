@@ -22,7 +22,6 @@ from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
-import scipy.optimize as so
 from numpy.typing import ArrayLike, NDArray
 
 from rotorsim.errors import ConvergenceError, ModelError
@@ -123,6 +122,8 @@ def minimize_energy(fun: EnergyFunction, x0: ArrayLike, *, x_scale: ArrayLike | 
                np.asarray(h) * np.outer(xs, xs) / energy_scale)
         cache["last"] = (y.copy(), out)
         return out
+
+    import scipy.optimize as so  # slow to import: on first use
 
     options: dict[str, float | int] = {"maxiter": max_iter}
     options["xtol" if method == "Newton-CG" else "gtol"] = tol

@@ -12,10 +12,12 @@ from scipy.optimize import brentq
 
 from rotorsim.analyses.statics.bearing_statics import (
     bearing_equilibrium,
+    linearize_at_load,
     linearized_bearings,
     stiffness_over_pass,
 )
 from rotorsim.elements.rolling.ball.bearing import BallBearing
+from rotorsim.elements.rolling.element import RollingBearing
 from rotorsim.elements.rolling.roller.bearing import RollerBearing
 from rotorsim.errors import ModelError
 
@@ -171,6 +173,22 @@ def test_bad_input():
         bearing_equilibrium(b, [0, 0, 1, 0, 0], x0=[0, 0, math.nan, 0, 0])
     with pytest.raises(ModelError):
         linearized_bearings([], [[0, 0, 1, 0, 0]])
+
+
+def test_linearize_at_load_is_the_element_at_the_equilibrium():
+    """The analysis solves the equilibrium (options passed on) and the element evaluates
+    the state found: the same matrices as linearising the element at that displacement."""
+    b = _bearing("ball", 20.0)
+    element = RollingBearing(b, n=0, contact_damping="proportional", damping_factor=2e-5)
+    load = [400.0, -100.0, 3000.0, 0.0, 2.0]
+    lin = linearize_at_load(element, load, phi=0.2, method="energy")
+    eq = bearing_equilibrium(b, load, phi=0.2, method="energy")
+    assert np.array_equal(lin.stiffness_matrix, eq.stiffness)
+    assert np.array_equal(lin.damping_matrix, 2e-5 * eq.stiffness)
+    at = element.linearize(displacement=eq.displacement, phi=0.2)
+    assert np.allclose(at.stiffness_matrix, lin.stiffness_matrix, rtol=1e-13, atol=0.0)
+    with pytest.raises(TypeError, match="bearing_equilibrium: unknown keyword 'tolerance'"):
+        linearize_at_load(element, load, tolerance=1e-8)
 
 
 def test_zero_load():

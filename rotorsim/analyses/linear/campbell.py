@@ -13,7 +13,6 @@ from typing import Any, Literal
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
-from scipy.optimize import linear_sum_assignment
 
 from rotorsim.analyses.keyword_check import checked_keywords
 from rotorsim.analyses.linear.argument_checks import (
@@ -224,6 +223,8 @@ def _assign(previous: tuple[ComplexArray, ComplexArray] | None, cand: _Candidate
     scale = np.maximum(np.abs(lam_prev), 1e-300)[:, None]
     change = np.abs(cand.eigenvalues[None, :] - lam_prev[:, None]) / scale
     cost = (1.0 - similarity) + np.where(np.isfinite(change), change, 1e6)
+    from scipy.optimize import linear_sum_assignment  # slow to import: on first use
+
     rows, cols = linear_sum_assignment(cost)
     take[rows] = cols
     quality[rows] = similarity[rows, cols]

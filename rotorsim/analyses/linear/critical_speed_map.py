@@ -8,8 +8,6 @@ from typing import Literal
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
-from scipy.interpolate import CubicSpline
-from scipy.optimize import brentq
 
 from rotorsim.analyses.keyword_check import checked_keywords
 from rotorsim.analyses.linear.argument_checks import NEGATIVE_SPEED_HINT, check_num_modes
@@ -217,6 +215,9 @@ def _curve_speeds(sample: FloatArray | None, table: FloatArray, curves: list[int
 
 def _intersections(rotor: Rotor, grid: FloatArray, table: FloatArray, curves: list[int],
                    sample: FloatArray) -> MapIntersections:
+    from scipy.interpolate import CubicSpline  # slow to import: on first use
+    from scipy.optimize import brentq
+
     rows: list[tuple[int, str, int, float, float]] = []
     for j in range(table.shape[1]):
         good = np.isfinite(table[:, j])

@@ -22,7 +22,6 @@ import scipy.linalg as sl
 import scipy.sparse as sp
 import scipy.sparse.linalg as spl
 from numpy.typing import ArrayLike, NDArray
-from scipy.optimize import brentq
 
 from rotorsim.analyses.keyword_check import checked_keywords
 from rotorsim.analyses.linear.argument_checks import check_num_modes, check_sparse
@@ -307,6 +306,8 @@ def _shift_invert(K: sp.csr_matrix, B: sp.csr_matrix, n_eig: int, sigma: float,
 
 
 def _fixed_points(system: RotorSystem, solve: Any, k: float, num_modes: int) -> _Modes:
+    from scipy.optimize import brentq  # slow to import: on first use
+
     cache: dict[float, _Modes] = {}
 
     def frozen(speed: float) -> _Modes:

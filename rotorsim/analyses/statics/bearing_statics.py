@@ -29,6 +29,10 @@ deflection is a convex function of ``delta``, raised to a power ``>= 1``), so a
 physically meaningful load has a single minimum and the three methods agree; several minima
 appear with a destabilising ``load_stiffness`` (e.g. unbalanced magnetic pull), which the
 global search resolves.
+
+:func:`linearize_at_load` linearises a 2-node bearing element at the equilibrium under a
+load: the equilibrium is found here, the element only evaluates its tangent at the
+displacement found (physics never calls analyses).
 """
 
 from __future__ import annotations
@@ -51,6 +55,7 @@ from rotorsim.analyses.statics.bearing_problem import (
     solve_global,
     solve_local,
 )
+from rotorsim.elements.linear_bearing import BearingElement
 from rotorsim.errors import ConvergenceError, ModelError, Status
 from rotorsim.results.bearing import (
     BearingEquilibriumResult,
@@ -271,10 +276,59 @@ def _pass_point(setup: Any, method: str, x0: FloatArray | None, tol: float, max_
     raise failure
 
 
+def linearize_at_load(element: Any, load: ArrayLike, *, phi: float = 0.0,
+                      speed: float | None = None, frequency: float | None = None,
+                      **options: Any) -> BearingElement:
+    """Linear ``BearingElement`` of a 2-node rolling-bearing element at the equilibrium
+    under a static load (for modal, Campbell and critical-speed analyses).
+
+    Solves :func:`bearing_equilibrium` of the element's model at ``speed``
+    (``element.model_at_speed``) and linearises the element at that displacement with the
+    equilibrium's tangent (``element.linearize(displacement=..., tangent=...)``).
+
+    Parameters
+    ----------
+    element : RollingBearing or FlexibleRingBearingElement
+    load : array (5,)
+        ``[Fx, Fy, Fz, Mx, My]`` on the inner ring [N, N m].
+    phi : float
+        Shaft angle [rad] (element positions).
+    speed : float, optional
+        Shaft speed [rad/s]: the centrifugal force of the rolling elements, the
+        entrainment speed of ``"ehl"`` contact damping (required there).
+    frequency : float, optional
+        ``"ehl"``: vibration frequency [rad/s] of the damping (``RollingBearing.linearize``).
+    **options
+        Passed on to :func:`bearing_equilibrium` (``method``, ``tol``, ``max_iter``, ...).
+
+    Returns
+    -------
+    BearingElement
+        The full 5x5 tangent (and damping) at the equilibrium; same nodes and tag.
+
+    Examples
+    --------
+    >>> from rotorsim.elements.rolling.ball.bearing import BallBearing
+    >>> from rotorsim.elements.rolling.element import RollingBearing
+    >>> ball = BallBearing(n_balls=8, pitch_diameter=0.04, ball_diameter=0.008, Kn=8e9,
+    ...                    f_i=0.52, f_o=0.52)
+    >>> lin = linearize_at_load(RollingBearing(ball, n=0), [0.0, -500.0, 0.0, 0.0, 0.0])
+    >>> lin.stiffness_matrix.shape, bool(lin.stiffness_matrix[1, 1] > 0)
+    ((5, 5), True)
+    """
+    at_speed: dict[str, Any] = {} if speed is None else {"speed": speed}
+    model = element.model_at_speed(**at_speed)
+    eq = bearing_equilibrium(model, load, phi=phi, **options)
+    extra = at_speed if frequency is None else {**at_speed, "frequency": frequency}
+    return element.linearize(displacement=eq.displacement, phi=phi, tangent=eq.stiffness,
+                             **extra)
+
+
 def linearized_bearings(bearings: Sequence[Any], loads: Sequence[ArrayLike], *,
                         phi: float = 0.0, speed: float | None = None,
                         frequency: float = 0.0) -> tuple[Any, ...]:
-    """Linear ``BearingElement`` of each 2-node ``RollingBearing`` at its static load.
+    """Linear ``BearingElement`` of each 2-node ``RollingBearing`` at its static load
+    (:func:`linearize_at_load`).
 
     ``loads[i]`` is the load ``[Fx, Fy, Fz, Mx, My]`` on the inner ring of ``bearings[i]``
     (e.g. minus the bearing reaction of a static analysis). ``speed`` [rad/s] and
@@ -284,7 +338,5 @@ def linearized_bearings(bearings: Sequence[Any], loads: Sequence[ArrayLike], *,
         raise ModelError(f"{len(bearings)} bearings but {len(loads)} loads",
                          "linearized_bearings")
     options: dict[str, Any] = {} if speed is None else {"speed": speed, "frequency": frequency}
-    return tuple(b.linearize(load=f, phi=phi, **options)
+    return tuple(linearize_at_load(b, f, phi=phi, **options)
                  for b, f in zip(bearings, loads, strict=True))
-
-

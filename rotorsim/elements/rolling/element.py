@@ -323,21 +323,42 @@ class RollingBearing:
         np.multiply(k5[:, None, :, None, :], _SIGN_BLOCKS, out=out[:, :, :5, :, :5])
         return out.reshape(-1, 12, 12)
 
-    def linearize(self, load: ArrayLike | None = None, displacement: ArrayLike | None = None,
-                  phi: float = 0.0, *, speed: float | None = None, frequency: float = 0.0,
-                  **options: Any) -> BearingElement:
-        """Linear bearing element at a static equilibrium (for modal, Campbell, critical
-        speeds).
+    def model_at_speed(self, speed: float | None = None) -> Any:
+        """The bearing model whose ``state`` a linearisation at shaft speed ``speed``
+        evaluates: a :class:`CentrifugalBearing` frozen at that speed, the model itself
+        otherwise (bearing statics at speed solve the equilibrium of this model).
 
         Parameters
         ----------
-        load : array (5,), optional
-            ``[Fx, Fy, Fz, Mx, My]`` on the inner ring [N, N m]: the equilibrium
-            displacement is solved first
-            (:func:`~rotorsim.analyses.statics.bearing_statics.bearing_equilibrium`, ``options``
-            are passed on).
-        displacement : array (5,), optional
-            Relative displacement ``delta`` instead of a load.
+        speed : float, optional
+            Shaft speed [rad/s]; required (finite, non-zero) by ``"ehl"`` damping, the
+            centrifugal force of a :class:`CentrifugalBearing` (default 0).
+
+        Raises
+        ------
+        ModelError
+            ``"ehl"`` damping without a finite non-zero ``speed``.
+        """
+        if self._ehl is not None and (speed is None or not math.isfinite(speed)
+                                      or speed == 0.0):
+            raise ModelError(f"EHL damping needs the shaft speed to linearise: speed=... "
+                             f"finite and non-zero [rad/s], got {speed!r}", self.label)
+        return self.bearing.at_speed(float(speed or 0.0)) if self.centrifugal \
+            else self.bearing
+
+    def linearize(self, *, displacement: ArrayLike, phi: float = 0.0,
+                  speed: float | None = None, frequency: float = 0.0,
+                  tangent: ArrayLike | None = None) -> BearingElement:
+        """Linear bearing element at a given state (for modal, Campbell, critical speeds).
+
+        The element does not solve for an equilibrium: at a given load use
+        :func:`~rotorsim.analyses.statics.bearing_statics.linearize_at_load`, which solves
+        the bearing equilibrium and calls this method at its displacement.
+
+        Parameters
+        ----------
+        displacement : array (5,)
+            Relative displacement ``delta = [x, y, z, rx, ry]`` of the inner ring [m, rad].
         phi : float
             Shaft angle [rad] (element positions).
         speed : float, optional
@@ -346,32 +367,26 @@ class RollingBearing:
         frequency : float
             ``"ehl"``: vibration frequency ``w`` [rad/s] at which the inner and outer
             contacts are combined (seed 002 eq 3.5); 0 = quasi-static.
+        tangent : array (5, 5), optional
+            The model tangent ``dF/d delta`` at ``displacement`` when the caller has it
+            already (the ``stiffness`` of a bearing equilibrium); evaluated here otherwise.
 
         Returns
         -------
         BearingElement
-            ``stiffness_matrix`` = the 5x5 tangent at the equilibrium (``"ehl"`` with
+            ``stiffness_matrix`` = the 5x5 tangent at ``displacement`` (``"ehl"`` with
             ``ehl_stiffness``: the EHL-softened stiffness, for linear analyses only),
             ``damping_matrix`` = ``beta_c`` times the tangent (``"proportional"``), the EHL
             damping matrix (``"ehl"``) or ``None``; same nodes and tag.
         """
-        if (load is None) == (displacement is None):
-            raise ModelError("give exactly one of load and displacement", self.label)
-        if self._ehl is not None and (speed is None or not math.isfinite(speed)
-                                      or speed == 0.0):
-            raise ModelError(f"EHL damping needs the shaft speed: linearize(..., speed=...) "
-                             f"with a finite non-zero speed [rad/s], got {speed!r}", self.label)
-        model = self.bearing.at_speed(float(speed or 0.0)) if self.centrifugal \
-            else self.bearing
-        if load is not None:
-            # analyses sit downstream of elements: imported here, at call time
-            from rotorsim.analyses.statics.bearing_statics import bearing_equilibrium
-
-            eq = bearing_equilibrium(model, load, phi=phi, **options)
-            k5, d = eq.stiffness, np.asarray(eq.displacement, dtype=float).reshape(1, 5)
-        else:
-            d = np.asarray(displacement, dtype=float).reshape(1, 5)
+        model = self.model_at_speed(speed)
+        d = np.asarray(displacement, dtype=float).reshape(1, 5)
+        if tangent is None:
             k5 = model.state(d, self.bearing.element_angles(float(phi))).stiffness[0]
+        else:
+            k5 = np.asarray(tangent, dtype=float)
+            if k5.shape != (5, 5):
+                raise ModelError(f"tangent must have shape (5, 5), got {k5.shape}", self.label)
         c5 = self.beta * k5 if self.beta > 0 else None
         if self._ehl is not None:
             ehl = self._ehl.matrices(d, self.bearing.element_angles(float(phi)),

@@ -10,7 +10,11 @@ import pytest
 
 from rotorsim.analyses.linear.critical_speeds import critical_speeds
 from rotorsim.analyses.linear.modal import modal
-from rotorsim.analyses.statics.bearing_statics import bearing_equilibrium, linearized_bearings
+from rotorsim.analyses.statics.bearing_statics import (
+    bearing_equilibrium,
+    linearize_at_load,
+    linearized_bearings,
+)
 from rotorsim.analyses.statics.static import static
 from rotorsim.elements.disk import DiskElement
 from rotorsim.elements.linear_bearing import BearingElement
@@ -124,7 +128,7 @@ def test_linearize_at_a_load_and_at_a_displacement(link):
     element = RollingBearing(BALL, n=1, n_link=link, tag="B1", contact_damping="proportional",
                              damping_factor=1e-5)
     load = [800.0, -300.0, 1200.0, 2.0, -1.0]
-    lin = element.linearize(load=load, phi=0.4)
+    lin = linearize_at_load(element, load, phi=0.4)
     eq = bearing_equilibrium(BALL, load, phi=0.4)
     model_k = BALL.state(eq.displacement[None], BALL.element_angles(0.4)).stiffness[0]
     assert isinstance(lin, BearingElement) and lin.tag == "B1" and lin.nodes == element.nodes
@@ -141,7 +145,7 @@ def test_linearize_at_a_load_and_at_a_displacement(link):
     assert np.allclose(element.force(u, np.zeros_like(u), 0.4, 0.0).K[0, :5, :5], model_k)
     by_disp = element.linearize(displacement=eq.displacement, phi=0.4)
     assert np.allclose(by_disp.stiffness_matrix, model_k, rtol=1e-13, atol=0.0)
-    assert RollingBearing(BALL, n=1).linearize(load=load, phi=0.4).damping_matrix is None
+    assert linearize_at_load(RollingBearing(BALL, n=1), load, phi=0.4).damping_matrix is None
 
 
 def test_bad_input():
@@ -164,8 +168,12 @@ def test_bad_input():
         element.force(np.zeros((2, 6)), np.zeros((2, 6)), 0.0, 0.0)
     with pytest.raises(ModelError, match="finite"):
         element.force(np.full((1, 12), np.nan), np.zeros((1, 12)), 0.0, 0.0)
-    with pytest.raises(ModelError, match="exactly one"):
+    with pytest.raises(TypeError, match="displacement"):  # a state, not a load
         element.linearize()
+    with pytest.raises(TypeError):
+        element.linearize([800.0, 0.0, 0.0, 0.0, 0.0])  # a load given as before: refused
+    with pytest.raises(ModelError, match=r"tangent must have shape \(5, 5\)"):
+        element.linearize(displacement=np.zeros(5), tangent=np.eye(4))
 
 
 # ------------------------------------------------------- linearised bearings in a rotor

@@ -8,7 +8,7 @@ import math
 import numpy as np
 import pytest
 
-from rotorsim.analyses.statics.bearing_statics import bearing_equilibrium
+from rotorsim.analyses.statics.bearing_statics import bearing_equilibrium, linearize_at_load
 from rotorsim.assembly.nonlinear import NonlinearAssembly
 from rotorsim.elements.base import NonlinearElement
 from rotorsim.elements.linear_bearing import BearingElement
@@ -91,15 +91,17 @@ def test_warm_start_round_trip_and_assembly():
 def test_linearize_at_a_load_and_at_a_displacement():
     el = FlexibleRingBearingElement(BEARING, n=2, n_link=5, tag="B1")
     load = [5000.0, 0.0, 0.0, 0.0, 13.7]
-    lin = el.linearize(load, speed=SPEED)
+    lin = linearize_at_load(el, load, speed=SPEED)
     eq = bearing_equilibrium(BEARING.at_speed(SPEED), load)
     assert isinstance(lin, BearingElement) and lin.n == 2 and lin.n_link == 5
     assert np.allclose(lin.stiffness_matrix, eq.stiffness, rtol=1e-12)
     lin_d = el.linearize(displacement=eq.displacement, speed=SPEED)
     assert np.allclose(lin_d.stiffness_matrix, eq.stiffness, rtol=1e-7,
                        atol=1e-9 * np.abs(eq.stiffness).max())
-    with pytest.raises(ModelError, match="exactly one"):
+    with pytest.raises(TypeError, match="displacement"):  # a state, not a load
         el.linearize()
+    with pytest.raises(ModelError, match=r"tangent must have shape \(5, 5\)"):
+        el.linearize(displacement=np.zeros(5), tangent=np.eye(3))
 
 
 @pytest.mark.parametrize("change, match", [

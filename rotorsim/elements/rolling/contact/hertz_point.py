@@ -44,9 +44,6 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from scipy.optimize import brentq
-from scipy.special import ellipe, ellipkm1
-
 from rotorsim.errors import ModelError
 
 METHODS = ("exact", "hamrock_brewe")
@@ -153,6 +150,8 @@ def _elliptic_parameters(ratio: float, method: str) -> tuple[float, float, float
         raise TypeError(f"unknown method {method!r}; valid: {', '.join(METHODS)}")
     if ratio == 1.0:
         return 1.0, 0.5 * math.pi, 0.5 * math.pi
+    from scipy.optimize import brentq  # slow to import: on first use
+    from scipy.special import ellipe, ellipkm1
 
     def mismatch(log_k: float) -> float:
         k2 = math.exp(2.0 * log_k)

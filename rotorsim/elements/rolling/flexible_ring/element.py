@@ -146,39 +146,43 @@ class FlexibleRingBearingElement:
             k[:, 6:11, :5] = -st.stiffness
         return ElementForce(f, k, np.zeros_like(k), st.internal)
 
-    def linearize(self, load: ArrayLike | None = None, displacement: ArrayLike | None = None,
-                  phi: float = 0.0, *, speed: float = 0.0, **options: Any) -> BearingElement:
-        """Linear bearing element at a static equilibrium (modal, Campbell, critical speeds).
+    def model_at_speed(self, speed: float = 0.0) -> FlexibleRingRollerBearing:
+        """The bearing at shaft speed ``speed`` [rad/s] (centrifugal force of the rollers),
+        whose equilibrium bearing statics at speed solve."""
+        return self.bearing.at_speed(float(speed))
+
+    def linearize(self, *, displacement: ArrayLike, phi: float = 0.0, speed: float = 0.0,
+                  tangent: ArrayLike | None = None) -> BearingElement:
+        """Linear bearing element at a given state (modal, Campbell, critical speeds).
+
+        The element does not solve for an equilibrium: at a given load use
+        :func:`~rotorsim.analyses.statics.bearing_statics.linearize_at_load`.
 
         Parameters
         ----------
-        load : array (5,), optional
-            ``[Fx, Fy, Fz, Mx, My]`` on the inner ring [N, N m]; the equilibrium is solved
-            first (:func:`~rotorsim.analyses.statics.bearing_statics.bearing_equilibrium`, with
-            ``options``).
-        displacement : array (5,), optional
-            Relative displacement ``delta`` instead of a load.
+        displacement : array (5,)
+            Relative displacement ``delta = [x, y, z, rx, ry]`` of the inner ring [m, rad].
         phi : float
             Shaft angle [rad] (roller positions).
         speed : float
             Shaft speed [rad/s] (centrifugal force).
+        tangent : array (5, 5), optional
+            The condensed tangent at ``displacement`` when the caller has it already (the
+            ``stiffness`` of a bearing equilibrium); evaluated here otherwise.
 
         Returns
         -------
         BearingElement
-            ``stiffness_matrix`` = the condensed 5x5 tangent at the equilibrium; same
+            ``stiffness_matrix`` = the condensed 5x5 tangent at ``displacement``; same
             nodes and tag; no damping.
         """
-        if (load is None) == (displacement is None):
-            raise ModelError("give exactly one of load and displacement", self.label)
-        model = self.bearing.at_speed(float(speed))
-        if load is not None:
-            # analyses sit downstream of elements: imported here, at call time
-            from rotorsim.analyses.statics.bearing_statics import bearing_equilibrium
-
-            k5 = bearing_equilibrium(model, load, phi=phi, **options).stiffness
-        else:
-            d = np.asarray(displacement, dtype=float).reshape(1, 5)
+        d = np.asarray(displacement, dtype=float).reshape(1, 5)
+        if tangent is None:
+            model = self.model_at_speed(speed)
             k5 = model.state(d, model.element_angles(float(phi)), details=False).stiffness[0]
+        else:
+            k5 = np.asarray(tangent, dtype=float)
+            if k5.shape != (5, 5):
+                raise ModelError(f"tangent must have shape (5, 5), got {k5.shape}", self.label)
         return BearingElement(n=int(self.n), n_link=self.n_link, stiffness_matrix=k5,
                               tag=self.tag)
