@@ -12,7 +12,7 @@ from rotorsim.analyses.statics.nonlinear_static import nominal_tangent
 from rotorsim.assembly.reduction import accuracy, craig_bampton
 from rotorsim.errors import ModelError
 
-MODELS = Path(__file__).resolve().parents[2] / "models"
+MODELS = Path(__file__).resolve().parents[3] / "models"
 
 
 @pytest.fixture(scope="module")

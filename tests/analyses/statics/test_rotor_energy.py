@@ -17,7 +17,7 @@ from rotorsim.analyses.statics.static import _applied_load
 from rotorsim.assembly.loads import unit_direction
 from rotorsim.errors import ModelError
 
-MODELS = Path(__file__).resolve().parents[2] / "models"
+MODELS = Path(__file__).resolve().parents[3] / "models"
 FILES = ("rolling_ball", "rolling_tapered", "default")
 
 
