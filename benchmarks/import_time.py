@@ -5,6 +5,10 @@ the median wall time (with the bare interpreter start, ``python -c pass``, for r
 then one ``python -X importtime`` run: the time by top-level package and the modules with the
 largest cumulative import time.
 
+The public names of ``rotorsim`` load on first use, so the script also times what a script
+pays on its first use of a layer (:data:`FIRST_USES`: the model, a linear analysis, a model
+file, a transient, a periodic branch, every public name, and the command line's ``--help``).
+
 Bytecode: as after a normal install, the compiled ``.pyc`` files are used. They go to a
 temporary ``PYTHONPYCACHEPREFIX`` written by one warm-up run (``PYTHONDONTWRITEBYTECODE`` is
 dropped for the child processes), so the source tree stays clean. ``--no-bytecode-cache``
@@ -28,6 +32,18 @@ from collections import Counter
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
+FIRST_USES = {
+    "rs.Rotor (model and elements)": "import rotorsim as rs; rs.Rotor",
+    "rs.modal (linear analyses)": "import rotorsim as rs; rs.modal",
+    "rs.load_model (model files)": "import rotorsim as rs; rs.load_model",
+    "rs.transient (time integration)": "import rotorsim as rs; rs.transient",
+    "rs.periodic (harmonic balance)": "import rotorsim as rs; rs.periodic",
+    "every public name": "import rotorsim as rs; [getattr(rs, n) for n in rs.__all__]",
+    "rotorsim --help (command line)":
+        "import sys; sys.argv = ['rotorsim', '--help']; import runpy; "
+        "runpy.run_module('rotorsim', run_name='__main__')",
+}
+"""What a script pays on first use of a layer: label -> code run in a fresh process."""
 
 
 def child_env(pycache: str | None) -> dict[str, str]:
@@ -49,7 +65,8 @@ def wall_times(code: str, repeat: int, env: dict[str, str]) -> list[float]:
     times = []
     for _ in range(repeat):
         start = time.perf_counter()
-        subprocess.run([sys.executable, "-c", code], cwd=ROOT, env=env, check=True)
+        subprocess.run([sys.executable, "-c", code], cwd=ROOT, env=env, check=True,
+                       stdout=subprocess.DEVNULL)
         times.append(time.perf_counter() - start)
     return times
 
@@ -95,10 +112,14 @@ def main(argv: list[str] | None = None) -> dict[str, float]:
     args = parser.parse_args(argv)
     with tempfile.TemporaryDirectory(prefix="import-time-pyc-") as cache:
         env = child_env(None if args.no_bytecode_cache else cache)
-        wall_times(f"import {args.module}", 1, env)  # warm-up: writes the bytecode
+        for code in (f"import {args.module}", *FIRST_USES.values()):
+            wall_times(code, 1, env)  # warm-up: writes the bytecode
         bare = statistics.median(wall_times("pass", args.repeat, env))
         times = wall_times(f"import {args.module}", args.repeat, env)
         rows = import_profile(args.module, env)
+        uses = {} if args.module != "rotorsim" else {
+            label: statistics.median(wall_times(code, args.repeat, env))
+            for label, code in FIRST_USES.items()}
     median = statistics.median(times)
     print(f"command: {sys.executable} -c 'import {args.module}'  (from {ROOT}, "
           f"{'no .pyc' if args.no_bytecode_cache else 'with .pyc'}, {args.repeat} processes)")
@@ -106,7 +127,12 @@ def main(argv: list[str] | None = None) -> dict[str, float]:
           f"max {max(times):.3f}); bare interpreter start {bare:.3f} s; "
           f"load average {os.getloadavg()[0]:.2f}")
     print_profile(rows, args.top)
-    return {"median_s": median, "interpreter_s": bare}
+    if uses:
+        print(f"\nfirst use after `import rotorsim as rs` (median of {args.repeat} fresh "
+              "processes, import included):")
+        for label, seconds in uses.items():
+            print(f"{seconds:8.3f} s  {label}")
+    return {"median_s": median, "interpreter_s": bare, **uses}
 
 
 if __name__ == "__main__":

@@ -12,6 +12,7 @@ rotorsim`` loads no heavy optional or slow-to-import module.
 from __future__ import annotations
 
 import ast
+import os
 import subprocess
 import sys
 from dataclasses import dataclass
@@ -411,3 +412,47 @@ def test_numerics_leave_files_to_io():
                  and (imp.target.startswith("h5py")
                       or (imp.target.startswith("rotorsim.io") and not imp.lazy))]
     assert not offenders, offenders
+
+
+def _stub_names() -> tuple[set[str], set[str]]:
+    """Names imported by ``rotorsim/__init__.pyi`` and the names in its ``__all__``."""
+    tree = ast.parse((PACKAGE / "__init__.pyi").read_text())
+    imported = {alias.asname or alias.name for node in tree.body
+                if isinstance(node, ast.ImportFrom) for alias in node.names}
+    listed: set[str] = set()
+    for node in tree.body:
+        if isinstance(node, ast.Assign) and any(
+                isinstance(t, ast.Name) and t.id == "__all__" for t in node.targets):
+            listed = set(ast.literal_eval(node.value))
+    return imported, listed
+
+
+def test_public_names_are_listed_once_in_the_stub():
+    """The stub's imports (what the lazy loader serves) and its ``__all__`` (what type
+    checkers and ``from rotorsim import *`` see) name the same public API."""
+    import rotorsim
+
+    imported, listed = _stub_names()
+    assert imported == listed, (imported ^ listed)
+    assert set(rotorsim.__all__) == listed
+
+
+def test_import_loads_no_rotorsim_module():
+    """``import rotorsim`` only attaches the lazy loader; each public name loads on first
+    use (the import-time target of docs/benchmarks.md)."""
+    code = ("import sys, rotorsim; print(','.join(sorted(m for m in sys.modules "
+            "if m.startswith(('rotorsim.', 'numpy', 'scipy')))))")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                         check=True)
+    assert out.stdout.strip() == ""
+
+
+def test_every_public_name_loads_eagerly():
+    """With ``EAGER_IMPORT=1`` the loader imports every public name at once: a name whose
+    module or attribute is missing fails here rather than on a user's first use."""
+    code = "import rotorsim as rs; print(len(rs.__all__), all(hasattr(rs, n) for n in rs.__all__))"
+    env = {**os.environ, "EAGER_IMPORT": "1"}
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                         check=True, env=env)
+    count, resolved = out.stdout.split()
+    assert int(count) > 50 and resolved == "True", out.stdout + out.stderr

@@ -1,0 +1,173 @@
+"""Public names of rotorsim, for type checkers and for the lazy loader of
+``rotorsim/__init__.py`` (each is imported on first use)."""
+
+from .analyses.linear.campbell import campbell
+from .analyses.linear.critical_speed_map import critical_speed_map
+from .analyses.linear.critical_speeds import critical_speeds
+from .analyses.linear.frequency_response import frequency_response, unbalance_response
+from .analyses.linear.modal import modal
+from .analyses.periodic.excitation import HarmonicBase
+from .analyses.periodic.parameter import periodic_parameter
+from .analyses.periodic.periodic import periodic
+from .analyses.statics.bearing_statics import (
+    bearing_equilibrium,
+    linearize_at_load,
+    stiffness_over_pass,
+)
+from .analyses.statics.linearized_rotor import (
+    LinearizationPoint,
+    LinearizedRotor,
+    linearize_rolling_bearings,
+)
+from .analyses.statics.static import static
+from .analyses.sweep.sweep import (
+    Grid,
+    Normal,
+    Sample,
+    Uniform,
+    sweep,
+)
+from .analyses.transient.loads import BaseExcitation
+from .analyses.transient.speed_profile import ConstantSpeed, LinearSpeed, SpeedFunction
+from .analyses.transient.transient import transient
+from .assembly.dof_map import DofMap
+from .assembly.system import RotorSystem, SystemMatrices, assemble
+from .elements.base import DOF_NAMES, ElementMatrices
+from .elements.disk import DiskElement, PointMass
+from .elements.linear_bearing import BearingElement
+from .elements.rolling import (
+    BallBearing,
+    CentrifugalBearing,
+    ReversedBearing,
+    RollerBearing,
+)
+from .elements.rolling.element import RollingBearing
+from .elements.rolling.flexible_ring.bearing import FlexibleRingRollerBearing
+from .elements.rolling.flexible_ring.element import FlexibleRingBearingElement
+from .elements.rolling.large_rotation import LargeRotationBearing
+from .elements.shaft import ShaftElement, cowper_shear_coefficient
+from .errors import (
+    ConvergenceError,
+    InconsistentModelError,
+    ModelError,
+    RotorsimError,
+    Status,
+)
+from .io.hdf5 import ResultsFileError, load, save
+from .io.model_file import Model, load_model, run_analysis, save_model
+from .io.sweep_store import load_sweep
+from .io.vtk import export_vtk
+from .model.material import Material
+from .model.rotor import Rotor
+from .options import (
+    Checkpointing,
+    ContinuationOptions,
+    Excitation,
+    Harmonics,
+    Output,
+    StabilityOptions,
+)
+from .plotting import plot
+from .results.bearing import BearingEquilibriumResult, StiffnessVariation
+from .results.campbell import CampbellResult
+from .results.critical_speeds import CriticalSpeedMapResult, CriticalSpeeds
+from .results.frequency_response import FrequencyResponseResult
+from .results.modal import ModalResult
+from .results.orbits import Ellipse, ellipse
+from .results.periodic import PeriodicBifurcation, PeriodicResult
+from .results.static import StaticResult
+from .results.sweep import SweepResult
+from .results.transient import TransientResult
+from .time_integration.adams import Adams
+from .time_integration.adaptive import Adaptive
+from .time_integration.newmark import Newmark
+
+__version__: str
+
+__all__ = [
+    "DOF_NAMES",
+    "Adams",
+    "Adaptive",
+    "BallBearing",
+    "BaseExcitation",
+    "BearingElement",
+    "BearingEquilibriumResult",
+    "CampbellResult",
+    "CentrifugalBearing",
+    "Checkpointing",
+    "ConstantSpeed",
+    "ContinuationOptions",
+    "ConvergenceError",
+    "CriticalSpeedMapResult",
+    "CriticalSpeeds",
+    "DiskElement",
+    "DofMap",
+    "ElementMatrices",
+    "Ellipse",
+    "Excitation",
+    "FlexibleRingBearingElement",
+    "FlexibleRingRollerBearing",
+    "FrequencyResponseResult",
+    "Grid",
+    "HarmonicBase",
+    "Harmonics",
+    "InconsistentModelError",
+    "LargeRotationBearing",
+    "LinearSpeed",
+    "LinearizationPoint",
+    "LinearizedRotor",
+    "Material",
+    "ModalResult",
+    "Model",
+    "ModelError",
+    "Newmark",
+    "Normal",
+    "Output",
+    "PeriodicBifurcation",
+    "PeriodicResult",
+    "PointMass",
+    "ResultsFileError",
+    "ReversedBearing",
+    "RollerBearing",
+    "RollingBearing",
+    "Rotor",
+    "RotorSystem",
+    "RotorsimError",
+    "Sample",
+    "ShaftElement",
+    "SpeedFunction",
+    "StabilityOptions",
+    "StaticResult",
+    "Status",
+    "StiffnessVariation",
+    "SweepResult",
+    "SystemMatrices",
+    "TransientResult",
+    "Uniform",
+    "assemble",
+    "bearing_equilibrium",
+    "campbell",
+    "cowper_shear_coefficient",
+    "critical_speed_map",
+    "critical_speeds",
+    "ellipse",
+    "export_vtk",
+    "frequency_response",
+    "linearize_at_load",
+    "linearize_rolling_bearings",
+    "load",
+    "load_model",
+    "load_sweep",
+    "modal",
+    "periodic",
+    "periodic_parameter",
+    "plot",
+    "run_analysis",
+    "save",
+    "save_model",
+    "static",
+    "stiffness_over_pass",
+    "sweep",
+    "transient",
+    "unbalance_response",
+]
