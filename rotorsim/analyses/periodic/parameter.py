@@ -47,7 +47,7 @@ from rotorsim.analyses.periodic.variation import (
     parametric_residual,
     static_load_residual,
 )
-from rotorsim.assembly.system import assemble
+from rotorsim.assembly.system import RotorSystem, assemble
 from rotorsim.errors import ConvergenceError, ModelError
 from rotorsim.harmonic_balance.bifurcation import BifurcationOptions, detect_bifurcations
 from rotorsim.harmonic_balance.residual import continuation_function, make_residual
@@ -188,18 +188,8 @@ def periodic_parameter(
                      unknown_scales(system, rp, standard), tol, stats)
     # the HB parameter: mu itself, or p = 1 - mu (the rotor problem scales its forcing by 1 - p)
     to_p = (lambda mu: 1.0 - mu) if mode == "forcing" else (lambda mu: mu)
-    span = abs(float(stop) - float(start))
-    residual: Any
-    if mode == "forcing":
-        residual = standard
-        if float(start) != 1.0:
-            x0 = solve_point(standard, omega, x0, param=to_p(float(start)), tol=tol).x
-    elif mode == "loads":
-        residual = static_load_residual(rp, system, loads, float(start), harmonics, samples,
-                                        span)
-    else:
-        residual = parametric_residual(rp, system, vary, harmonics,  # type: ignore[arg-type]
-                                       samples, span, float(start))
+    residual, x0 = _branch_residual(mode, standard, rp, system, vary, loads, harmonics,
+                                    samples, float(start), float(stop), omega, x0, tol)
     fun = continuation_function(residual, "param", omega=omega, stats=stats, terms=True)
     stepping = opts.stepping()
     options = stepping.options(to_p(float(start)), to_p(float(stop)),
@@ -211,16 +201,9 @@ def periodic_parameter(
     recovery = Recovery(_AtOmega(residual, omega),  # type: ignore[arg-type]
                         *kept_dofs(system, rp, opts.output.nodes))
     lam = np.asarray(to_p(branch.lam.astype(float)), dtype=float)
-    method = opts.stability.method
-    floquet = ParameterStability(residual, omega, method) if method else None
-    multipliers = floquet.at_points(branch) if floquet is not None \
-        else np.zeros((len(branch), 0), dtype=complex)
-    events: list[Any] = []
-    if opts.stability.bifurcations and len(branch) > 1:
-        events = list(detect_bifurcations(fun, branch, options=BifurcationOptions(
-            kinds=("fold", "branch_point"))))
-        if floquet is not None:
-            events += floquet_events(fun, branch, floquet, multipliers)
+    floquet, multipliers, events = _stability(fun, branch, residual, omega,
+                                              opts.stability.method,
+                                              opts.stability.bifurcations)
     return PeriodicResult(
         parameter=lam, parameter_name=name, speed=np.full(lam.shape, float(speed)),
         fundamental=np.full(lam.shape, omega), order=plan.order,
@@ -237,6 +220,40 @@ def periodic_parameter(
                  "unbalance": [[float(v) for v in u] for u in unbalance]},
         stats={**branch.stats, "wall_time": time.perf_counter() - clock},
         status=branch.status, reason=branch.reason, summary=dict(system.summary))
+
+
+def _branch_residual(mode: str, standard: Any, rp: Any, system: RotorSystem, vary: Any,
+                     loads: Sequence[tuple[int, str, float]], harmonics: int,
+                     samples: int | None, start: float, stop: float, omega: float,
+                     x0: Any, tol: float) -> tuple[Any, Any]:
+    """The residual continued in the parameter (``"forcing"``: the standard one in
+    ``p = 1 - mu``; ``"loads"``: a factor on the point loads; ``"model"``: ``vary(mu)``) and
+    the start ``x0`` at ``start``."""
+    span = abs(stop - start)
+    if mode == "forcing":
+        if start != 1.0:
+            x0 = solve_point(standard, omega, x0, param=1.0 - start, tol=tol).x
+        return standard, x0
+    if mode == "loads":
+        return static_load_residual(rp, system, loads, start, harmonics, samples, span), x0
+    return parametric_residual(rp, system, vary, harmonics, samples, span, start), x0
+
+
+def _stability(fun: Any, branch: Any, residual: Any, omega: float, method: str | None,
+               bifurcations: bool) -> tuple[ParameterStability | None, Any, list[Any]]:
+    """Floquet multipliers of every point (none without a ``method``) and the located
+    bifurcations (folds and branch points; with multipliers also period doublings and
+    Neimark-Sacker points)."""
+    floquet = ParameterStability(residual, omega, method) if method else None
+    multipliers = floquet.at_points(branch) if floquet is not None \
+        else np.zeros((len(branch), 0), dtype=complex)
+    events: list[Any] = []
+    if bifurcations and len(branch) > 1:
+        events = list(detect_bifurcations(fun, branch, options=BifurcationOptions(
+            kinds=("fold", "branch_point"))))
+        if floquet is not None:
+            events += floquet_events(fun, branch, floquet, multipliers)
+    return floquet, multipliers, events
 
 
 class ParameterStability:
