@@ -103,6 +103,26 @@ def element_angles(n_elements: int, phi: ArrayLike = 0.0, kappa: float = 0.0,
     return base_angles(int(n_elements), float(psi0))[None, :] + kappa * phi_arr[:, None]
 
 
+def checked_state(delta: ArrayLike, psi: ArrayLike, n_elements: int,
+                  where: str) -> tuple[FloatArray, FloatArray]:
+    """Ring displacements ``delta`` (5,) or (S, 5) [m, rad] and element angles ``psi`` (N,)
+    or (S, N) [rad] of a bearing with ``n_elements`` rolling elements, checked (shapes,
+    finite values; a ModelError at ``where`` otherwise) and returned as ``(S, 5)`` and
+    ``(S, N)``."""
+    d = np.asarray(delta, dtype=float)
+    d = d[None, :] if d.ndim == 1 else d
+    p = np.asarray(psi, dtype=float)
+    p = p[None, :] if p.ndim == 1 else p
+    if d.ndim != 2 or d.shape[1] != 5:
+        raise ModelError(f"delta must have shape (S, 5), got {np.shape(delta)}", where)
+    if p.ndim != 2 or p.shape[1] != n_elements or p.shape[0] not in (1, d.shape[0]):
+        raise ModelError(f"psi must have shape (S, {n_elements}) with S = 1 or "
+                         f"{d.shape[0]}, got {np.shape(psi)}", where)
+    if not (np.isfinite(d).all() and np.isfinite(p).all()):
+        raise ModelError("delta and psi must be finite", where)
+    return d, np.broadcast_to(p, (d.shape[0], n_elements))
+
+
 @functools.lru_cache(maxsize=256)
 def base_angles(n_elements: int, psi0: float = 0.0) -> FloatArray:
     """``psi0 + 2 pi j / N`` [rad], shape ``(N,)``: the element angles at ``phi = 0``.

@@ -39,7 +39,6 @@ from rotorsim.elements.rolling.ball.checks import CAGES, ResolvedGeometry, resol
 from rotorsim.elements.rolling.ball.tangent import assemble, ball_sums, directions
 from rotorsim.elements.rolling.contact.hertz_point import ball_bearing_constant
 from rotorsim.elements.rolling.state import BearingState, FloatArray
-from rotorsim.errors import ModelError
 
 __all__ = ["CAGES", "BallBearing"]
 
@@ -194,20 +193,8 @@ class BallBearing:
         return geometry.element_angles(self.n_balls, phi, self._geo.kappa, self.psi0)
 
     def _inputs(self, delta: ArrayLike, psi: ArrayLike) -> tuple[FloatArray, FloatArray]:
-        d = np.asarray(delta, dtype=float)
-        d = d[None, :] if d.ndim == 1 else d
-        if d.ndim != 2 or d.shape[1] != 5:
-            raise ModelError(f"delta must have shape (S, 5), got {np.shape(delta)}", self.label)
-        p = np.asarray(psi, dtype=float)
-        p = p[None, :] if p.ndim == 1 else p
-        if p.ndim != 2 or p.shape[1] != self.n_balls or p.shape[0] not in (1, d.shape[0]):
-            raise ModelError(f"psi must have shape ({d.shape[0]}, {self.n_balls}), got "
-                             f"{np.shape(psi)}", self.label)
-        if not (np.isfinite(d).all() and np.isfinite(p).all()):
-            raise ModelError("delta and psi must be finite", self.label)
-        if p.shape[0] != d.shape[0]:
-            p = np.broadcast_to(p, (d.shape[0], self.n_balls))
-        return d, p
+        """Check shapes; return ``delta (S, 5)`` and ``psi (S, N)``."""
+        return geometry.checked_state(delta, psi, self.n_balls, self.label)
 
     def _contacts(self, d: FloatArray, c: FloatArray, s: FloatArray
                   ) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:

@@ -50,7 +50,7 @@ from rotorsim.elements.rolling.flexible_ring.geometry import (
 from rotorsim.elements.rolling.flexible_ring.roller import RollerPotential
 from rotorsim.elements.rolling.flexible_ring.solve import solve_state
 from rotorsim.elements.rolling.flexible_ring.state import FlexibleRingState
-from rotorsim.elements.rolling.geometry import cage_ratio, element_angles
+from rotorsim.elements.rolling.geometry import cage_ratio, checked_state, element_angles
 from rotorsim.elements.rolling.roller.profile import RollerProfile, StraightProfile
 from rotorsim.errors import ModelError
 
@@ -314,15 +314,5 @@ class FlexibleRingRollerBearing:
         return solve_state(self, d, p, np.broadcast_to(w, (n_s,)), internal, details)
 
     def _inputs(self, delta: ArrayLike, psi: ArrayLike) -> tuple[FloatArray, FloatArray]:
-        d = np.asarray(delta, dtype=float)
-        d = d[None, :] if d.ndim == 1 else d
-        p = np.asarray(psi, dtype=float)
-        p = p[None, :] if p.ndim == 1 else p
-        if d.ndim != 2 or d.shape[1] != 5:
-            raise ModelError(f"delta must have shape (S, 5), got {np.shape(delta)}", self.label)
-        if p.ndim != 2 or p.shape[1] != self.n_rollers or p.shape[0] not in (1, d.shape[0]):
-            raise ModelError(f"psi must have shape (S, {self.n_rollers}), got "
-                             f"{np.shape(psi)}", self.label)
-        if not (np.isfinite(d).all() and np.isfinite(p).all()):
-            raise ModelError("delta and psi must be finite", self.label)
-        return d, np.broadcast_to(p, (d.shape[0], self.n_rollers))
+        """Check shapes; return ``delta (S, 5)`` and ``psi (S, N)``."""
+        return checked_state(delta, psi, self.n_rollers, self.label)

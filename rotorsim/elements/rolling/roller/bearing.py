@@ -41,7 +41,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from rotorsim.elements.rolling.contact.hertz_line import LINE_EXPONENT
-from rotorsim.elements.rolling.geometry import cage_ratio, element_angles
+from rotorsim.elements.rolling.geometry import cage_ratio, checked_state, element_angles
 from rotorsim.elements.rolling.roller.checks import (
     check_options,
     finite_number,
@@ -216,19 +216,8 @@ class RollerBearing:
                               self.effective_length)
 
     def _inputs(self, delta: ArrayLike, psi: ArrayLike) -> tuple[FloatArray, FloatArray]:
-        """Check shapes; return ``delta (S, 5)`` and ``psi (S, Z)``."""
-        d = np.asarray(delta, dtype=float)
-        d = d[None, :] if d.ndim == 1 else d
-        p = np.asarray(psi, dtype=float)
-        p = p[None, :] if p.ndim == 1 else p
-        if d.ndim != 2 or d.shape[1] != 5:
-            raise ModelError(f"delta must have shape (S, 5), got {np.shape(delta)}", self._where)
-        if p.ndim != 2 or p.shape[1] != self.n_rollers or p.shape[0] not in (1, d.shape[0]):
-            raise ModelError(f"psi must have shape (S, {self.n_rollers}), got "
-                             f"{np.shape(psi)}", self._where)
-        if not (np.isfinite(d).all() and np.isfinite(p).all()):
-            raise ModelError("delta and psi must be finite", self._where)
-        return d, np.broadcast_to(p, (d.shape[0], self.n_rollers))
+        """Check shapes; return ``delta (S, 5)`` and ``psi (S, N)``."""
+        return checked_state(delta, psi, self.n_rollers, self._where)
 
     @cached_property
     def _block_size(self) -> int:
