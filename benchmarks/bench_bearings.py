@@ -16,6 +16,7 @@ of ``N`` runs (default 5), so background load inflates it least.
 from __future__ import annotations
 
 import argparse
+import functools
 import math
 import os
 import sys
@@ -64,7 +65,7 @@ def throughput(repeat: int) -> dict[str, float]:
         delta = rng.normal(size=(n_samples, 5)) * [15e-6, 15e-6, 15e-6, 5e-4, 5e-4]
         delta[:, 2] += 10e-6
         psi = bearing.element_angles(rng.uniform(0, 2 * math.pi, n_samples))
-        out[name] = n_samples / best_time(lambda b=bearing, d=delta, p=psi: b.state(d, p),
+        out[name] = n_samples / best_time(functools.partial(bearing.state, delta, psi),
                                           repeat)
     return out
 
@@ -77,7 +78,7 @@ def solves(repeat: int) -> dict[str, float]:
     for label, (bearing, load) in cases.items():
         for method in ("newton", "energy", "global"):
             out[f"{label}: {method}"] = best_time(
-                lambda b=bearing, f=load, m=method: bearing_equilibrium(b, f, method=m),
+                functools.partial(bearing_equilibrium, bearing, load, method=method),
                 repeat)
     return out
 

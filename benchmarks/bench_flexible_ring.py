@@ -21,6 +21,7 @@ it least.
 from __future__ import annotations
 
 import argparse
+import functools
 import math
 import os
 import sys
@@ -93,7 +94,7 @@ def static_solves(repeat: int) -> dict[str, float]:
                           ("g=+10um", 10e-6, seed.LOAD),
                           ("g=-40um, My=13.7", -40e-6, (*seed.LOAD[:4], seed.MOMENT))):
         bearing = seed.seed_bearing(g)
-        out[name] = 1e3 * best_time(lambda b=bearing, f=load: bearing_equilibrium(b, f),
+        out[name] = 1e3 * best_time(functools.partial(bearing_equilibrium, bearing, load),
                                     repeat)
     return out
 

@@ -29,7 +29,7 @@ import bench_scaling
 import bench_vs_ross
 
 HERE = Path(__file__).resolve().parent
-NONLINEAR = (
+NONLINEAR: tuple[tuple[str, list[str], list[str]], ...] = (
     ("bench_bearings.py", [], []),
     ("bench_flexible_ring.py", [], ["--repeat", "1"]),
     ("bench_transient.py", [], ["--quick"]),

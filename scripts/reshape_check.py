@@ -20,6 +20,7 @@ import json
 import subprocess
 import sys
 from pathlib import Path
+from typing import Any
 
 import h5py
 import numpy as np
@@ -65,7 +66,7 @@ def _comparable(value: object) -> bytes:
 def _entries(path: Path) -> dict[str, bytes]:
     entries: dict[str, bytes] = {}
     with h5py.File(path, "r") as f:
-        def visit(name: str, obj: object) -> None:
+        def visit(name: str, obj: Any) -> None:
             for key, value in obj.attrs.items():
                 if not _volatile(key):
                     entries[f"{name}@{key}"] = _comparable(value)
