@@ -223,7 +223,7 @@ def test_radial_load_zone_of_a_deep_groove_bearing():
     res = bearing_equilibrium(bearing, [1200.0, 0, 0, 0, 0])
     assert sorted(res.load_zone.tolist()) == [0, 1, 2, 10, 11]
     assert res.load_zone_extent == pytest.approx(math.radians(150))
-    # Stribeck: Qmax = 4.3645 Fr / Z for 12 balls (tests/elements/rolling/test_ball.py)
+    # Stribeck: Qmax = 4.3645 Fr / Z for 12 balls (tests/elements/rolling/ball/test_ball.py)
     assert res.max_element_load * 12 / 1200 == pytest.approx(4.3645, abs=2e-4)
     assert res.displacement[2] == pytest.approx(0.0, abs=1e-15)
     assert "loaded elements 5/12" in res.table()
