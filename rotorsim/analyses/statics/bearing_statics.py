@@ -316,6 +316,12 @@ def linearize_at_load(element: Any, load: ArrayLike, *, phi: float = 0.0,
     >>> lin.stiffness_matrix.shape, bool(lin.stiffness_matrix[1, 1] > 0)
     ((5, 5), True)
     """
+    if not (callable(getattr(element, "model_at_speed", None))
+            and callable(getattr(element, "linearize", None))):
+        raise TypeError("linearize_at_load: expected a 2-node rolling-bearing element "
+                        "(RollingBearing or FlexibleRingBearingElement), got "
+                        f"{type(element).__name__}; a bare bearing model goes to "
+                        "bearing_equilibrium")
     at_speed: dict[str, Any] = {} if speed is None else {"speed": speed}
     model = element.model_at_speed(**at_speed)
     eq = bearing_equilibrium(model, load, phi=phi, **options)
