@@ -189,9 +189,9 @@ def test_linearize_at_load_is_the_element_at_the_equilibrium():
     assert np.allclose(at.stiffness_matrix, lin.stiffness_matrix, rtol=1e-13, atol=0.0)
     with pytest.raises(TypeError, match="bearing_equilibrium: unknown keyword 'tolerance'"):
         linearize_at_load(element, load, tolerance=1e-8)
-    with pytest.raises(TypeError, match="expected a 2-node rolling-bearing element .* "
-                                        "got BallBearing; a bare bearing model goes to "
-                                        "bearing_equilibrium"):
+    with pytest.raises(TypeError, match=r"expected a 2-node rolling-bearing element .* "
+                                        r"got BallBearing; a bare bearing model goes to "
+                                        r"bearing_equilibrium"):
         linearize_at_load(b, load)
 
 
