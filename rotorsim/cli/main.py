@@ -53,11 +53,13 @@ def main(argv: Sequence[str] | None = None) -> int:
 
 
 def _dispatch(args: argparse.Namespace) -> int:
+    from rotorsim.cli.preflight import transient_notes
     from rotorsim.io.model_file import load_model
 
     model = load_model(args.model)
     if args.command == "info":
         print(_info(model))
+        _print_notes(transient_notes(model, [(name, None) for name in model.analyses]))
         return 0
     if args.command == "bearing":
         return _bearing(model, args)
@@ -77,8 +79,10 @@ def _dispatch(args: argparse.Namespace) -> int:
         jobs = [adhoc_job(model, args)]
     from rotorsim.io.output_folder import prepare_folder
 
+    notes = transient_notes(model, jobs)  # checks before any analysis runs
     prepare_folder(args.out / model.name / "any", "--out")  # before any long work
     print(_info(model))
+    _print_notes(notes)
     if model.rolling_bearings:
         from rotorsim.cli.summaries import linearization_summary
 
@@ -96,6 +100,11 @@ def _dispatch(args: argparse.Namespace) -> int:
         print(f"rotorsim: incomplete: {name}: {why} (partial results written)",
               file=sys.stderr)
     return EXIT_INCOMPLETE if incomplete else EXIT_OK
+
+
+def _print_notes(notes: list[str]) -> None:
+    for note in notes:
+        print(f"note: {note}")
 
 
 def _info(model: Any) -> str:

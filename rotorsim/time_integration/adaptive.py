@@ -164,4 +164,4 @@ def _rejected(state: State, attempt: State, charge: Counters) -> State:
     return dataclasses.replace(
         state, counters=attempt.counters.plus(charge), cache=attempt.cache,
         factor_dt=attempt.factor_dt, factor_spin=attempt.factor_spin,
-        factor_tangent=attempt.factor_tangent)
+        factor_tangent=attempt.factor_tangent, factor_kappa=attempt.factor_kappa)

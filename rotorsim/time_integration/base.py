@@ -99,6 +99,10 @@ class State:
         Step size and schedule value of the cached factorisation (NaN when none).
     factor_tangent : int
         Digest of the tangents in the cached factorisation (-1 when none).
+    factor_kappa : float
+        Contraction per unit speed difference of the cached factorisation when it is
+        reused at other speeds [s/rad] (NaN until estimated; see
+        :mod:`~rotorsim.time_integration.newmark_step`).
     history : array (k, n)
         Past accelerations of multistep methods, newest first (``(0, n)`` for one-step
         methods): the Adams stepper keeps ``a_{n-1}, a_{n-2}`` here.
@@ -123,6 +127,7 @@ class State:
     factor_dt: float = float("nan")
     factor_spin: float = float("nan")
     factor_tangent: int = -1
+    factor_kappa: float = float("nan")
     history: FloatArray = field(default_factory=lambda: np.zeros((0, 0)))
     history_dt: float = float("nan")
     cache: Any = field(default=None, compare=False, repr=False)

@@ -171,5 +171,7 @@ def _read_state(group: Mapping[str, Any], n: int) -> State:
                                          for c in dataclasses.fields(Counters)})
         else:
             kind = int if f.name in ("step", "status", "factor_tangent") else float
+            if f.name not in group and f.name == "factor_kappa":
+                continue  # written before this field existed: its default (NaN) is exact
             values[f.name] = kind(group[f.name])
     return State(**values)

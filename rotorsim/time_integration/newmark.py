@@ -14,8 +14,10 @@ exact iteration matrix
 
     S = (1 - alpha_m) M + (1 - alpha_f) (gamma h (C + s G + dr/dv) + beta h^2 (K + dr/dq)),
 
-whose LU factors are cached and reused while ``h``, ``s`` and the tangents are unchanged
-(bitwise, by digest): a linear problem with a constant schedule is factorised once. When
+whose LU factors are cached and reused while ``h`` and the tangents are unchanged (bitwise,
+by digest) and the speed ``s`` stays near the speed at which they were built (a run-up
+refactorises at a few speed nodes, not at every step): a linear problem with a constant
+schedule is factorised once. When
 the tangents are :class:`~.local_tangent.LocalMatrix` (a rotor's bearings), only the
 constant part of ``S`` is factorised, once per ``h`` and ``s``, and each Newton iteration
 updates it by a low-rank (Woodbury) solve on the nonlinear DOFs. The iterations of one step
@@ -66,6 +68,10 @@ class Newmark:
         ``max |dq| <= newton_atol + newton_rtol * max |q|`` [m, rad].
     max_iter : int
         Newton iterations per step before :class:`~rotorsim.errors.ConvergenceError`.
+    max_contraction : float
+        At a varying speed, the iteration matrix factorised at an earlier speed is reused
+        while its predicted contraction per iteration stays below this (see
+        :mod:`~rotorsim.time_integration.newmark_step`); 0 factorises at every new speed.
     method : str
         Name reported in results and checkpoints.
 
@@ -83,6 +89,7 @@ class Newmark:
     newton_rtol: float = 1e-10
     newton_atol: float = 0.0
     max_iter: int = 20
+    max_contraction: float = 1e-3
     method: str = "average_acceleration"
 
     def __post_init__(self) -> None:
@@ -97,6 +104,9 @@ class Newmark:
                 and self.newton_rtol + self.newton_atol > 0 and self.max_iter >= 1):
             raise ModelError("need newton_rtol, newton_atol >= 0 (not both 0) and "
                              "max_iter >= 1", where)
+        if not 0.0 <= self.max_contraction < 0.5:
+            raise ModelError(f"need 0 <= max_contraction < 0.5, got {self.max_contraction}",
+                             where)
 
     @classmethod
     def average_acceleration(cls, **options: Any) -> Newmark:

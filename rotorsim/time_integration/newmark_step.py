@@ -4,9 +4,23 @@ cached across steps (the scheme and its parameters are in
 
 The step solves for the new acceleration ``a`` with the exact iteration matrix
 ``S = (1 - alpha_m) M + (1 - alpha_f) (gamma h (C + s G + dr/dv) + beta h^2 (K + dr/dq))``.
-Its LU factors are reused while ``h``, ``s`` and the tangents are unchanged (bitwise, by
-digest); with :class:`~.local_tangent.LocalMatrix` tangents only the constant part is
-factorised, once per ``h`` and ``s``, and each iteration adds a low-rank (Woodbury) update.
+Its LU factors are reused while ``h`` and the tangents are unchanged (bitwise, by digest);
+with :class:`~.local_tangent.LocalMatrix` tangents only the constant part is factorised,
+once per ``h`` and speed node, and each iteration adds a low-rank (Woodbury) update.
+
+**Varying speed (run-ups).** ``S`` depends on the spin speed ``s`` through the gyroscopic
+term. Instead of factorising at every step, the factors are kept at a *speed node*
+``s_0`` while the iteration with the frozen matrix still contracts fast: the iteration error
+then obeys ``e_{k+1} = -S_0^-1 dS e_k`` with ``dS = (1 - alpha_f) gamma h (s - s_0) G``, so it
+contracts by ``theta = kappa |s - s_0|`` per iteration with
+``kappa = (1 - alpha_f) gamma h rho(S_0^-1 G)``. ``rho`` is estimated by a few power
+iterations when the node is first used off its speed (:func:`gyroscopic_sensitivity`). The
+residual always uses the exact ``s``, so the converged step is the exact step; only the
+number of iterations depends on the node. A new node is factorised when ``theta`` would
+exceed ``Newmark.max_contraction``. A linear (or affine) problem accepts a step after one
+solve when the predicted remaining correction ``theta / (1 - theta) h^2 beta |da|`` is within
+the Newton tolerance, and iterates otherwise (a simplified-Newton test, Hairer & Wanner,
+Solving ODEs II, section IV.8).
 """
 
 from __future__ import annotations
@@ -31,6 +45,7 @@ from rotorsim.time_integration.local_tangent import (
 )
 from rotorsim.time_integration.problem import (
     ForceEvaluation,
+    Matrix,
     SecondOrderProblem,
     combine,
     matrix_digest,
@@ -40,20 +55,54 @@ if TYPE_CHECKING:
     from rotorsim.time_integration.newmark import Newmark
 
 
-@dataclass(frozen=True, eq=False)
+POWER_ITERATIONS = 8
+"""Power iterations of :func:`gyroscopic_sensitivity` (the estimate only sets how far a
+factorisation is reused: the converged step does not depend on it)."""
+SENSITIVITY_SAFETY = 2.0
+"""Factor on the power-iteration estimate of ``rho(S_0^-1 G)`` (which it approaches from
+below)."""
+
+
+@dataclass(eq=False)
 class FactorCache:
-    """The iteration matrix's factors, and for local tangents those of its constant part."""
+    """The iteration matrix's factors, and for local tangents those of its constant part.
+
+    ``spin`` is the speed node at which they were built; ``kappa`` (filled on first use off
+    the node) is the contraction per unit speed difference, ``(1 - alpha_f) gamma h
+    rho(S_0^-1 G)`` [s/rad].
+    """
 
     dt: float
     spin: float
     tangent: int
     lu: Factorization | LowRankSolve
     base: BaseFactors | None = None
+    kappa: float = math.nan
 
-    def base_matches(self, dt: float, spin: float, dofs: IntArray) -> bool:
+    def base_matches(self, dt: float, spin: float, dofs: IntArray | None) -> bool:
         """True when the cached constant part was built for ``dt``, ``spin`` and ``dofs``."""
-        return (self.base is not None and (self.dt, self.spin) == (dt, spin)
-                and np.array_equal(self.base.dofs, dofs))
+        return (self.base is not None and dofs is not None
+                and (self.dt, self.spin) == (dt, spin) and np.array_equal(self.base.dofs, dofs))
+
+
+def gyroscopic_sensitivity(lu: Factorization | LowRankSolve, G: Matrix, n: int) -> float:
+    """Estimate of the spectral radius ``rho(S_0^-1 G)`` [1], from above.
+
+    ``POWER_ITERATIONS`` power iterations from a fixed pseudo-random start; the largest of
+    the last three growth ratios (a dominant complex pair makes them oscillate) times
+    ``SENSITIVITY_SAFETY``.
+    """
+    x = np.random.default_rng(14).standard_normal(n)
+    x /= np.linalg.norm(x)
+    ratios = []
+    for _ in range(POWER_ITERATIONS):
+        y = np.asarray(lu.solve(G @ x), dtype=float)
+        r = float(np.linalg.norm(y))
+        if not (math.isfinite(r) and r > 0.0):
+            return 0.0 if r == 0.0 else math.inf
+        ratios.append(r)
+        x = y / r
+    return SENSITIVITY_SAFETY * max(ratios[-3:])
 
 
 class StepSolver:
@@ -75,37 +124,64 @@ class StepSolver:
         if method.alpha_m != 0.0:
             self.history = self.history + method.alpha_m * (problem.mass @ state.a)
         self.cache: FactorCache | None = state.cache
+        self.theta = 0.0
+        """Predicted contraction of the frozen iteration matrix (0 at its own speed)."""
+        self.node = self.spin
+        """Speed node of the iteration matrix in use [rad/s]."""
         self.tally = {"factorizations": 0, "solves": 0, "residual_evaluations": 0,
                       "iterations": 0}
 
     def solve(self) -> State:
         a = self.s.a
+        q, v = self.q_base + self.bdt2 * a, self.v_base + self.gdt * a
+        ev = self._forces(q, v)
+        res = self._residual(a, ev)
+        affine = self.p.is_linear or self.p.affine
+        lu: Factorization | LowRankSolve | None = None
         for k in range(self.m.max_iter):
-            q, v = self.q_base + self.bdt2 * a, self.v_base + self.gdt * a
-            ev = self._forces(q, v)
-            res = (1.0 - self.m.alpha_m) * (self.p.mass @ a) + self.history \
-                + (1.0 - self.m.alpha_f) * ev.net
             check_finite(res, "residual", self.m.name, self.t1, self.s.step + 1, k)
-            da = -self._lu(ev).solve(res)
+            if lu is None or not affine:  # an affine step keeps its matrix
+                lu = self._lu(ev)
+            da = -lu.solve(res)
             self.tally["solves"] += 1
             self.tally["iterations"] += 1
             check_finite(da, "Newton correction", self.m.name, self.t1, self.s.step + 1, k)
-            if self.p.is_linear:
-                a = a + da
-                q, v = self.q_base + self.bdt2 * a, self.v_base + self.gdt * a
-                return self._accepted(q, v, a, self._forces(q, v), k + 1)
             dq = self.bdt2 * np.abs(da)
-            tol = self.m.newton_atol + self.m.newton_rtol * max(
-                float(np.max(np.abs(q))), float(np.max(np.abs(self.s.q))))
-            if float(np.max(dq)) <= tol:
+            if not affine and float(np.max(dq)) <= self._tolerance(q):
                 return self._accepted(q, v, a, ev, k + 1)
             a = a + da
-        worst = int(np.argmax(dq))
+            q, v = self.q_base + self.bdt2 * a, self.v_base + self.gdt * a
+            if not affine:
+                ev = self._forces(q, v)
+                res = self._residual(a, ev)
+                continue
+            # one Newton step solves an affine step equation exactly; with a matrix frozen
+            # at the speed node the next correction is about theta times this one
+            if self.theta == 0.0 or self.theta / (1.0 - self.theta) * float(np.max(dq)) \
+                    <= self._tolerance(q):
+                return self._accepted(q, v, a, self._forces(q, v), k + 1)
+            # the affine residual after the correction is the frozen part of the matrix
+            # times it: (1 - alpha_f) gamma h (s - s_node) G da
+            assert self.p.gyroscopic is not None
+            res = ((1.0 - self.m.alpha_f) * self.gdt * (self.spin - self.node)) \
+                * (self.p.gyroscopic @ da)
+        worst, tol = int(np.argmax(dq)), self._tolerance(q)
         raise ConvergenceError(
             f"Newton did not converge at t = {self.t1:.9g} s (h = {self.dt:.3g} s): "
             f"|dq| = {dq[worst]:.3e} > {tol:.3e} at DOF {worst}", self.m.name,
             step=self.s.step + 1, iteration=self.m.max_iter,
             residual=float(np.max(np.abs(res))))
+
+    def _residual(self, a: FloatArray, ev: ForceEvaluation) -> FloatArray:
+        """Step equation ``(1 - alpha_m) M a + alpha_m M a_n + alpha_f g_n + (1 - alpha_f)
+        g(a)`` [N]."""
+        return (1.0 - self.m.alpha_m) * (self.p.mass @ a) + self.history \
+            + (1.0 - self.m.alpha_f) * ev.net
+
+    def _tolerance(self, q: FloatArray) -> float:
+        """Newton tolerance on the displacement correction [m, rad]."""
+        return self.m.newton_atol + self.m.newton_rtol * max(
+            float(np.max(np.abs(q))), float(np.max(np.abs(self.s.q))))
 
     def charged(self, state: State) -> State:
         """``state`` with the cost of this attempt and its factorisation cache."""
@@ -123,39 +199,85 @@ class StepSolver:
             T is None or isinstance(T, LocalMatrix) for T in (kt, ct))
         # local tangents: the k x k update is rebuilt every iteration (cheaper than hashing)
         tangent = -2 if local else (matrix_digest(kt) * 1_000_003 + matrix_digest(ct)) % (2 ** 63)
-        c = self.cache
-        if not local and c is not None and \
-                (c.dt, c.spin, c.tangent) == (self.dt, self.spin, tangent):
-            return c.lu
-        m, p = self.m, self.p
         for name, T in (("dr/dq", kt), ("dr/dv", ct)):
             row = first_nonfinite_row(T)
             if row >= 0:
                 raise ConvergenceError(f"tangent {name} is not finite at t = {self.t1:.9g} s "
-                                       f"(DOF {row})", m.name, step=self.s.step + 1,
+                                       f"(DOF {row})", self.m.name, step=self.s.step + 1,
                                        iteration=self.tally["iterations"], residual=math.nan)
-        w = 1.0 - m.alpha_f
-        constant = [(1.0 - m.alpha_m, p.mass), (w * self.gdt, p.damping),
-                    (w * self.gdt * self.spin, p.gyroscopic), (w * self.bdt2, p.stiffness)]
+        w = 1.0 - self.m.alpha_f
         updates = [(w * self.gdt, ct), (w * self.bdt2, kt)]
-        where = f"{m.name}: iteration matrix at t = {self.t1:.9g} s"
-        base = None
-        if local:
-            dofs, block = embed(updates)
-            base = c.base if c is not None and c.base_matches(self.dt, self.spin, dofs) \
-                else None
-            if base is None:
-                S0 = combine(constant, p.n)
-                dense = max(DENSE_THRESHOLD, p.n) if not sp.issparse(S0) else DENSE_THRESHOLD
-                base = BaseFactors.build(factorize(S0, where=where, dense_threshold=dense),
-                                         dofs)
-                self.tally["factorizations"] += 1
-            lu: Factorization | LowRankSolve = LowRankSolve.build(base, block, where)
-        else:
-            lu = factorize(combine(constant + updates, p.n), where=where)
-            self.tally["factorizations"] += 1
-        self.cache = FactorCache(self.dt, self.spin, tangent, lu, base)
-        return lu
+        dofs, block = embed(updates) if local else (None, None)
+        c = self.cache
+        if c is None and self._resumed_off_node():
+            # after a resume: rebuild the factors at the stored node, as the run did
+            c = self._build(self.s.factor_spin, tangent, updates, dofs, None)
+            c.kappa = self.s.factor_kappa
+        node = self._node(c)
+        if c is not None and (c.dt, c.spin) == (self.dt, node) and \
+                (c.base_matches(self.dt, node, dofs) if local else c.tangent == tangent):
+            if not local:
+                self.cache, self.node = c, node
+                return c.lu
+            assert c.base is not None and block is not None
+            self.node = node
+            lu = LowRankSolve.build(c.base, block, self._where())
+            self.cache = FactorCache(self.dt, node, tangent, lu, c.base, c.kappa)
+            return lu
+        self.node = node
+        new = self._build(node, tangent, updates, dofs, block)
+        if c is not None and c.dt == self.dt:
+            new.kappa = c.kappa  # rho(S_0^-1 G) barely moves between nearby speed nodes
+        self.cache = new
+        return new.lu
+
+    def _where(self) -> str:
+        return f"{self.m.name}: iteration matrix at t = {self.t1:.9g} s"
+
+    def _build(self, node: float, tangent: int, updates: list[tuple[float, Matrix | None]],
+               dofs: IntArray | None, block: FloatArray | None) -> FactorCache:
+        """Factorise the iteration matrix at the speed node ``node`` (for local tangents:
+        its constant part, updated by ``block`` on ``dofs`` when given)."""
+        m, p, w = self.m, self.p, 1.0 - self.m.alpha_f
+        constant = [(1.0 - m.alpha_m, p.mass), (w * self.gdt, p.damping),
+                    (w * self.gdt * node, p.gyroscopic), (w * self.bdt2, p.stiffness)]
+        self.tally["factorizations"] += 1
+        if dofs is None:
+            lu = factorize(combine(constant + updates, p.n), where=self._where())
+            return FactorCache(self.dt, node, tangent, lu)
+        S0 = combine(constant, p.n)
+        dense = max(DENSE_THRESHOLD, p.n) if not sp.issparse(S0) else DENSE_THRESHOLD
+        base = BaseFactors.build(factorize(S0, where=self._where(), dense_threshold=dense),
+                                 dofs)
+        if block is None:
+            block = np.zeros((dofs.size, dofs.size))
+        return FactorCache(self.dt, node, tangent,
+                           LowRankSolve.build(base, block, self._where()), base)
+
+    def _resumed_off_node(self) -> bool:
+        """True right after a resume whose factors were kept at another speed node."""
+        s = self.s
+        return (self.p.gyroscopic is not None and self.m.max_contraction > 0
+                and s.factor_dt == self.dt and math.isfinite(s.factor_spin)
+                and s.factor_spin != self.spin)
+
+    def _node(self, c: FactorCache | None) -> float:
+        """Speed node of this step's iteration matrix: the cached one while its predicted
+        contraction ``theta`` stays within ``max_contraction``, else this step's speed."""
+        self.theta = 0.0
+        if c is None or c.dt != self.dt or c.spin == self.spin or self.p.gyroscopic is None \
+                or self.m.max_contraction == 0.0:
+            return self.spin
+        if math.isnan(c.kappa):
+            lu = c.base.lu if c.base is not None else c.lu
+            c.kappa = (1.0 - self.m.alpha_f) * self.gdt * gyroscopic_sensitivity(
+                lu, self.p.gyroscopic, self.p.n)
+            self.tally["solves"] += POWER_ITERATIONS
+        theta = c.kappa * abs(self.spin - c.spin)
+        if theta > self.m.max_contraction:
+            return self.spin
+        self.theta = theta
+        return c.spin
 
     def _accepted(self, q: FloatArray, v: FloatArray, a: FloatArray, ev: ForceEvaluation,
                   iterations: int) -> State:
@@ -170,4 +292,4 @@ class StepSolver:
         if c is None:
             return state
         return dataclasses.replace(state, cache=c, factor_dt=c.dt, factor_spin=c.spin,
-                                   factor_tangent=c.tangent)
+                                   factor_tangent=c.tangent, factor_kappa=c.kappa)

@@ -83,7 +83,12 @@ class SecondOrderProblem:
     speed : callable, optional
         ``speed(t) -> s`` [rad/s]; required with ``gyroscopic``. A constant schedule keeps
         one factorisation of the iteration matrix for a linear run; a varying one costs a
-        factorisation per step.
+        refactorisation at a few speed nodes (see
+        :mod:`~rotorsim.time_integration.newmark_step`).
+    affine : bool
+        The restoring force is affine in ``(q, v)`` at each time (e.g. linear bearings whose
+        coefficients follow the speed): its tangents are exact and constant within a step,
+        so one Newton step solves the step equation.
 
     Examples
     --------
@@ -99,6 +104,7 @@ class SecondOrderProblem:
     load: LoadFunction | None = None
     gyroscopic: Matrix | None = None
     speed: ScheduleFunction | None = None
+    affine: bool = False
 
     def __post_init__(self) -> None:
         n = _square(self.mass, "mass", None)

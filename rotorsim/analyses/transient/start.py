@@ -8,7 +8,12 @@ import numpy as np
 import scipy.sparse as sp
 from numpy.typing import ArrayLike
 
-from rotorsim.analyses.rigid_motions import free_rigid_motions, held_dofs
+from rotorsim.analyses.rigid_motions import (
+    check_equilibrium,
+    free_rigid_motions,
+    held_dofs,
+    solve_restrained,
+)
 from rotorsim.analyses.statics.nonlinear_static import nominal_tangent, nonlinear_equilibrium
 from rotorsim.analyses.transient.speed_profile import BoundSpeed
 from rotorsim.assembly.system import RotorSystem
@@ -51,11 +56,17 @@ def static_start(system: RotorSystem, f: FloatArray, profile: BoundSpeed,
     if system.nonlinear is None:
         if not np.any(f):
             return np.zeros(system.n_free)
-        rigid = free_rigid_motions(system, K)
-        if rigid.fields.shape[1]:
-            raise ModelError(f"the rotor has free rigid motions ({', '.join(rigid.labels)}):"
-                             " use initial='zero'", f"{WHERE}.initial")
-        return np.asarray(factorize(K, where="transient: static start").solve(f))
+        rigid = free_rigid_motions(system, K, scaled=True)
+        if not rigid.fields.shape[1]:
+            return np.asarray(factorize(K, where="transient: static start").solve(f))
+        # free motions the loads do no work on (axial, torsion) are held, as in rs.static
+        try:
+            check_equilibrium(rigid, f)
+        except ModelError as exc:
+            raise ModelError(f"no static start: {str(exc).split(': ', 1)[-1]}; or use "
+                             "initial='zero'",
+                             f"{WHERE}.initial") from None
+        return solve_restrained(K, f, rigid, Stats())[0]
     nominal = nominal_tangent(system)
     held = held_dofs(free_rigid_motions(system, sp.csr_matrix(K + nominal)))
     return nonlinear_equilibrium(system, f, speed=W, phi=phi, q0=start, held=held,

@@ -32,13 +32,18 @@ from rotorsim.analyses.transient.loads import (
 )
 from rotorsim.analyses.transient.speed_profile import BoundSpeed, SpeedProfile, as_speed_profile
 from rotorsim.analyses.transient.start import initial_state
+from rotorsim.analyses.transient.variable_bearings import (
+    RestoringSum,
+    SpeedDependentBearings,
+    without_variable_bearings,
+)
 from rotorsim.assembly.loads import (
     gravity_load,
     nodal_load,
     rigid_translation,
     unbalance_amplitudes,
 )
-from rotorsim.assembly.system import RotorSystem, assemble
+from rotorsim.assembly.system import RotorSystem, SystemMatrices, assemble
 from rotorsim.elements.base import DOFS_PER_NODE, FloatArray, NonlinearElement
 from rotorsim.errors import ModelError
 from rotorsim.model.rotor import Rotor
@@ -185,6 +190,11 @@ def transient(
     if reduction is not None:
         from rotorsim.analyses.transient.reduction import reduce_problem
 
+        if isinstance(problem.restoring, SpeedDependentBearings | RestoringSum):
+            raise ModelError("reduction keeps only rolling-bearing DOFs physical; with "
+                             "speed-dependent bearings at a varying speed run without it",
+                             f"{WHERE}.reduction")
+
         problem, basis, report = reduce_problem(system, problem, loads_fn, int(reduction),
                                                 profile.speed(t0))
         q0, v0 = basis.project(q0), basis.project(v0)
@@ -276,11 +286,12 @@ def _problem(system: RotorSystem, profile: BoundSpeed, t0: float, ex: Excitation
     base = cast("BaseExcitation | None", ex.base)  # checked by _groups
     description = profile.describe()
     constant_speed = description["kind"] == "constant"
+    variable = None
     if system.variable_bearings and not constant_speed:
-        tags = [b.label for _, b in system.variable_bearings]
-        raise ModelError(f"speed-dependent linear bearings {tags} need a constant speed "
-                         "(their matrices are evaluated once)", WHERE)
-    mats = system.matrices(profile.speed(t0) if constant_speed else 0.0)
+        variable = SpeedDependentBearings.from_system(system, profile)
+        mats = SystemMatrices(**without_variable_bearings(system, profile.speed(t0)))
+    else:
+        mats = system.matrices(profile.speed(t0) if constant_speed else 0.0)
     constant = np.zeros(system.n_free)
     if ex.gravity is not None:
         constant += gravity_load(system, ex.gravity, ex.direction)
@@ -299,13 +310,18 @@ def _problem(system: RotorSystem, profile: BoundSpeed, t0: float, ex: Excitation
         base=base_load, base_acceleration=None if base is None else base.acceleration,
         forces=forces)
     loads_fn(t0)  # fail early on bad callbacks
-    restoring = None if system.nonlinear is None else RestoringForce(system.nonlinear, profile)
+    parts: list[Any] = [] if system.nonlinear is None else [
+        RestoringForce(system.nonlinear, profile)]
+    if variable is not None:
+        parts.append(variable)
+    restoring = None if not parts else parts[0] if len(parts) == 1 else RestoringSum(parts)
     has_gyro = mats.G.nnz > 0
     M, K, C, G = (m.toarray() if system.n_free <= DENSE_STEPPING else m
                   for m in (mats.M, mats.K, mats.C, mats.G))
     problem = SecondOrderProblem(
         mass=M, stiffness=K, damping=C, restoring=restoring, load=loads_fn,
-        gyroscopic=G if has_gyro else None, speed=profile.speed if has_gyro else None)
+        gyroscopic=G if has_gyro else None, speed=profile.speed if has_gyro else None,
+        affine=system.nonlinear is None and variable is not None)
     return problem, loads_fn
 
 

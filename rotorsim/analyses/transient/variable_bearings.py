@@ -1,0 +1,204 @@
+"""Linear bearings whose coefficients follow the spin speed, in a transient at varying speed.
+
+A fluid-film bearing (plain or tilting-pad) is described by stiffness and damping
+coefficients tabulated against speed (:class:`~rotorsim.elements.linear_bearing.BearingElement`
+with ``frequency``). In a run-up or coast-down they change at every step. Their force
+
+    r_b(q, v, t) = K_b(W(t)) q + C_b(W(t)) v
+
+acts on the bearing DOFs only, so it enters the time integrators as a restoring force that
+is *affine* in ``(q, v)`` with :class:`~rotorsim.time_integration.local_tangent.LocalMatrix`
+tangents ``K_b(W)``, ``C_b(W)``: the iteration matrix's constant part is factorised at a few
+speed nodes and each step updates it exactly by a low-rank (Woodbury) solve on the bearing
+DOFs, with one Newton step per step (:mod:`~rotorsim.time_integration.newmark_step`).
+
+The coefficients are interpolated linearly in speed between the table points and held at
+the end values outside, as in the linear analyses. The tables of all bearings are merged
+onto the union of their speed grids, on which the sum is again exactly piecewise linear, so
+one interpolation per step serves all bearings.
+
+Added mass tabulated over speed cannot enter a restoring force (it multiplies the
+acceleration); it is refused unless it is constant over the table.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+
+import numpy as np
+import scipy.sparse as sp
+from numpy.typing import NDArray
+
+from rotorsim.analyses.transient.speed_profile import BoundSpeed
+from rotorsim.assembly.system import RotorSystem
+from rotorsim.elements.base import DOFS_PER_NODE, FloatArray
+from rotorsim.elements.linear_bearing import BearingElement
+from rotorsim.errors import ModelError
+from rotorsim.time_integration.local_tangent import LocalMatrix, embed
+
+IntArray = NDArray[np.int64]
+
+
+@dataclass(eq=False)
+class SpeedDependentBearings:
+    """``r(q, v, t) = K_b(W(t)) q + C_b(W(t)) v`` on the free DOFs ``dofs``.
+
+    Build it with :meth:`from_system`.
+
+    Attributes
+    ----------
+    n : int
+        Number of unknowns of the problem.
+    dofs : int array (k,)
+        Free DOFs of the bearings (sorted, distinct).
+    grid : array (p,)
+        Union of the bearings' speed tables [rad/s], increasing.
+    stiffness, damping : arrays (p, k, k)
+        ``K_b`` [N/m, N m/rad] and ``C_b`` [N s/m] on ``dofs`` at the grid speeds.
+    speed : BoundSpeed
+        The run's speed schedule.
+    """
+
+    n: int
+    dofs: IntArray
+    grid: FloatArray
+    stiffness: FloatArray
+    damping: FloatArray
+    speed: BoundSpeed
+    _last: tuple[float, FloatArray, FloatArray] | None = field(default=None, repr=False)
+
+    @classmethod
+    def from_system(cls, system: RotorSystem, speed: BoundSpeed) -> SpeedDependentBearings:
+        """The speed-dependent bearings of ``system`` (``system.variable_bearings``).
+
+        Raises
+        ------
+        ModelError
+            When a bearing's added mass varies over its speed table.
+        """
+        bearings = [b for _, b in system.variable_bearings]
+        full = [_element_dofs(b) for b in bearings]
+        free = [system.dof_map.full_to_free[d] for d in full]
+        dofs = np.unique(np.concatenate([f[f >= 0] for f in free])).astype(np.int64)
+        grid = np.unique(np.concatenate([np.asarray(b.frequency, dtype=float)
+                                         for b in bearings]))
+        K = np.zeros((grid.size, dofs.size, dofs.size))
+        C = np.zeros_like(K)
+        for b, f in zip(bearings, free, strict=True):
+            _check_constant_mass(b)
+            keep = f >= 0
+            pos = np.searchsorted(dofs, f[keep])
+            cells = np.ix_(pos, pos)
+            for i, s in enumerate(grid):
+                mats = b.matrices(float(s))
+                K[i][cells] += mats.K[np.ix_(keep, keep)]
+                C[i][cells] += mats.C[np.ix_(keep, keep)]
+        return cls(system.n_free, dofs, grid, K, C, speed)
+
+    def coefficients(self, w: float) -> tuple[FloatArray, FloatArray]:
+        """``K_b``, ``C_b`` (k, k) at spin speed ``w`` [rad/s] (cached for the last speed)."""
+        if self._last is not None and self._last[0] == w:
+            return self._last[1], self._last[2]
+        g = self.grid
+        if w <= g[0] or g.size == 1:
+            K, C = self.stiffness[0], self.damping[0]
+        elif w >= g[-1]:
+            K, C = self.stiffness[-1], self.damping[-1]
+        else:
+            i = int(np.searchsorted(g, w, side="right")) - 1
+            u = (w - g[i]) / (g[i + 1] - g[i])
+            K = (1.0 - u) * self.stiffness[i] + u * self.stiffness[i + 1]
+            C = (1.0 - u) * self.damping[i] + u * self.damping[i + 1]
+        self._last = (w, K, C)
+        return K, C
+
+    def __call__(self, q: FloatArray, v: FloatArray, t: float
+                 ) -> tuple[FloatArray, LocalMatrix, LocalMatrix]:
+        K, C = self.coefficients(self.speed.speed(t))
+        r = np.zeros(self.n)
+        r[self.dofs] = K @ q[self.dofs] + C @ v[self.dofs]
+        return (r, LocalMatrix.trusted(self.n, self.dofs, K),
+                LocalMatrix.trusted(self.n, self.dofs, C))
+
+
+@dataclass(eq=False)
+class RestoringSum:
+    """Sum of restoring forces whose tangents are :class:`LocalMatrix` objects: one force
+    and one tangent pair on the union of their DOFs."""
+
+    parts: Sequence[object]
+
+    def __call__(self, q: FloatArray, v: FloatArray, t: float
+                 ) -> tuple[FloatArray, LocalMatrix, LocalMatrix]:
+        outs = [part(q, v, t) for part in self.parts]  # type: ignore[operator]
+        r = outs[0][0]
+        for out in outs[1:]:
+            r = r + out[0]
+        n = r.size
+        tangents = []
+        for j in (1, 2):
+            dofs, block = embed([(1.0, out[j]) for out in outs])
+            tangents.append(LocalMatrix.trusted(n, dofs, block))
+        return r, tangents[0], tangents[1]
+
+
+def without_variable_bearings(system: RotorSystem, speed: float) -> dict[str, sp.csr_matrix]:
+    """``M, C, G, K`` of ``system`` without the stiffness and damping of its
+    speed-dependent bearings (their constant added mass kept), at ``speed`` [rad/s]."""
+    data = {k: v.copy() for k, v in system.constant.items()}
+    for group, bearing in system.variable_bearings:
+        mass = bearing.matrices(speed).M
+        data["M"] = data["M"] + system.pattern.scatter(group, mass[None])
+    return {k: system.pattern.matrix(v) for k, v in data.items()}
+
+
+def _element_dofs(bearing: BearingElement) -> IntArray:
+    nodes = np.asarray(bearing.nodes, dtype=np.int64)
+    return (DOFS_PER_NODE * nodes[:, None] + np.arange(DOFS_PER_NODE)).reshape(-1)
+
+
+def _check_constant_mass(bearing: BearingElement) -> None:
+    grid = np.asarray(bearing.frequency, dtype=float)
+    masses = np.stack([bearing.matrices(float(s)).M for s in grid])
+    if not np.all(masses == masses[:1]):
+        raise ModelError("added mass tabulated over speed is not supported at a varying "
+                         "speed (it multiplies the acceleration); give constant mxx, myy, "
+                         "mxy, myx or run at a constant speed", bearing.label)
+
+
+def speed_range_notes(bearings: Sequence[BearingElement], w_min: float, w_max: float,
+                      where: str) -> list[str]:
+    """Check the speed-dependent ``bearings`` over a run's speed range [rad/s] before it
+    starts, and say where their coefficients are held at the table's end values.
+
+    Raises
+    ------
+    ModelError
+        When the speed varies (``w_min < w_max``) and a bearing's added mass varies over
+        its table (``where`` names the analysis).
+
+    Examples
+    --------
+    >>> b = BearingElement(n=0, kxx=[1e7, 2e7], frequency=[100.0, 200.0], tag="DE")
+    >>> print(speed_range_notes([b], 0.0, 300.0, "runup")[0])  # doctest: +NORMALIZE_WHITESPACE
+    BearingElement 'DE': coefficients tabulated over 100..200 rad/s, held at the end values
+    below 100 and above 200 rad/s
+    """
+    notes = []
+    for b in bearings:
+        if not b.speed_dependent:
+            continue
+        if w_max > w_min:
+            try:
+                _check_constant_mass(b)
+            except ModelError as exc:
+                raise ModelError(f"{exc}", where) from None
+        grid = np.asarray(b.frequency, dtype=float)
+        outside = [f"below {grid[0]:.6g}" if w_min < grid[0] else "",
+                   f"above {grid[-1]:.6g}" if w_max > grid[-1] else ""]
+        held = " and ".join(x for x in outside if x)
+        if held:
+            notes.append(f"{b.label}: coefficients tabulated over {grid[0]:.6g}.."
+                         f"{grid[-1]:.6g} rad/s, held at the end values {held} rad/s")
+    return notes
