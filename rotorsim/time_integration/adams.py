@@ -298,13 +298,18 @@ class _AdamsStep:
 
     def _linear_and_tangents(self, q: FloatArray, v: FloatArray, t: float, spin: float,
                              external: FloatArray) -> tuple[FloatArray, Any, Any]:
-        """Linear net force ``(C + s G) v + K q - f`` and the tangents of ``r`` at a point."""
+        """Linear net force ``(C + s G + C_s) v + (K + K_s) q - f`` and the tangents of ``r``
+        at a point."""
         p = self.p
         g = p.stiffness @ q - external
         if p.damping is not None:
             g = g + p.damping @ v
         if p.gyroscopic is not None:
             g = g + spin * (p.gyroscopic @ v)
+        if p.speed_terms is not None:
+            dofs = p.speed_terms.dofs
+            Ks, Cs = p.speed_terms(spin)
+            g[dofs] += Ks @ q[dofs] + Cs @ v[dofs]
         if p.restoring is None:
             return g, None, None
         self.tally["residual_evaluations"] += 1
@@ -317,8 +322,10 @@ class _AdamsStep:
         if self.cache.key == key and self.cache.lu is not None:
             return self.cache.lu
         p = self.p
+        Ks, Cs = p.speed_matrices(self.spin)
         S = combine([(1.0, p.mass), (self.vc, p.damping), (self.vc * self.spin, p.gyroscopic),
-                     (self.vc, ct), (self.qc, p.stiffness), (self.qc, kt)], p.n)
+                     (self.vc, ct), (self.qc, p.stiffness), (self.qc, kt), (self.vc, Cs),
+                     (self.qc, Ks)], p.n)
         where = f"{self.m.name}: iteration matrix at t = {self.t1:.9g} s"
         for T in (kt, ct):
             data = T.data if sp.issparse(T) else (np.zeros(0) if T is None else np.asarray(T))

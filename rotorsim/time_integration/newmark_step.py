@@ -17,7 +17,9 @@ contracts by ``theta = kappa |s - s_0|`` per iteration with
 iterations when the node is first used off its speed (:func:`gyroscopic_sensitivity`). The
 residual always uses the exact ``s``, so the converged step is the exact step; only the
 number of iterations depends on the node. A new node is factorised when ``theta`` would
-exceed ``Newmark.max_contraction``. A linear (or affine) problem accepts a step after one
+exceed ``Newmark.max_contraction``. The problem's ``speed_terms`` (bearings tabulated over
+speed) are local: each step adds them at its exact speed to the low-rank update, like the
+tangents of nonlinear bearings. A linear problem accepts a step after one
 solve when the predicted remaining correction ``theta / (1 - theta) h^2 beta |da|`` is within
 the Newton tolerance, and iterates otherwise (a simplified-Newton test, Hairer & Wanner,
 Solving ODEs II, section IV.8).
@@ -128,6 +130,7 @@ class StepSolver:
         """Predicted contraction of the frozen iteration matrix (0 at its own speed)."""
         self.node = self.spin
         """Speed node of the iteration matrix in use [rad/s]."""
+
         self.tally = {"factorizations": 0, "solves": 0, "residual_evaluations": 0,
                       "iterations": 0}
 
@@ -136,7 +139,7 @@ class StepSolver:
         q, v = self.q_base + self.bdt2 * a, self.v_base + self.gdt * a
         ev = self._forces(q, v)
         res = self._residual(a, ev)
-        affine = self.p.is_linear or self.p.affine
+        affine = self.p.is_linear
         lu: Factorization | LowRankSolve | None = None
         for k in range(self.m.max_iter):
             check_finite(res, "residual", self.m.name, self.t1, self.s.step + 1, k)
@@ -160,17 +163,22 @@ class StepSolver:
             if self.theta == 0.0 or self.theta / (1.0 - self.theta) * float(np.max(dq)) \
                     <= self._tolerance(q):
                 return self._accepted(q, v, a, self._forces(q, v), k + 1)
-            # the affine residual after the correction is the frozen part of the matrix
-            # times it: (1 - alpha_f) gamma h (s - s_node) G da
-            assert self.p.gyroscopic is not None
-            res = ((1.0 - self.m.alpha_f) * self.gdt * (self.spin - self.node)) \
-                * (self.p.gyroscopic @ da)
+            res = self._frozen_part(da)
         worst, tol = int(np.argmax(dq)), self._tolerance(q)
         raise ConvergenceError(
             f"Newton did not converge at t = {self.t1:.9g} s (h = {self.dt:.3g} s): "
             f"|dq| = {dq[worst]:.3e} > {tol:.3e} at DOF {worst}", self.m.name,
             step=self.s.step + 1, iteration=self.m.max_iter,
             residual=float(np.max(np.abs(res))))
+
+    def _frozen_part(self, da: FloatArray) -> FloatArray:
+        """The residual of a linear step equation after the correction ``da``: the part of
+        the matrix left out at the speed node times it, ``(1 - alpha_f) gamma h (s - s_node)
+        G da`` [N]."""
+        if self.p.gyroscopic is None:
+            return np.zeros(self.p.n)
+        return ((1.0 - self.m.alpha_f) * self.gdt * (self.spin - self.node)) \
+            * (self.p.gyroscopic @ da)
 
     def _residual(self, a: FloatArray, ev: ForceEvaluation) -> FloatArray:
         """Step equation ``(1 - alpha_m) M a + alpha_m M a_n + alpha_f g_n + (1 - alpha_f)
@@ -195,10 +203,13 @@ class StepSolver:
 
     def _lu(self, ev: ForceEvaluation) -> Factorization | LowRankSolve:
         kt, ct = ev.stiffness_tangent, ev.damping_tangent
-        local = any(T is not None for T in (kt, ct)) and all(
-            T is None or isinstance(T, LocalMatrix) for T in (kt, ct))
+        Ks, Cs = self.p.speed_matrices(self.spin)  # exact at this step's speed
+        parts = (kt, ct, Ks, Cs)
+        local = any(T is not None for T in parts) and all(
+            T is None or isinstance(T, LocalMatrix) for T in parts)
         # local tangents: the k x k update is rebuilt every iteration (cheaper than hashing)
-        tangent = -2 if local else (matrix_digest(kt) * 1_000_003 + matrix_digest(ct)) % (2 ** 63)
+        tangent = -2 if local else (matrix_digest(kt) * 1_000_003 + matrix_digest(ct)
+                                    + 7 * matrix_digest(Ks) + 11 * matrix_digest(Cs)) % (2 ** 63)
         for name, T in (("dr/dq", kt), ("dr/dv", ct)):
             row = first_nonfinite_row(T)
             if row >= 0:
@@ -206,7 +217,8 @@ class StepSolver:
                                        f"(DOF {row})", self.m.name, step=self.s.step + 1,
                                        iteration=self.tally["iterations"], residual=math.nan)
         w = 1.0 - self.m.alpha_f
-        updates = [(w * self.gdt, ct), (w * self.bdt2, kt)]
+        updates = [(w * self.gdt, ct), (w * self.bdt2, kt), (w * self.gdt, Cs),
+                   (w * self.bdt2, Ks)]
         dofs, block = embed(updates) if local else (None, None)
         c = self.cache
         if c is None and self._resumed_off_node():
@@ -222,7 +234,7 @@ class StepSolver:
             assert c.base is not None and block is not None
             self.node = node
             lu = LowRankSolve.build(c.base, block, self._where())
-            self.cache = FactorCache(self.dt, node, tangent, lu, c.base, c.kappa)
+            self.cache = dataclasses.replace(c, tangent=tangent, lu=lu)
             return lu
         self.node = node
         new = self._build(node, tangent, updates, dofs, block)
@@ -265,13 +277,14 @@ class StepSolver:
         """Speed node of this step's iteration matrix: the cached one while its predicted
         contraction ``theta`` stays within ``max_contraction``, else this step's speed."""
         self.theta = 0.0
-        if c is None or c.dt != self.dt or c.spin == self.spin or self.p.gyroscopic is None \
+        p = self.p
+        if c is None or c.dt != self.dt or c.spin == self.spin or p.gyroscopic is None \
                 or self.m.max_contraction == 0.0:
             return self.spin
         if math.isnan(c.kappa):
             lu = c.base.lu if c.base is not None else c.lu
             c.kappa = (1.0 - self.m.alpha_f) * self.gdt * gyroscopic_sensitivity(
-                lu, self.p.gyroscopic, self.p.n)
+                lu, p.gyroscopic, p.n)
             self.tally["solves"] += POWER_ITERATIONS
         theta = c.kappa * abs(self.spin - c.spin)
         if theta > self.m.max_contraction:

@@ -2,17 +2,19 @@
 
 The integrators know nothing about rotors: they see the equation of motion
 
-    M a + (C + s(t) G) v + K q + r(q, v, t) = f(t)
+    M a + (C + s(t) G + C_s(s(t))) v + (K + K_s(s(t))) q + r(q, v, t) = f(t)
 
 with constant matrices ``M``, ``C``, ``G``, ``K`` (dense arrays or scipy sparse), an optional
 scalar schedule ``s(t)`` (for a rotor: the spin speed W(t), with ``G`` the gyroscopic
-matrix), an optional nonlinear restoring force ``r`` that returns its own tangents
+matrix), optional matrices ``K_s(s)``, ``C_s(s)`` that follow the schedule on a few unknowns
+(linear bearings tabulated over speed, :class:`SpeedTerms`), an optional nonlinear
+restoring force ``r`` that returns its own tangents
 ``dr/dq`` and ``dr/dv``, and an optional load ``f(t)``. The analysis layer builds such a
 problem from a ``RotorSystem``; tests build it from a Duffing oscillator or a Jeffcott
 rotor.
 
-The steppers work with the *net force* ``g = (C + s G) v + K q + r - f``, so that the
-equation of motion reads ``M a + g = 0``.
+The steppers work with the *net force* ``g = (C + s G + C_s) v + (K + K_s) q + r - f``, so
+that the equation of motion reads ``M a + g = 0``.
 """
 
 from __future__ import annotations
@@ -22,7 +24,7 @@ import math
 from collections.abc import Callable
 from dataclasses import dataclass
 from functools import cached_property
-from typing import Any
+from typing import Any, Protocol
 
 import numpy as np
 import scipy.sparse as sp
@@ -50,6 +52,19 @@ LoadFunction = Callable[[float], ArrayLike]
 
 ScheduleFunction = Callable[[float], float]
 """``speed(t) -> s`` scalar multiplying ``G`` (rad/s for a spin speed)."""
+
+
+class SpeedTerms(Protocol):
+    """Stiffness and damping that follow the schedule ``s`` on the unknowns ``dofs``."""
+
+    @property
+    def dofs(self) -> NDArray[np.int64]:
+        """Distinct indices (k,) of the unknowns they act on."""
+        ...
+
+    def __call__(self, s: float, /) -> tuple[FloatArray, FloatArray]:
+        """``K_s(s)``, ``C_s(s)`` (k, k) on ``dofs`` [N/m, N s/m]."""
+        ...
 
 
 @dataclass(frozen=True, eq=False)
@@ -85,10 +100,10 @@ class SecondOrderProblem:
         one factorisation of the iteration matrix for a linear run; a varying one costs a
         refactorisation at a few speed nodes (see
         :mod:`~rotorsim.time_integration.newmark_step`).
-    affine : bool
-        The restoring force is affine in ``(q, v)`` at each time (e.g. linear bearings whose
-        coefficients follow the speed): its tangents are exact and constant within a step,
-        so one Newton step solves the step equation.
+    speed_terms : SpeedTerms, optional
+        ``K_s(s)``, ``C_s(s)`` on a few unknowns (requires ``speed``): linear, so a problem
+        without ``restoring`` stays linear; the Newmark steppers add them to the iteration
+        matrix at each step's exact speed by a low-rank update.
 
     Examples
     --------
@@ -104,7 +119,7 @@ class SecondOrderProblem:
     load: LoadFunction | None = None
     gyroscopic: Matrix | None = None
     speed: ScheduleFunction | None = None
-    affine: bool = False
+    speed_terms: SpeedTerms | None = None
 
     def __post_init__(self) -> None:
         n = _square(self.mass, "mass", None)
@@ -112,8 +127,9 @@ class SecondOrderProblem:
             if getattr(self, name) is not None:
                 object.__setattr__(self, name, _as_matrix(getattr(self, name), name, n))
         object.__setattr__(self, "mass", _as_matrix(self.mass, "mass", n))
-        if (self.gyroscopic is None) != (self.speed is None):
-            raise ModelError("give both 'gyroscopic' and 'speed', or neither",
+        if (self.gyroscopic is not None or self.speed_terms is not None) != \
+                (self.speed is not None):
+            raise ModelError("give both 'speed' and 'gyroscopic' (or 'speed_terms'), or neither",
                              "SecondOrderProblem")
         for name in ("restoring", "load", "speed"):
             value = getattr(self, name)
@@ -143,12 +159,12 @@ class SecondOrderProblem:
         for name in ("mass", "stiffness", "damping", "gyroscopic"):
             h.update(name.encode())
             h.update(matrix_digest(getattr(self, name)).to_bytes(8, "little"))
-        for name in ("restoring", "load", "speed"):
+        for name in ("restoring", "load", "speed", "speed_terms"):
             h.update(f"{name}:{getattr(self, name) is not None}".encode())
         return h.hexdigest()
 
     def spin(self, t: float) -> float:
-        """``s(t)`` (0 without a gyroscopic term); rejects a non-finite value."""
+        """``s(t)`` (0 without a schedule); rejects a non-finite value."""
         if self.speed is None:
             return 0.0
         s = float(self.speed(t))
@@ -175,8 +191,14 @@ class SecondOrderProblem:
         g = self.stiffness @ q
         if self.damping is not None:
             g = g + self.damping @ v
-        if self.gyroscopic is not None:
-            g = g + (self.spin(t) if spin is None else spin) * (self.gyroscopic @ v)
+        if self.gyroscopic is not None or self.speed_terms is not None:
+            s = self.spin(t) if spin is None else spin
+            if self.gyroscopic is not None:
+                g = g + s * (self.gyroscopic @ v)
+            if self.speed_terms is not None:
+                dofs = self.speed_terms.dofs
+                Ks, Cs = self.speed_terms(s)
+                g[dofs] += Ks @ q[dofs] + Cs @ v[dofs]
         g = g - (self.external(t) if external is None else external)
         if self.restoring is None:
             return ForceEvaluation(g, None, None)
@@ -191,11 +213,21 @@ class SecondOrderProblem:
         return ForceEvaluation(g + r, kt, ct)
 
     def damping_at(self, spin: float) -> Matrix | None:
-        """``C + s G`` at the schedule value ``spin`` (None when both are absent)."""
-        terms = [(1.0, self.damping), (spin, self.gyroscopic)]
+        """``C + s G + C_s(s)`` at the schedule value ``spin`` (None when all are absent)."""
+        terms = [(1.0, self.damping), (spin, self.gyroscopic),
+                 (1.0, self.speed_matrices(spin)[1])]
         if all(m is None for _, m in terms):
             return None
         return combine(terms, self.n)
+
+    def speed_matrices(self, spin: float) -> tuple[LocalMatrix | None, LocalMatrix | None]:
+        """``K_s(s)``, ``C_s(s)`` as local matrices at the schedule value ``spin`` (None
+        without ``speed_terms``)."""
+        if self.speed_terms is None:
+            return None, None
+        K, C = self.speed_terms(spin)
+        dofs = self.speed_terms.dofs
+        return LocalMatrix.trusted(self.n, dofs, K), LocalMatrix.trusted(self.n, dofs, C)
 
 
 def combine(terms: list[tuple[float, Matrix | None]], n: int) -> Matrix:

@@ -33,7 +33,6 @@ from rotorsim.analyses.transient.loads import (
 from rotorsim.analyses.transient.speed_profile import BoundSpeed, SpeedProfile, as_speed_profile
 from rotorsim.analyses.transient.start import initial_state
 from rotorsim.analyses.transient.variable_bearings import (
-    RestoringSum,
     SpeedDependentBearings,
     without_variable_bearings,
 )
@@ -190,7 +189,7 @@ def transient(
     if reduction is not None:
         from rotorsim.analyses.transient.reduction import reduce_problem
 
-        if isinstance(problem.restoring, SpeedDependentBearings | RestoringSum):
+        if problem.speed_terms is not None:
             raise ModelError("reduction keeps only rolling-bearing DOFs physical; with "
                              "speed-dependent bearings at a varying speed run without it",
                              f"{WHERE}.reduction")
@@ -288,7 +287,7 @@ def _problem(system: RotorSystem, profile: BoundSpeed, t0: float, ex: Excitation
     constant_speed = description["kind"] == "constant"
     variable = None
     if system.variable_bearings and not constant_speed:
-        variable = SpeedDependentBearings.from_system(system, profile)
+        variable = SpeedDependentBearings.from_system(system)
         mats = SystemMatrices(**without_variable_bearings(system, profile.speed(t0)))
     else:
         mats = system.matrices(profile.speed(t0) if constant_speed else 0.0)
@@ -310,18 +309,14 @@ def _problem(system: RotorSystem, profile: BoundSpeed, t0: float, ex: Excitation
         base=base_load, base_acceleration=None if base is None else base.acceleration,
         forces=forces)
     loads_fn(t0)  # fail early on bad callbacks
-    parts: list[Any] = [] if system.nonlinear is None else [
-        RestoringForce(system.nonlinear, profile)]
-    if variable is not None:
-        parts.append(variable)
-    restoring = None if not parts else parts[0] if len(parts) == 1 else RestoringSum(parts)
+    restoring = None if system.nonlinear is None else RestoringForce(system.nonlinear, profile)
     has_gyro = mats.G.nnz > 0
     M, K, C, G = (m.toarray() if system.n_free <= DENSE_STEPPING else m
                   for m in (mats.M, mats.K, mats.C, mats.G))
     problem = SecondOrderProblem(
         mass=M, stiffness=K, damping=C, restoring=restoring, load=loads_fn,
-        gyroscopic=G if has_gyro else None, speed=profile.speed if has_gyro else None,
-        affine=system.nonlinear is None and variable is not None)
+        gyroscopic=G if has_gyro else None, speed_terms=variable,
+        speed=profile.speed if has_gyro or variable is not None else None)
     return problem, loads_fn
 
 

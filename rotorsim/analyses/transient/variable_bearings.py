@@ -6,19 +6,19 @@ with ``frequency``). In a run-up or coast-down they change at every step. Their 
 
     r_b(q, v, t) = K_b(W(t)) q + C_b(W(t)) v
 
-acts on the bearing DOFs only, so it enters the time integrators as a restoring force that
-is *affine* in ``(q, v)`` with :class:`~rotorsim.time_integration.local_tangent.LocalMatrix`
-tangents ``K_b(W)``, ``C_b(W)``: the iteration matrix's constant part is factorised at a few
-speed nodes and each step updates it exactly by a low-rank (Woodbury) solve on the bearing
-DOFs, with one Newton step per step (:mod:`~rotorsim.time_integration.newmark_step`).
+acts on the bearing DOFs only. It enters the time integrators as the problem's
+``speed_terms`` (:class:`~rotorsim.time_integration.problem.SpeedTerms`): the problem stays
+linear, the constant part of the iteration matrix is factorised at a few speed nodes (for
+the gyroscopic term), and each step adds ``K_b``, ``C_b`` at its exact speed by a low-rank
+(Woodbury) solve on the bearing DOFs (:mod:`~rotorsim.time_integration.newmark_step`).
 
 The coefficients are interpolated linearly in speed between the table points and held at
 the end values outside, as in the linear analyses. The tables of all bearings are merged
 onto the union of their speed grids, on which the sum is again exactly piecewise linear, so
 one interpolation per step serves all bearings.
 
-Added mass tabulated over speed cannot enter a restoring force (it multiplies the
-acceleration); it is refused unless it is constant over the table.
+Added mass tabulated over speed is not followed (it would multiply the acceleration in the
+net force); it is refused at a varying speed unless it is constant over the table.
 """
 
 from __future__ import annotations
@@ -30,19 +30,18 @@ import numpy as np
 import scipy.sparse as sp
 from numpy.typing import NDArray
 
-from rotorsim.analyses.transient.speed_profile import BoundSpeed
 from rotorsim.assembly.system import RotorSystem
 from rotorsim.elements.base import DOFS_PER_NODE, FloatArray
 from rotorsim.elements.linear_bearing import BearingElement
 from rotorsim.errors import ModelError
-from rotorsim.time_integration.local_tangent import LocalMatrix, embed
 
 IntArray = NDArray[np.int64]
 
 
 @dataclass(eq=False)
 class SpeedDependentBearings:
-    """``r(q, v, t) = K_b(W(t)) q + C_b(W(t)) v`` on the free DOFs ``dofs``.
+    """``K_b(W)``, ``C_b(W)`` on the free DOFs ``dofs``: the ``speed_terms`` of a
+    :class:`~rotorsim.time_integration.problem.SecondOrderProblem`.
 
     Build it with :meth:`from_system`.
 
@@ -56,8 +55,6 @@ class SpeedDependentBearings:
         Union of the bearings' speed tables [rad/s], increasing.
     stiffness, damping : arrays (p, k, k)
         ``K_b`` [N/m, N m/rad] and ``C_b`` [N s/m] on ``dofs`` at the grid speeds.
-    speed : BoundSpeed
-        The run's speed schedule.
     """
 
     n: int
@@ -65,11 +62,10 @@ class SpeedDependentBearings:
     grid: FloatArray
     stiffness: FloatArray
     damping: FloatArray
-    speed: BoundSpeed
     _last: tuple[float, FloatArray, FloatArray] | None = field(default=None, repr=False)
 
     @classmethod
-    def from_system(cls, system: RotorSystem, speed: BoundSpeed) -> SpeedDependentBearings:
+    def from_system(cls, system: RotorSystem) -> SpeedDependentBearings:
         """The speed-dependent bearings of ``system`` (``system.variable_bearings``).
 
         Raises
@@ -94,10 +90,11 @@ class SpeedDependentBearings:
                 mats = b.matrices(float(s))
                 K[i][cells] += mats.K[np.ix_(keep, keep)]
                 C[i][cells] += mats.C[np.ix_(keep, keep)]
-        return cls(system.n_free, dofs, grid, K, C, speed)
+        return cls(system.n_free, dofs, grid, K, C)
 
-    def coefficients(self, w: float) -> tuple[FloatArray, FloatArray]:
-        """``K_b``, ``C_b`` (k, k) at spin speed ``w`` [rad/s] (cached for the last speed)."""
+    def __call__(self, w: float) -> tuple[FloatArray, FloatArray]:
+        """``K_b``, ``C_b`` (k, k) on ``dofs`` at spin speed ``w`` [rad/s] (the last speed's
+        are kept: a step asks several times)."""
         if self._last is not None and self._last[0] == w:
             return self._last[1], self._last[2]
         g = self.grid
@@ -112,35 +109,6 @@ class SpeedDependentBearings:
             C = (1.0 - u) * self.damping[i] + u * self.damping[i + 1]
         self._last = (w, K, C)
         return K, C
-
-    def __call__(self, q: FloatArray, v: FloatArray, t: float
-                 ) -> tuple[FloatArray, LocalMatrix, LocalMatrix]:
-        K, C = self.coefficients(self.speed.speed(t))
-        r = np.zeros(self.n)
-        r[self.dofs] = K @ q[self.dofs] + C @ v[self.dofs]
-        return (r, LocalMatrix.trusted(self.n, self.dofs, K),
-                LocalMatrix.trusted(self.n, self.dofs, C))
-
-
-@dataclass(eq=False)
-class RestoringSum:
-    """Sum of restoring forces whose tangents are :class:`LocalMatrix` objects: one force
-    and one tangent pair on the union of their DOFs."""
-
-    parts: Sequence[object]
-
-    def __call__(self, q: FloatArray, v: FloatArray, t: float
-                 ) -> tuple[FloatArray, LocalMatrix, LocalMatrix]:
-        outs = [part(q, v, t) for part in self.parts]  # type: ignore[operator]
-        r = outs[0][0]
-        for out in outs[1:]:
-            r = r + out[0]
-        n = r.size
-        tangents = []
-        for j in (1, 2):
-            dofs, block = embed([(1.0, out[j]) for out in outs])
-            tangents.append(LocalMatrix.trusted(n, dofs, block))
-        return r, tangents[0], tangents[1]
 
 
 def without_variable_bearings(system: RotorSystem, speed: float) -> dict[str, sp.csr_matrix]:

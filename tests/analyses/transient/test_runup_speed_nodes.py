@@ -46,18 +46,27 @@ def _scale(run) -> float:
     return float(np.max(np.ptp(run.q, axis=0)))
 
 
+def _rolling_rotor_with_seal() -> rs.Rotor:
+    """The rolling-bearing rotor with a seal tabulated over speed at mid-span: rolling
+    tangents and speed terms in one low-rank update."""
+    rotor = _rolling_rotor()
+    seal = rs.BearingElement(n=5, tag="seal", **TABLE)
+    return rotor.with_bearings([*rotor.bearing_elements, seal])
+
+
 @pytest.mark.parametrize(("case", "agreement"), [
     # the Newton tolerance, 1e-10 of the largest |q| (here the gravity sag) per step, carried
     # over 500 steps through the contacts: measured 7.3e-8 of the motion
-    ("rolling", 1e-6),
+    ("rolling", 1e-6), ("rolling_seal", 1e-6),
     # an affine step is solved to theta^2 of its correction: measured 1.7e-12 and 1.1e-12
     ("linear", 1e-9), ("tabulated", 1e-9)])
 def test_runup_reuses_factorisations_and_takes_the_same_steps(case, agreement):
     """The frozen-speed iteration converges to the same step equation: the samples differ
     from factorising at every speed only by the Newton tolerance, while the run factorises
     at a few speed nodes (21 and 49 instead of 501 and 1001)."""
-    if case == "rolling":
-        rotor, t_end, dt, unb = _rolling_rotor(), 0.01, 2e-5, [(5, 1e-5, 0.0)]
+    if case.startswith("rolling"):
+        rotor = _rolling_rotor() if case == "rolling" else _rolling_rotor_with_seal()
+        t_end, dt, unb = 0.01, 2e-5, [(5, 1e-5, 0.0)]
         kw = dict(nodes=[5])
     else:
         rotor, t_end, dt, unb = _rotor(case == "tabulated"), 0.05, 5e-5, [(3, 2e-4, 0.0)]
