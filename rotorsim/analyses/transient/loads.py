@@ -102,6 +102,10 @@ class TransientLoads:
         uy), or None.
     base : array (n,) or None
         ``-M e`` for the base acceleration [kg].
+    torsion : callable or None
+        ``torsion(t)`` (n,): the torques of a torque drive on the torsional DOFs minus the
+        inertial load of the spinning-up frame
+        (:class:`~rotorsim.analyses.transient.torsion_loads.TorsionLoad`).
     """
 
     n: int
@@ -111,9 +115,12 @@ class TransientLoads:
     base: FloatArray | None = None
     base_acceleration: Callable[[float], float] | None = None
     forces: Callable[[float], ArrayLike] | None = None
+    torsion: Callable[[float], FloatArray] | None = None
 
     def __call__(self, t: float) -> FloatArray:
         f = self.constant.copy()
+        if self.torsion is not None:
+            f += self.torsion(t)
         if self.unbalance is not None:
             w, dw = self.speed.speed(t), self.speed.acceleration(t)
             rot = np.exp(1j * self.speed.angle(t)) * (w * w - 1j * dw)
