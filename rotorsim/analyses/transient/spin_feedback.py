@@ -38,7 +38,7 @@ running) are left out of the sample-wise ratio."""
 
 def with_spin_feedback(result: TransientResult, drive: BoundTorqueDrive,
                        unbalance: Sequence[tuple[int, float, float]],
-                       gravity: Sequence[float]) -> TransientResult:
+                       gravity: Sequence[float] | np.ndarray) -> TransientResult:
     """``result`` with ``options["spin_feedback"]``: the largest lateral torque on the
     spin [N m], the largest net drive torque ``J_p |W'|`` [N m], their ratio, the largest
     sample-wise ratio while driving and whether it exceeds :data:`QUESTIONABLE`."""
@@ -63,7 +63,7 @@ def with_spin_feedback(result: TransientResult, drive: BoundTorqueDrive,
 
 
 def lateral_torque(result: TransientResult, unbalance: Sequence[tuple[int, float, float]],
-                   gravity: Sequence[float]) -> np.ndarray:
+                   gravity: Sequence[float] | np.ndarray) -> np.ndarray:
     """``T_lat(t)`` [N m] at the samples of ``result`` (module docstring); the unbalance
     nodes' ``ux, uy`` must have been kept."""
     t = result.t

@@ -19,8 +19,9 @@ Examples
 >>> from rotorsim.analyses.transient.torque_laws import QuadraticTorque
 >>> drive = TorqueDrive(motor=2.0, loads=[(0, QuadraticTorque(1e-4))], inertia=0.01)
 >>> bound = drive.bind(0.0, 1.0)
->>> round(bound.speed(0.5), 6), round(bound.angle(0.5), 6)     # 2 N m on 0.01 kg m^2
-(98.382191, 24.869012)
+>>> w_inf = (2.0 / 1e-4) ** 0.5          # W = w_inf tanh(c w_inf t / J): fan against 2 N m
+>>> round(bound.speed(0.5), 6), round(w_inf * math.tanh(1e-4 * w_inf * 0.5 / 0.01), 6)
+(86.105717, 86.105717)
 """
 
 from __future__ import annotations
@@ -154,7 +155,7 @@ class BoundTorqueDrive:
     def _state(self, t: float) -> tuple[float, float, bool]:
         if self._last[0] != t:
             self._last[0], self._last[1] = t, self.history.state(t)
-        return self._last[1]  # type: ignore[no-any-return]
+        return self._last[1]
 
     def speed(self, t: float) -> float:
         return self._state(t)[0]

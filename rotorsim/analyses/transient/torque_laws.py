@@ -300,7 +300,7 @@ def as_torque_law(value: object, where: str) -> TorqueLaw:
     if isinstance(value, TorqueLaw):
         return value
     if callable(value):
-        return TorqueFunction(value)  # type: ignore[arg-type]
+        return TorqueFunction(value)
     if isinstance(value, int | float) and not isinstance(value, bool):
         return ConstantTorque(float(value))
     raise ModelError(f"give a torque [N m], a callable T(W, t) or a torque law, got "

@@ -20,6 +20,7 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
@@ -107,14 +108,14 @@ class TorsionLoad:
     positions: np.ndarray
 
     @classmethod
-    def build(cls, system: RotorSystem, drive: BoundTorqueDrive, mass: object
+    def build(cls, system: RotorSystem, drive: BoundTorqueDrive, mass: Any
               ) -> TorsionLoad | None:
         """The torsional load of ``drive`` on ``system`` (``mass`` its ``M`` on the free
         DOFs); None without free torsional DOFs."""
         e, all_free = spin_field(system)
         if not np.any(e):
             return None
-        inertial = np.asarray(mass @ e, dtype=float).reshape(-1)  # type: ignore[operator]
+        inertial: FloatArray = np.asarray(mass @ e, dtype=np.float64).reshape(-1)
         full = DOFS_PER_NODE * np.array([a.node for a in drive.drive.torques]) + RZ
         positions = system.dof_map.full_to_free[full]
         if all_free:
