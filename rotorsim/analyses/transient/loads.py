@@ -27,7 +27,7 @@ from rotorsim.assembly.loads import unit_direction
 from rotorsim.assembly.nonlinear import NonlinearAssembly
 from rotorsim.elements.base import FloatArray
 from rotorsim.errors import ModelError
-from rotorsim.time_integration.local_tangent import LocalMatrix
+from rotorsim.time_integration.local_tangent import LocalMatrix, embed
 
 ComplexArray = np.ndarray
 
@@ -147,6 +147,8 @@ class RestoringForce:
 
     ``index`` and ``size`` place the nonlinear DOFs in the problem's unknowns: by default
     the free DOFs themselves; in a reduced problem the leading boundary coordinates.
+    ``damping`` adds the speed damping of a torque drive
+    (:class:`~rotorsim.analyses.transient.torque_damping.TorqueDamping`).
     """
 
     assembly: NonlinearAssembly
@@ -154,6 +156,8 @@ class RestoringForce:
     internal: Any = None
     index: Any = None
     size: int | None = None
+    damping: Callable[[FloatArray, FloatArray, float],
+                      tuple[FloatArray, None, LocalMatrix]] | None = None
 
     def __post_init__(self) -> None:
         if self.index is None:
@@ -169,5 +173,9 @@ class RestoringForce:
         self.internal = out.internal
         r = np.zeros(size)
         r[index] = out.f[0]
-        return (r, LocalMatrix.trusted(size, index, out.K[0]),
-                LocalMatrix.trusted(size, index, out.C[0]))
+        C = LocalMatrix.trusted(size, index, out.C[0])
+        if self.damping is not None:  # a torque drive's speed damping (torque_damping)
+            r_d, _, C_d = self.damping(q, v, t)
+            r += r_d
+            C = LocalMatrix.trusted(size, *embed([(1.0, C), (1.0, C_d)]))
+        return r, LocalMatrix.trusted(size, index, out.K[0]), C

@@ -72,6 +72,10 @@ class TorqueDrive:
         Polar inertia ``J_p`` [kg m^2] of the spin equation; default the model's
         (:func:`~.torsion_loads.model_polar_inertia`). A value above the model's adds the
         difference at ``drive_node`` (e.g. the motor's rotor, rigidly attached).
+    torque_damping : bool
+        Put the speed slope of the torques on the torsional DOFs of their nodes as a
+        damping ``-dT/dW`` (slip damping of the motor, speed damping of a fan;
+        :mod:`~.torque_damping`).
     name : str
         Names the drive in messages.
     """
@@ -83,6 +87,7 @@ class TorqueDrive:
     initial_speed: float = 0.0
     phi0: float = 0.0
     inertia: float | None = None
+    torque_damping: bool = True
     name: str = "TorqueDrive"
     torques: tuple[AppliedTorque, ...] = field(init=False, repr=False)
 
@@ -150,12 +155,18 @@ class BoundTorqueDrive:
     inertia_source: str
     model_inertia: float | None
     history: SpinHistory
-    _last: list[Any] = field(default_factory=lambda: [None, None], repr=False)
+    _recent: dict[float, tuple[float, float, bool]] = field(default_factory=dict,
+                                                            repr=False)
 
     def _state(self, t: float) -> tuple[float, float, bool]:
-        if self._last[0] != t:
-            self._last[0], self._last[1] = t, self.history.state(t)
-        return self._last[1]
+        """``(W, phi, moving)``, remembered for the last few times (a step asks for the
+        speed, angle and acceleration at the same times several times)."""
+        hit = self._recent.get(t)
+        if hit is None:
+            if len(self._recent) >= 8:
+                self._recent.clear()
+            hit = self._recent[t] = self.history.state(t)
+        return hit
 
     def speed(self, t: float) -> float:
         return self._state(t)[0]
@@ -204,6 +215,7 @@ class BoundTorqueDrive:
                       if a.role == "load"],
             "friction": [{"node": a.node, **a.law.describe()} for a in d.torques
                          if a.role == "friction"],
+            "torque_damping": bool(d.torque_damping),
             "final_speed": self.speed(end), "stops": self.history.stops,
             "spin_evaluations": self.history.evaluations,
         }

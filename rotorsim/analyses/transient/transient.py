@@ -32,6 +32,7 @@ from rotorsim.analyses.transient.loads import (
 )
 from rotorsim.analyses.transient.speed_profile import BoundSpeed, SpeedProfile
 from rotorsim.analyses.transient.start import initial_state
+from rotorsim.analyses.transient.torque_damping import with_torque_damping
 from rotorsim.analyses.transient.torque_drive import BoundTorqueDrive, TorqueDrive
 from rotorsim.analyses.transient.torsion_loads import TorsionLoad, bind_speed
 from rotorsim.assembly.loads import (
@@ -313,7 +314,8 @@ def _problem(system: RotorSystem, profile: BoundSpeed, t0: float, ex: Excitation
         forces=forces, torsion=TorsionLoad.build(system, profile, mats.M)
         if isinstance(profile, BoundTorqueDrive) else None)
     loads_fn(t0)  # fail early on bad callbacks
-    restoring = None if system.nonlinear is None else RestoringForce(system.nonlinear, profile)
+    restoring = with_torque_damping(None if system.nonlinear is None else
+                                    RestoringForce(system.nonlinear, profile), system, profile)
     has_gyro = mats.G.nnz > 0
     M, K, C, G = (m.toarray() if system.n_free <= DENSE_STEPPING else m
                   for m in (mats.M, mats.K, mats.C, mats.G))
