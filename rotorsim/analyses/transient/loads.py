@@ -177,5 +177,17 @@ class RestoringForce:
         if self.damping is not None:  # a torque drive's speed damping (torque_damping)
             r_d, _, C_d = self.damping(q, v, t)
             r += r_d
-            C = LocalMatrix.trusted(size, *embed([(1.0, C), (1.0, C_d)]))
+            C = _joined(C, C_d)
         return r, LocalMatrix.trusted(size, index, out.K[0]), C
+
+
+def _joined(a: LocalMatrix, b: LocalMatrix) -> LocalMatrix:
+    """``a + b``: block-diagonal when their DOFs are disjoint (the ``rz`` DOFs of a torque
+    drive and the bearings' lateral ones), else on the union of the DOFs."""
+    k = a.dofs.size
+    if np.intersect1d(a.dofs, b.dofs, assume_unique=True).size:
+        return LocalMatrix.trusted(a.n, *embed([(1.0, a), (1.0, b)]))
+    block = np.zeros((k + b.dofs.size, k + b.dofs.size))
+    block[:k, :k] = a.block
+    block[k:, k:] = b.block
+    return LocalMatrix.trusted(a.n, np.concatenate([a.dofs, b.dofs]), block)

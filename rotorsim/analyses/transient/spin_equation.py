@@ -20,6 +20,7 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass
+from functools import cached_property
 from typing import Any
 
 import numpy as np
@@ -79,9 +80,14 @@ class SpinHistory:
     segments: tuple[Segment, ...]
     evaluations: int
 
+    @cached_property
+    def _starts(self) -> FloatArray:
+        return np.array([s.t_start for s in self.segments])
+
     def segment(self, t: float) -> Segment:
-        starts = [s.t_start for s in self.segments]
-        i = max(int(np.searchsorted(starts, t, side="right")) - 1, 0)
+        if len(self.segments) == 1:
+            return self.segments[0]
+        i = max(int(np.searchsorted(self._starts, t, side="right")) - 1, 0)
         return self.segments[i]
 
     def state(self, t: float) -> tuple[float, float, bool]:
