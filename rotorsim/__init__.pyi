@@ -29,6 +29,16 @@ from .analyses.sweep.sweep import (
 )
 from .analyses.transient.loads import BaseExcitation
 from .analyses.transient.speed_profile import ConstantSpeed, LinearSpeed, SpeedFunction
+from .analyses.transient.torque_drive import TorqueDrive
+from .analyses.transient.torque_laws import (
+    ConstantTorque,
+    InductionMotor,
+    PulsatingTorque,
+    QuadraticTorque,
+    TorqueCurve,
+    TorqueFunction,
+    ViscousTorque,
+)
 from .analyses.transient.transient import transient
 from .assembly.dof_map import DofMap
 from .assembly.system import RotorSystem, SystemMatrices, assemble
@@ -96,6 +106,7 @@ __all__ = [
     "CentrifugalBearing",
     "Checkpointing",
     "ConstantSpeed",
+    "ConstantTorque",
     "ContinuationOptions",
     "ConvergenceError",
     "CriticalSpeedMapResult",
@@ -112,6 +123,7 @@ __all__ = [
     "HarmonicBase",
     "Harmonics",
     "InconsistentModelError",
+    "InductionMotor",
     "LargeRotationBearing",
     "LinearSpeed",
     "LinearizationPoint",
@@ -126,6 +138,8 @@ __all__ = [
     "PeriodicBifurcation",
     "PeriodicResult",
     "PointMass",
+    "PulsatingTorque",
+    "QuadraticTorque",
     "ResultsFileError",
     "ReversedBearing",
     "RollerBearing",
@@ -142,8 +156,12 @@ __all__ = [
     "StiffnessVariation",
     "SweepResult",
     "SystemMatrices",
+    "TorqueCurve",
+    "TorqueDrive",
+    "TorqueFunction",
     "TransientResult",
     "Uniform",
+    "ViscousTorque",
     "assemble",
     "bearing_equilibrium",
     "campbell",

@@ -113,7 +113,11 @@ def _transient(rotor: Rotor, model: Model, spec: Any, fast: bool, progress: bool
 
     t_end = spec.t_end / 10.0 if fast else spec.t_end
     speed: Any = spec.speed
-    if spec.speed_stop is not None:
+    if spec.drive is not None:
+        from rotorsim.io.drive_build import torque_drive
+
+        speed = torque_drive(spec.drive, spec.speed)
+    elif spec.speed_stop is not None:
         ramp = spec.t_end if spec.ramp_time is None else spec.ramp_time
         speed = LinearSpeed(spec.speed, spec.speed_stop, 0.0, ramp)
     unbalance = model.loads.unbalance if spec.unbalance is None else spec.unbalance

@@ -14,6 +14,7 @@ from pydantic import Field, PlainValidator, create_model, model_validator
 
 from rotorsim.errors import ModelError
 from rotorsim.io.analysis_spec import AnalysisSpec, Grid
+from rotorsim.io.drive_schema import DriveTable
 from rotorsim.io.long_specs import PeriodicParameterSpec, PeriodicSpec, TransientSpec
 from rotorsim.io.model_schema import UnbalanceTable
 from rotorsim.io.schema_types import (
@@ -167,19 +168,24 @@ class _TransientKeys(RestartableTable):
     initial: Literal["static", "zero"] = "static"
     on_failure: Literal["stop", "raise"] = "stop"
     unbalance: Annotated[list[UnbalanceTable], Field(min_length=1)] | None = None
+    drive: DriveTable | None = None
 
     @model_validator(mode="after")
     def _step_within_run(self) -> "_TransientKeys":
         if self.dt > self.t_end:
             raise fail(f"{fmt(self.dt, 'time')} exceeds t_end ({fmt(self.t_end, 'time')}): "
                        "check the units", ".dt")
+        if self.drive is not None and (self.speed_stop, self.ramp_time) != (None, None):
+            raise fail("a drive sets the speed from torques: give no speed_stop or "
+                       "ramp_time (speed is the initial speed)", ".drive")
         return self
 
 
 TransientTable = create_model(
     "TransientTable", __base__=_TransientKeys, __module__=__name__,
-    __doc__="A run at constant speed (``speed``) or a linear run-up/coast-down from "
-            "``speed`` to ``speed_stop`` over ``ramp_time`` (default the whole run).",
+    __doc__="A run at constant speed (``speed``), a linear run-up/coast-down from "
+            "``speed`` to ``speed_stop`` over ``ramp_time`` (default the whole run), or a "
+            "speed driven by the torques of a ``drive`` table from the initial ``speed``.",
     **option_fields(TransientSpec))
 
 

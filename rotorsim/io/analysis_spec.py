@@ -193,7 +193,7 @@ class AnalysisSpec:
 
 
 def _toml_value(name: str, value: Any) -> Any:
-    if isinstance(value, Grid):
+    if isinstance(value, Grid) or hasattr(value, "to_toml"):  # also a transient's drive
         return value.to_toml()
     if name == "unbalance":
         return [{"node": n, "magnitude": me, "phase": a} for n, me, a in value]

@@ -10,7 +10,7 @@ options are those of :class:`~rotorsim.io.analysis_spec.AnalysisSpec`.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import ClassVar
+from typing import Any, ClassVar
 
 from rotorsim.io.analysis_spec import AnalysisSpec, Grid, Unbalance
 from rotorsim.options import (
@@ -47,6 +47,55 @@ class RestartableSpec(AnalysisSpec):
     checkpointing: Checkpointing = Checkpointing()  # noqa: RUF009  (frozen)
 
 
+LAW_KEYS: dict[str, tuple[str, ...]] = {
+    "constant": ("torque", "reactive"),
+    "quadratic": ("coefficient",),
+    "viscous": ("coefficient",),
+    "curve": ("speeds", "torques", "reactive"),
+    "induction": ("breakdown_torque", "breakdown_slip", "synchronous_speed"),
+}
+"""Torque-law types of model files and their keys (SI: N m, N m s^2/rad^2, N m s/rad,
+rad/s); a motor may add ``ripple = {amplitude, order, phase}``."""
+
+Law = dict[str, Any]
+
+
+@dataclass(frozen=True, eq=False)
+class DriveSpec:
+    """The ``drive`` of a transient analysis (:class:`rotorsim.TorqueDrive`): the motor
+    at ``node``, loads and friction ``(node, law)``, the polar inertia [kg m^2] (None: the
+    model's) and the torque damping switch; laws as ``{"type": ..., <SI keys>}``
+    (:data:`LAW_KEYS`), turned into law objects by :mod:`rotorsim.io.drive_build`.
+
+    Examples
+    --------
+    >>> spec = DriveSpec(node=0, motor={"type": "constant", "torque": 15.0},
+    ...                  loads=((4, {"type": "quadratic", "coefficient": 1e-3}),))
+    >>> spec.to_toml()["loads"]
+    [{'node': 4, 'type': 'quadratic', 'coefficient': 0.001}]
+    """
+
+    node: int
+    motor: Law
+    loads: tuple[tuple[int, Law], ...] = ()
+    friction: tuple[tuple[int, Law], ...] = ()
+    inertia: float | None = None
+    torque_damping: bool = True
+
+    def to_toml(self) -> dict[str, Any]:
+        """Model-file form in SI numbers."""
+        out: dict[str, Any] = {"node": self.node, "motor": dict(self.motor)}
+        for key in ("loads", "friction"):
+            items = getattr(self, key)
+            if items:
+                out[key] = [{"node": node, **law} for node, law in items]
+        if self.inertia is not None:
+            out["inertia"] = self.inertia
+        if not self.torque_damping:
+            out["torque_damping"] = False
+        return out
+
+
 @dataclass(frozen=True, kw_only=True)
 class TransientSpec(RestartableSpec):
     """Time integration: :func:`rotorsim.transient` over ``t_end`` [s] with step ``dt`` [s]
@@ -54,7 +103,9 @@ class TransientSpec(RestartableSpec):
     [s] (default ``t_end``); ``unbalance=None`` uses the model's ``[[loads.unbalance]]``;
     rolling bearings act with their full nonlinear force. ``on_failure="stop"`` (default)
     keeps the run up to a failed step with status ``NOT_CONVERGED``; ``"raise"`` raises.
-    ``output`` holds the kept samples (key ``every``)."""
+    ``output`` holds the kept samples (key ``every``). With a ``drive``
+    (:class:`DriveSpec`) the speed follows from torques
+    (:class:`rotorsim.TorqueDrive`) and ``speed`` is the initial speed."""
 
     type: ClassVar[str] = "transient"
     FILE_OPTIONS: ClassVar[dict[str, tuple[str, ...]]] = {
@@ -69,6 +120,7 @@ class TransientSpec(RestartableSpec):
     on_failure: str = "stop"
     unbalance: Unbalance | None = None
     output: Output = Output()  # noqa: RUF009  (frozen)
+    drive: DriveSpec | None = None
 
 
 _BRANCH_OPTIONS: dict[str, tuple[str, ...]] = {

@@ -29,6 +29,7 @@ from rotorsim.elements.rolling.roller.profile import (
 from rotorsim.elements.shaft import ShaftElement
 from rotorsim.errors import ModelError
 from rotorsim.io import analysis_spec as spec
+from rotorsim.io.drive_schema import drive_spec
 from rotorsim.io.model_schema import BearingTable, ModelTable, ShaftSegment
 from rotorsim.io.rolling_schema import BallTable, ProfileTable, RollerTable, RollingTable
 from rotorsim.io.schema_types import Located, format_path
@@ -339,6 +340,8 @@ def build_spec(table: Any, loc: tuple[str | int, ...], nodes: Nodes,
             options[key] = getattr(table, key)
     if table.type in ("unbalance", "transient", "periodic", "periodic_parameter"):
         options["unbalance"] = _analysis_unbalance(table, nodes, loads, where)
+    if table.type == "transient" and table.drive is not None:
+        options["drive"] = drive_spec(table.drive, nodes, f"{where}.drive")
     elif table.type == "frequency_response":
         options["inputs"] = tuple((nodes.any_node(item, f"{where}.inputs[{i}]"), str(item.dof))
                                   for i, item in enumerate(table.inputs))

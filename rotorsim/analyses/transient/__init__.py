@@ -2,6 +2,10 @@
 
 - ``transient``: the ``rs.transient`` verb (steppers from ``rotorsim.time_integration``).
 - ``speed_profile``: spin-speed schedules W(t) with acceleration and angle.
+- ``torque_drive``, ``torque_laws``, ``spin_equation``: speed from motor, load and friction
+  torques (the rigid spin equation integrated up front); ``torsion_loads`` and
+  ``torque_damping``: the drive's loads and slip damping on the torsional DOFs;
+  ``spin_feedback``: the neglected torque of the lateral motion on the spin.
 - ``loads``: the time-dependent loads and nonlinear forces as stepper callbacks, base
   excitation.
 - ``start``: the initial state (zero, given, or the static equilibrium).

@@ -27,7 +27,7 @@ from rotorsim.assembly.loads import unit_direction
 from rotorsim.assembly.nonlinear import NonlinearAssembly
 from rotorsim.elements.base import FloatArray
 from rotorsim.errors import ModelError
-from rotorsim.time_integration.local_tangent import LocalMatrix
+from rotorsim.time_integration.local_tangent import LocalMatrix, embed
 
 ComplexArray = np.ndarray
 
@@ -102,6 +102,10 @@ class TransientLoads:
         uy), or None.
     base : array (n,) or None
         ``-M e`` for the base acceleration [kg].
+    torsion : callable or None
+        ``torsion(t)`` (n,): the torques of a torque drive on the torsional DOFs minus the
+        inertial load of the spinning-up frame
+        (:class:`~rotorsim.analyses.transient.torsion_loads.TorsionLoad`).
     """
 
     n: int
@@ -111,9 +115,12 @@ class TransientLoads:
     base: FloatArray | None = None
     base_acceleration: Callable[[float], float] | None = None
     forces: Callable[[float], ArrayLike] | None = None
+    torsion: Callable[[float], FloatArray] | None = None
 
     def __call__(self, t: float) -> FloatArray:
         f = self.constant.copy()
+        if self.torsion is not None:
+            f += self.torsion(t)
         if self.unbalance is not None:
             w, dw = self.speed.speed(t), self.speed.acceleration(t)
             rot = np.exp(1j * self.speed.angle(t)) * (w * w - 1j * dw)
@@ -140,6 +147,8 @@ class RestoringForce:
 
     ``index`` and ``size`` place the nonlinear DOFs in the problem's unknowns: by default
     the free DOFs themselves; in a reduced problem the leading boundary coordinates.
+    ``damping`` adds the speed damping of a torque drive
+    (:class:`~rotorsim.analyses.transient.torque_damping.TorqueDamping`).
     """
 
     assembly: NonlinearAssembly
@@ -147,6 +156,8 @@ class RestoringForce:
     internal: Any = None
     index: Any = None
     size: int | None = None
+    damping: Callable[[FloatArray, FloatArray, float],
+                      tuple[FloatArray, None, LocalMatrix]] | None = None
 
     def __post_init__(self) -> None:
         if self.index is None:
@@ -162,5 +173,21 @@ class RestoringForce:
         self.internal = out.internal
         r = np.zeros(size)
         r[index] = out.f[0]
-        return (r, LocalMatrix.trusted(size, index, out.K[0]),
-                LocalMatrix.trusted(size, index, out.C[0]))
+        C = LocalMatrix.trusted(size, index, out.C[0])
+        if self.damping is not None:  # a torque drive's speed damping (torque_damping)
+            r_d, _, C_d = self.damping(q, v, t)
+            r += r_d
+            C = _joined(C, C_d)
+        return r, LocalMatrix.trusted(size, index, out.K[0]), C
+
+
+def _joined(a: LocalMatrix, b: LocalMatrix) -> LocalMatrix:
+    """``a + b``: block-diagonal when their DOFs are disjoint (the ``rz`` DOFs of a torque
+    drive and the bearings' lateral ones), else on the union of the DOFs."""
+    k = a.dofs.size
+    if np.intersect1d(a.dofs, b.dofs, assume_unique=True).size:
+        return LocalMatrix.trusted(a.n, *embed([(1.0, a), (1.0, b)]))
+    block = np.zeros((k + b.dofs.size, k + b.dofs.size))
+    block[:k, :k] = a.block
+    block[k:, k:] = b.block
+    return LocalMatrix.trusted(a.n, np.concatenate([a.dofs, b.dofs]), block)

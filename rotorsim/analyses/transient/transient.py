@@ -30,8 +30,11 @@ from rotorsim.analyses.transient.loads import (
     RestoringForce,
     TransientLoads,
 )
-from rotorsim.analyses.transient.speed_profile import BoundSpeed, SpeedProfile, as_speed_profile
+from rotorsim.analyses.transient.speed_profile import BoundSpeed, SpeedProfile
 from rotorsim.analyses.transient.start import initial_state
+from rotorsim.analyses.transient.torque_damping import with_torque_damping
+from rotorsim.analyses.transient.torque_drive import BoundTorqueDrive, TorqueDrive
+from rotorsim.analyses.transient.torsion_loads import TorsionLoad, bind_speed
 from rotorsim.analyses.transient.variable_bearings import (
     SpeedDependentBearings,
     without_variable_bearings,
@@ -76,7 +79,7 @@ def transient(
     dt: float,
     *,
     nonlinear: Sequence[NonlinearElement] = (),
-    speed: float | SpeedProfile | Callable[[float], float] = 0.0,
+    speed: float | SpeedProfile | TorqueDrive | Callable[[float], float] = 0.0,
     unbalance: Sequence[tuple[int, float, float]] = (),
     excitation: Excitation | None = None,
     method: str | TimeStepper = "average_acceleration",
@@ -101,9 +104,12 @@ def transient(
     nonlinear : sequence of NonlinearElement
         More nonlinear elements, e.g.
         :class:`~rotorsim.elements.rolling.element.RollingBearing` (with a Rotor only).
-    speed : float, callable or speed profile
+    speed : float, callable, speed profile or TorqueDrive
         Spin speed [rad/s]: a constant, :class:`~.speed_profile.LinearSpeed` (run-up or
-        coast-down), :class:`~.speed_profile.SpeedFunction` or any ``W(t)``.
+        coast-down), :class:`~.speed_profile.SpeedFunction` or any ``W(t)``; or a
+        :class:`~.torque_drive.TorqueDrive`: the speed then follows from motor, load and
+        friction torques, the torsional DOFs are loaded by them, and
+        ``options["spin_feedback"]`` reports the neglected torque of the lateral motion.
     unbalance : list of (node, me, angle)
         Unbalances [kg m, rad] rotating with the shaft angle ``phi(t)``, with the
         angular-acceleration term (module :mod:`~.transient_loads`); or
@@ -176,7 +182,8 @@ def transient(
     system = _system(model, nonlinear)
     t0, t_end = _span(t_end)
     _check_step_count(dt, t_end - t0)
-    profile = as_speed_profile(speed).bind(t0, t_end, max(4096, int((t_end - t0) / dt)))
+    profile = bind_speed(speed, system, model if isinstance(model, Rotor) else None,
+                         (t0, t_end), max(4096, int((t_end - t0) / dt)))
     problem, loads_fn = _problem(system, profile, t0, ex)
     stepper = _stepper(method)
     start = None
@@ -221,6 +228,13 @@ def transient(
 
         loads_, angles = rolling_element_histories(system, result)
         result = dataclasses.replace(result, element_loads=loads_, contact_angles=angles)
+    if isinstance(profile, BoundTorqueDrive):
+        from rotorsim.analyses.transient.spin_feedback import with_spin_feedback
+
+        g = 0.0 if ex.gravity is None else float(ex.gravity)
+        direction = np.asarray(ex.direction, dtype=float)
+        result = with_spin_feedback(result, profile, list(ex.unbalance),
+                                    g * direction / np.linalg.norm(direction))
     return result
 
 
@@ -307,9 +321,11 @@ def _problem(system: RotorSystem, profile: BoundSpeed, t0: float, ex: Excitation
         n=system.n_free, speed=profile, constant=constant,
         unbalance=unbalance_amplitudes(system, unbalance) if unbalance else None,
         base=base_load, base_acceleration=None if base is None else base.acceleration,
-        forces=forces)
+        forces=forces, torsion=TorsionLoad.build(system, profile, mats.M)
+        if isinstance(profile, BoundTorqueDrive) else None)
     loads_fn(t0)  # fail early on bad callbacks
-    restoring = None if system.nonlinear is None else RestoringForce(system.nonlinear, profile)
+    restoring = with_torque_damping(None if system.nonlinear is None else
+                                    RestoringForce(system.nonlinear, profile), system, profile)
     has_gyro = mats.G.nnz > 0
     M, K, C, G = (m.toarray() if system.n_free <= DENSE_STEPPING else m
                   for m in (mats.M, mats.K, mats.C, mats.G))
