@@ -7,6 +7,8 @@ from __future__ import annotations
 from collections.abc import Sequence
 from typing import Any
 
+import numpy as np
+
 
 def transient_notes(model: Any, jobs: Sequence[tuple[str, Any]]) -> list[str]:
     """Check the transient analyses among ``jobs`` (``(name, spec or None)``) against the
@@ -29,6 +31,11 @@ def transient_notes(model: Any, jobs: Sequence[tuple[str, Any]]) -> list[str]:
             continue
         w0 = float(spec.speed)
         w1 = w0 if spec.speed_stop is None else float(spec.speed_stop)
+        if getattr(spec, "drive", None) is not None:
+            # a torque drive's speeds are known only once its spin equation is solved:
+            # check what does not depend on them
+            speed_range_notes(bearings, 0.0, np.inf, f"analysis {name!r}")
+            continue
         for note in speed_range_notes(bearings, min(w0, w1), max(w0, w1),
                                       f"analysis {name!r}"):
             notes.append(f"{name}: {note}")
