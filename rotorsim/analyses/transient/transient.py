@@ -192,6 +192,9 @@ def transient(
                               list(ex.loads), profile.speed(t0), profile.angle(t0))
     q0, v0 = initial_state(system, initial, loads_fn.constant, profile, t0, start)
     kept = _kept_dofs(system, out.nodes)
+    if isinstance(profile, BoundTorqueDrive) and out.nodes is not None and ex.unbalance:
+        # the spin-feedback report needs the motion of the unbalance nodes
+        kept = np.union1d(kept, _kept_dofs(system, [int(u[0]) for u in ex.unbalance]))
     basis, report = None, None
     if reduction is not None:
         from rotorsim.analyses.transient.reduction import reduce_problem

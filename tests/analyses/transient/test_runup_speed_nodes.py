@@ -249,3 +249,17 @@ def test_info_and_run_check_the_speed_tables_before_any_analysis(tmp_path, capsy
     assert code != 0 and "added mass tabulated over speed" in err.err
     assert "analysis 'runup'" in err.err
     assert "campbell" not in err.out  # refused before the first analysis ran
+
+
+def test_torque_driven_runup_on_tabulated_bearings_reports_the_spin_feedback():
+    """A torque drive on a rotor with tabulated bearings: the bearings follow the computed
+    speed, and the spin-feedback report is computed even when only other nodes are kept
+    (the unbalance node is kept for it)."""
+    model = load_model("models/compressor_tilting_pad.toml")
+    drive = rs.TorqueDrive(rs.ConstantTorque(400.0), drive_node=0,
+                           loads=[(24, rs.QuadraticTorque(2e-4))], initial_speed=300.0)
+    run = transient(model.rotor, 0.01, 5e-5, speed=drive, unbalance=[(8, 7.6e-5, 0.0)],
+                    nodes=[15])
+    assert run.speed[-1] > run.speed[0] + 1.0
+    feedback = run.options["spin_feedback"]
+    assert feedback["questionable"] is False and 0.0 < feedback["ratio"] < 1e-3
