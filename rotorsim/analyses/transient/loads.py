@@ -164,3 +164,29 @@ class RestoringForce:
         r[index] = out.f[0]
         return (r, LocalMatrix.trusted(size, index, out.K[0]),
                 LocalMatrix.trusted(size, index, out.C[0]))
+
+    def batch(self, q: FloatArray, v: FloatArray, t: FloatArray
+              ) -> tuple[Any, FloatArray, FloatArray, FloatArray]:
+        """Several samples in one call of the elements (the stages of a Runge-Kutta step).
+
+        Parameters
+        ----------
+        q, v : arrays (S, size)
+            Unknowns of each sample.
+        t : array (S,)
+            Times [s].
+
+        Returns
+        -------
+        dofs : int array (k,)
+            Where the forces act (``index``).
+        r : array (S, k)
+            Restoring forces on ``dofs`` [N, N m].
+        dr_dq, dr_dv : arrays (S, k, k)
+            Their tangents.
+        """
+        a, index = self.assembly, self.index
+        phi = np.array([self.speed.angle(float(x)) for x in t])
+        speed = np.array([self.speed.speed(float(x)) for x in t])
+        out = a.evaluate(q[:, index], v[:, index], phi, speed)
+        return index, out.f, out.K, out.C

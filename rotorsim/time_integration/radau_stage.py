@@ -1,0 +1,207 @@
+"""The problem side of a Radau IIA step: net forces at the three stages, the tangents at a
+point, and the Newton correction and error estimate condensed onto the displacements
+(:mod:`~.radau_linear`; the stepper is :mod:`~.radau`)."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+import scipy.sparse as sp
+
+from rotorsim.solvers.linear import Factorization, factorize
+from rotorsim.time_integration.base import FloatArray, IntArray, State
+from rotorsim.time_integration.local_tangent import LocalMatrix
+from rotorsim.time_integration.radau_linear import ShiftedFactors, ShiftedSolve
+
+CACHED_STEPS = 8
+"""Step sizes whose factors are kept (least recently used dropped)."""
+SPIN_DRIFT = 0.02
+"""Factors at the schedule value ``s_f`` are reused while ``|s(t) - s_f| h`` stays below
+this (the gyroscopic mismatch, relative to the inertia term, that slows the simplified
+Newton iterations by at most a few per cent)."""
+
+
+@dataclass(frozen=True, eq=False)
+class Tangent:
+    """Tangents of the restoring force on ``dofs``: ``dr/dq``, ``dr/dv`` blocks (k, k)."""
+
+    dofs: IntArray
+    stiffness: FloatArray | None
+    damping: FloatArray | None
+
+
+def local_tangent(kt: Any, ct: Any, n: int) -> Tangent:
+    """A :class:`Tangent` from the tangents a restoring force returns (LocalMatrix, dense,
+    sparse or None); general matrices are taken on all ``n`` unknowns."""
+    present = [T for T in (kt, ct) if T is not None]
+    if not present:
+        return Tangent(np.zeros(0, dtype=np.int64), None, None)
+    if all(isinstance(T, LocalMatrix) for T in present):
+        dofs = present[0].dofs
+        if all(np.array_equal(T.dofs, dofs) for T in present):
+            return Tangent(dofs, None if kt is None else kt.block,
+                           None if ct is None else ct.block)
+    dofs = np.arange(n, dtype=np.int64)
+
+    def full(T: Any) -> FloatArray | None:
+        if T is None:
+            return None
+        if isinstance(T, LocalMatrix) or sp.issparse(T):
+            return np.asarray(T.toarray())
+        return np.asarray(T, dtype=float)
+
+    return Tangent(dofs, full(kt), full(ct))
+
+
+def _apply(A: Any, X: FloatArray) -> FloatArray:
+    """``(A @ X.T).T`` for rows ``X`` (s, n) and a dense or sparse ``A``."""
+    if A is None:
+        return np.zeros_like(X)
+    if isinstance(A, np.ndarray):
+        return X @ A.T
+    return np.asarray((A @ X.T).T)
+
+
+class StageSystem:
+    """Forces and linear solves of one problem; keeps the factors between steps."""
+
+    def __init__(self, problem: Any, where: str) -> None:
+        self.p, self.where = problem, where
+        self._mass: Factorization | None = None
+        self._factors: dict[float, tuple[float, ShiftedFactors, ShiftedFactors]] = {}
+
+    def mass_solve(self, b: FloatArray) -> FloatArray:
+        """``M^-1 b`` (the mass matrix is factorised on first use)."""
+        if self._mass is None:
+            self._mass = factorize(self.p.mass, where=f"{self.where}: mass matrix")
+        return np.asarray(self._mass.solve(b))
+
+    def point(self, q: FloatArray, v: FloatArray, t: float) -> tuple[FloatArray, Tangent]:
+        """Net force ``g`` at one point and the tangents of the restoring force there."""
+        ev = self.p.forces(q, v, t)
+        return ev.net, local_tangent(ev.stiffness_tangent, ev.damping_tangent, self.p.n)
+
+    def loads(self, times: FloatArray) -> tuple[FloatArray, FloatArray]:
+        """External loads (s, n) and schedule values (s,) at the stage times."""
+        return (np.stack([self.p.external(float(t)) for t in times]),
+                np.array([self.p.spin(float(t)) for t in times]))
+
+    def stage_forces(self, Q: FloatArray, V: FloatArray, times: FloatArray,
+                     loads: tuple[FloatArray, FloatArray]) -> FloatArray:
+        """Net forces ``g`` (s, n) at the stages ``(Q, V)`` (s, n)."""
+        p = self.p
+        f, spins = loads
+        g = _apply(p.stiffness, Q) - f
+        if p.damping is not None:
+            g += _apply(p.damping, V)
+        if p.gyroscopic is not None:
+            g += spins[:, None] * _apply(p.gyroscopic, V)
+        r = p.restoring
+        if r is None:
+            return g
+        batch = getattr(r, "batch", None)
+        if batch is not None:
+            dofs, rl, _, _ = batch(Q, V, times)
+            g[:, dofs] += rl
+            return g
+        for i, t in enumerate(times):
+            out = r(Q[i], V[i], float(t))
+            if out is not None:
+                g[i] += np.asarray(out[0], dtype=float).reshape(-1)
+        return g
+
+    def solvers(self, h: float, gamma: float, alpha_beta: complex, t: float,
+                tangent: Tangent) -> StepSolves:
+        """The real and complex condensed solvers of a step of size ``h`` from ``t``."""
+        spin = self.p.spin(t)
+        entry = self._factors.get(h)
+        fresh = 0
+        if entry is None or abs(spin - entry[0]) * h > SPIN_DRIFT or \
+                not np.array_equal(entry[1].dofs, tangent.dofs):
+            where = f"{self.where}: iteration matrix at t = {t:.9g} s"
+            entry = (spin, ShiftedFactors.build(self.p, gamma / h, spin, tangent.dofs, where),
+                     ShiftedFactors.build(self.p, alpha_beta / h, spin, tangent.dofs, where))
+            fresh = 2
+            if len(self._factors) >= CACHED_STEPS:
+                self._factors.pop(next(iter(self._factors)))
+        else:
+            self._factors.pop(h)
+        self._factors[h] = entry
+        where = f"{self.where}: step at t = {t:.9g} s"
+        real = ShiftedSolve.build(entry[1], tangent.stiffness, tangent.damping, where)
+        cplx = ShiftedSolve.build(entry[2], tangent.stiffness, tangent.damping, where)
+        return StepSolves(self, entry[0], tangent, real, cplx, fresh)
+
+
+@dataclass(eq=False)
+class StepSolves:
+    """Newton corrections and error estimates of one step (module docstring of
+    :mod:`~.radau_linear` for the condensation)."""
+
+    system: StageSystem
+    spin: float
+    tangent: Tangent
+    real: ShiftedSolve
+    cplx: ShiftedSolve
+    fresh: int
+
+    def _damp(self, x: Any) -> Any:
+        """``D_t x`` with the frozen ``D_t = C + s_f G + dr/dv``."""
+        p = self.system.p
+        out = np.zeros_like(x)
+        if p.damping is not None:
+            out = out + p.damping @ x
+        if p.gyroscopic is not None:
+            out = out + self.spin * (p.gyroscopic @ x)
+        tg = self.tangent
+        if tg.damping is not None:
+            out[tg.dofs] += tg.damping @ x[tg.dofs]
+        return out
+
+    def _condensed(self, solve: ShiftedSolve, mu: Any, bq: Any, Mbv: Any) -> tuple[Any, Any]:
+        """``(mu I - J)^-1 (b_q, b_v)`` given ``M b_v``."""
+        M = self.system.p.mass
+        xq = solve.solve(Mbv + mu * (M @ bq) + self._damp(bq))
+        return xq, mu * xq - bq
+
+    def correction(self, W: FloatArray, V: FloatArray, g: FloatArray, h: float
+                   ) -> FloatArray:
+        """Simplified-Newton correction of the transformed stage increments ``W`` (3, 2n)
+        from the stage velocities ``V`` and net forces ``g`` (3, n)."""
+        from rotorsim.time_integration.radau import ALPHA_BETA, GAMMA, TRANSFORM_INV
+
+        n = V.shape[1]
+        M = self.system.p.mass
+        TV, TG = TRANSFORM_INV @ V, TRANSFORM_INV @ g
+        Wq, Wv = W[:, :n], W[:, n:]
+        out = np.empty_like(W)
+        mu = GAMMA / h
+        bq = TV[0] - mu * Wq[0]
+        xq, xv = self._condensed(self.real, mu, bq, -TG[0] - mu * (M @ Wv[0]))
+        out[0, :n], out[0, n:] = xq, xv
+        mc = ALPHA_BETA / h
+        wq, wv = Wq[1] + 1j * Wq[2], Wv[1] + 1j * Wv[2]
+        bqc = TV[1] + 1j * TV[2] - mc * wq
+        xq, xv = self._condensed(self.cplx, mc, bqc, -(TG[1] + 1j * TG[2]) - mc * (M @ wv))
+        out[1, :n], out[2, :n] = xq.real, xq.imag
+        out[1, n:], out[2, n:] = xv.real, xv.imag
+        return out
+
+    def error(self, s: State, Zq: FloatArray, Zv: FloatArray, h: float, weights: FloatArray,
+              again: tuple[FloatArray, FloatArray] | None = None
+              ) -> tuple[FloatArray, FloatArray]:
+        """Embedded error estimate ``(gamma/h - J)^-1 (f(y_n) + sum e_i Z_i / h)`` of ``q``
+        and ``v``; with ``again`` (a first estimate) ``f`` is evaluated at ``y_n`` plus it."""
+        from rotorsim.time_integration.radau import GAMMA
+
+        M = self.system.p.mass
+        zq, zv = (weights @ Zq) / h, (weights @ Zv) / h
+        if again is None:
+            v, g = s.v, s.force
+        else:
+            v = s.v + again[1]
+            g = self.system.p.forces(s.q + again[0], v, s.t).net
+        mu = GAMMA / h
+        return self._condensed(self.real, mu, v + zq, -g + M @ zv)
