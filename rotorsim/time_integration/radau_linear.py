@@ -45,62 +45,83 @@ dense there too: see ``transient.DENSE_STEPPING``)."""
 
 @dataclass(frozen=True, eq=False)
 class ShiftedFactors:
-    """``S0(mu) = mu^2 M + mu (C + s G) + K`` factorised, with ``Z = S0^-1 P`` on ``dofs``."""
+    """``S0(mu) = mu^2 M + mu D + K`` factorised (``D = C + s G``), with ``Z = S0^-1 P`` on
+    ``dofs``; ``damping`` is ``D`` itself."""
 
     mu: complex
-    lu: Factorization
+    lu: Any
     dofs: IntArray
     Z: Any
     Zd: Any
+    damping: Any
 
     @classmethod
     def build(cls, problem: SecondOrderProblem, mu: complex, spin: float, dofs: IntArray,
               where: str) -> ShiftedFactors:
         """Factorise ``S0(mu)`` at the schedule value ``spin``."""
         n = problem.n
-        real = mu.imag == 0.0
-        m = mu.real if real else mu
-        terms = [(1.0, problem.mass), (1.0, problem.damping), (spin, problem.gyroscopic)]
-        D = combine(terms[1:], n) if any(A is not None for _, A in terms[1:]) else None
-        if sp.issparse(problem.mass) or n > DENSE_LIMIT:
+        m = mu.real if mu.imag == 0.0 else mu
+        terms = [(1.0, problem.damping), (spin, problem.gyroscopic)]
+        D = combine(terms, n) if any(A is not None for _, A in terms) else None
+        sparse = sp.issparse(problem.mass) or n > DENSE_LIMIT
+        if sparse:
             S0: Any = m * m * sp.csr_matrix(problem.mass) + sp.csr_matrix(problem.stiffness)
             if D is not None:
-                S0 = S0 + m * sp.csr_matrix(D)
-            if n <= DENSE_THRESHOLD:
-                S0 = S0.toarray()
+                D = sp.csr_matrix(D)
+                S0 = S0 + m * D
         else:
             S0 = (m * m) * np.asarray(problem.mass) + np.asarray(problem.stiffness)
             if D is not None:
-                S0 = S0 + m * (D.toarray() if sp.issparse(D) else D)
-        lu = _factor(S0, where, dense=not sp.issparse(S0))
+                D = D.toarray() if sp.issparse(D) else np.asarray(D)
+                S0 = S0 + m * D
+        lu = _factor(S0, where, sparse)
         P = np.zeros((n, dofs.size), dtype=S0.dtype)
         P[dofs, np.arange(dofs.size)] = 1.0
-        Z = np.asarray(lu.solve(P)).reshape(n, dofs.size) if dofs.size else P
-        return cls(complex(mu), lu, dofs, Z, Z[dofs])
+        Z = lu.solve(P) if dofs.size else P
+        return cls(complex(mu), lu, dofs, Z, Z[dofs], D)
 
 
-def _factor(A: Any, where: str, dense: bool) -> Factorization:
-    """LU of a real or complex matrix (``factorize`` handles the real dense case)."""
-    if not np.iscomplexobj(A.data if sp.issparse(A) else A):
-        return factorize(A, where=where, dense_threshold=max(DENSE_LIMIT, A.shape[0])
-                         if dense else DENSE_THRESHOLD)
-    if dense:
+class _DenseLU:
+    """Dense ``S0^-1``: the shifted matrices of a small problem are well conditioned
+    (``mu^2 M`` dominates) and only drive a simplified Newton iteration whose residual is
+    exact, so one matrix-vector product replaces each pair of triangular solves."""
+
+    def __init__(self, A: Any, where: str) -> None:
         lu, piv = sl.lu_factor(A, check_finite=False)
         d = np.abs(np.diag(lu))
         if not np.all(np.isfinite(d)) or d.min() <= 1e-15 * d.max():
             raise ConvergenceError("shifted iteration matrix is singular", where)
-        return Factorization(A.shape[0], _dense=(lu, piv), _complex=True)
-    return factorize(sp.csc_matrix(A), where=where)
+        self.inverse = sl.lu_solve((lu, piv), np.eye(A.shape[0], dtype=A.dtype),
+                                   check_finite=False)
+
+    def solve(self, b: Any) -> Any:
+        return self.inverse @ b
+
+
+class _SparseLU:
+    """SuperLU of a sparse real or complex matrix."""
+
+    def __init__(self, A: Any, where: str) -> None:
+        self.lu: Factorization = factorize(sp.csc_matrix(A), where=where,
+                                           dense_threshold=0)
+
+    def solve(self, b: Any) -> Any:
+        return self.lu.solve(b)
+
+
+def _factor(A: Any, where: str, sparse: bool) -> Any:
+    """LU of a real or complex, dense or sparse matrix."""
+    return _SparseLU(A, where) if sparse else _DenseLU(A, where)
 
 
 @dataclass(frozen=True, eq=False)
 class ShiftedSolve:
-    """Solves with ``S(mu) = S0(mu) + P (mu C_b + K_b) P^T`` (frozen bearing tangents) and
-    the condensed right-hand side (module docstring)."""
+    """Solves with ``S(mu) = S0(mu) + P B P^T``, ``B = mu C_b + K_b`` (frozen bearing
+    tangents): ``S^-1 b = y - U y_d`` with ``y = S0^-1 b`` and ``U = Z (I + B Z_d)^-1 B``
+    (the Woodbury identity, :mod:`~rotorsim.time_integration.local_tangent`)."""
 
     base: ShiftedFactors
-    block: Any
-    capacitance: Any
+    U: Any
 
     @classmethod
     def build(cls, base: ShiftedFactors, kb: FloatArray | None, cb: FloatArray | None,
@@ -114,22 +135,31 @@ class ShiftedSolve:
         """
         k = base.dofs.size
         if k == 0 or (kb is None and cb is None):
-            return cls(base, None, None)
+            return cls(base, None)
         mu = base.mu if base.mu.imag != 0.0 else base.mu.real
         block = (np.zeros((k, k)) if kb is None else kb) + \
             (0.0 if cb is None else mu * cb)
         cap = np.eye(k) + block @ base.Zd
-        lu, piv = sl.lu_factor(cap, check_finite=False)
-        d = np.abs(np.diag(lu))
-        if not np.all(np.isfinite(d)) or d.min() <= 1e-14 * max(d.max(), 1.0):
+        try:
+            W = np.linalg.solve(cap, block)
+        except np.linalg.LinAlgError:
+            W = np.full_like(block, np.nan)
+        if not np.all(np.isfinite(W)):
             raise ConvergenceError(f"iteration matrix is singular ({where})", where)
-        return cls(base, block, (lu, piv))
+        return cls(base, base.Z @ W)
 
     def solve(self, b: Any) -> Any:
-        """``S(mu)^-1 b`` for ``b`` (n,) or (n, m)."""
-        y = np.asarray(self.base.lu.solve(b))
-        if self.block is None:
+        """``S(mu)^-1 b`` for ``b`` (n,)."""
+        y = self.base.lu.solve(b)
+        if self.U is None:
             return y
-        w = sl.lu_solve(self.capacitance, self.block @ y[self.base.dofs],
-                        check_finite=False)
-        return y - self.base.Z @ w
+        return y - self.U @ y[self.base.dofs]
+
+
+def real_times(A: Any, x: Any) -> Any:
+    """``A @ x`` for a real dense or sparse ``A`` and a real or complex vector ``x``, without
+    casting ``A`` to complex."""
+    if not np.iscomplexobj(x) or not isinstance(A, np.ndarray):
+        return A @ x
+    y = A @ np.column_stack([x.real, x.imag])
+    return y[:, 0] + 1j * y[:, 1]

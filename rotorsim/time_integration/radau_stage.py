@@ -13,7 +13,7 @@ import scipy.sparse as sp
 from rotorsim.solvers.linear import Factorization, factorize
 from rotorsim.time_integration.base import FloatArray, IntArray, State
 from rotorsim.time_integration.local_tangent import LocalMatrix
-from rotorsim.time_integration.radau_linear import ShiftedFactors, ShiftedSolve
+from rotorsim.time_integration.radau_linear import ShiftedFactors, ShiftedSolve, real_times
 
 CACHED_STEPS = 8
 """Step sizes whose factors are kept (least recently used dropped)."""
@@ -32,12 +32,16 @@ class Tangent:
     damping: FloatArray | None
 
 
+NO_TANGENT = Tangent(np.zeros(0, dtype=np.int64), None, None)
+"""The tangent of a problem without restoring force."""
+
+
 def local_tangent(kt: Any, ct: Any, n: int) -> Tangent:
     """A :class:`Tangent` from the tangents a restoring force returns (LocalMatrix, dense,
     sparse or None); general matrices are taken on all ``n`` unknowns."""
     present = [T for T in (kt, ct) if T is not None]
     if not present:
-        return Tangent(np.zeros(0, dtype=np.int64), None, None)
+        return NO_TANGENT
     if all(isinstance(T, LocalMatrix) for T in present):
         dofs = present[0].dofs
         if all(np.array_equal(T.dofs, dofs) for T in present):
@@ -89,8 +93,9 @@ class StageSystem:
                 np.array([self.p.spin(float(t)) for t in times]))
 
     def stage_forces(self, Q: FloatArray, V: FloatArray, times: FloatArray,
-                     loads: tuple[FloatArray, FloatArray]) -> FloatArray:
-        """Net forces ``g`` (s, n) at the stages ``(Q, V)`` (s, n)."""
+                     loads: tuple[FloatArray, FloatArray]) -> tuple[FloatArray, Tangent]:
+        """Net forces ``g`` (s, n) at the stages ``(Q, V)`` (s, n), and the tangents of the
+        restoring force at the last stage."""
         p = self.p
         f, spins = loads
         g = _apply(p.stiffness, Q) - f
@@ -100,17 +105,36 @@ class StageSystem:
             g += spins[:, None] * _apply(p.gyroscopic, V)
         r = p.restoring
         if r is None:
-            return g
+            return g, NO_TANGENT
         batch = getattr(r, "batch", None)
         if batch is not None:
-            dofs, rl, _, _ = batch(Q, V, times)
+            dofs, rl, kl, cl = batch(Q, V, times)
             g[:, dofs] += rl
-            return g
+            return g, Tangent(dofs, kl[-1], cl[-1])
+        tangent = NO_TANGENT
         for i, t in enumerate(times):
             out = r(Q[i], V[i], float(t))
             if out is not None:
                 g[i] += np.asarray(out[0], dtype=float).reshape(-1)
-        return g
+                tangent = local_tangent(out[1], out[2], p.n)
+        return g, tangent
+
+    def end_force(self, g: FloatArray, tangent: Tangent, dq: FloatArray, dv: FloatArray,
+                  spin: float) -> FloatArray:
+        """Net force after the last stage moved by ``(dq, dv)``: ``g`` plus the tangent
+        change (exact to the square of the last Newton correction)."""
+        p = self.p
+        out = g + p.stiffness @ dq
+        if p.damping is not None:
+            out += p.damping @ dv
+        if p.gyroscopic is not None:
+            out += spin * (p.gyroscopic @ dv)
+        d = tangent.dofs
+        if tangent.stiffness is not None:
+            out[d] += tangent.stiffness @ dq[d]
+        if tangent.damping is not None:
+            out[d] += tangent.damping @ dv[d]
+        return out
 
     def solvers(self, h: float, gamma: float, alpha_beta: complex, t: float,
                 tangent: Tangent) -> StepSolves:
@@ -147,23 +171,17 @@ class StepSolves:
     cplx: ShiftedSolve
     fresh: int
 
-    def _damp(self, x: Any) -> Any:
-        """``D_t x`` with the frozen ``D_t = C + s_f G + dr/dv``."""
-        p = self.system.p
-        out = np.zeros_like(x)
-        if p.damping is not None:
-            out = out + p.damping @ x
-        if p.gyroscopic is not None:
-            out = out + self.spin * (p.gyroscopic @ x)
+    def _condensed(self, solve: ShiftedSolve, mu: Any, bq: Any, Mbv: Any) -> tuple[Any, Any]:
+        """``(mu I - J)^-1 (b_q, b_v)`` given ``M b_v``, with the frozen
+        ``D_t = C + s_f G + dr/dv``."""
+        rhs = Mbv + mu * real_times(self.system.p.mass, bq)
+        D = solve.base.damping
+        if D is not None:
+            rhs = rhs + real_times(D, bq)
         tg = self.tangent
         if tg.damping is not None:
-            out[tg.dofs] += tg.damping @ x[tg.dofs]
-        return out
-
-    def _condensed(self, solve: ShiftedSolve, mu: Any, bq: Any, Mbv: Any) -> tuple[Any, Any]:
-        """``(mu I - J)^-1 (b_q, b_v)`` given ``M b_v``."""
-        M = self.system.p.mass
-        xq = solve.solve(Mbv + mu * (M @ bq) + self._damp(bq))
+            rhs[tg.dofs] += tg.damping @ bq[tg.dofs]
+        xq = solve.solve(rhs)
         return xq, mu * xq - bq
 
     def correction(self, W: FloatArray, V: FloatArray, g: FloatArray, h: float
@@ -175,16 +193,15 @@ class StepSolves:
         n = V.shape[1]
         M = self.system.p.mass
         TV, TG = TRANSFORM_INV @ V, TRANSFORM_INV @ g
-        Wq, Wv = W[:, :n], W[:, n:]
         out = np.empty_like(W)
         mu = GAMMA / h
-        bq = TV[0] - mu * Wq[0]
-        xq, xv = self._condensed(self.real, mu, bq, -TG[0] - mu * (M @ Wv[0]))
+        bq = TV[0] - mu * W[0, :n]
+        xq, xv = self._condensed(self.real, mu, bq, -TG[0] - mu * (M @ W[0, n:]))
         out[0, :n], out[0, n:] = xq, xv
         mc = ALPHA_BETA / h
-        wq, wv = Wq[1] + 1j * Wq[2], Wv[1] + 1j * Wv[2]
+        wq, wv = W[1, :n] + 1j * W[2, :n], W[1, n:] + 1j * W[2, n:]
         bqc = TV[1] + 1j * TV[2] - mc * wq
-        xq, xv = self._condensed(self.cplx, mc, bqc, -(TG[1] + 1j * TG[2]) - mc * (M @ wv))
+        xq, xv = self._condensed(self.cplx, mc, bqc, -(TG[1] + 1j * TG[2]) - mc * real_times(M, wv))
         out[1, :n], out[2, :n] = xq.real, xq.imag
         out[1, n:], out[2, n:] = xv.real, xv.imag
         return out

@@ -33,6 +33,8 @@ from rotorsim.time_integration.local_tangent import LocalMatrix
 from rotorsim.time_integration.problem import SecondOrderProblem
 from rotorsim.time_integration.radau import Radau
 
+import os
+ROT_W = float(os.environ.get("ROT_W", "1"))
 DEFAULT_RTOL = 1e-4
 """Accuracy of ``method="auto"`` when no ``rtol`` is given."""
 
@@ -46,7 +48,7 @@ def dof_weights(system: RotorSystem, n: int) -> tuple[float, ...] | None:
         return None
     lengths = np.diff(np.asarray(system.nodes_pos, dtype=float))
     length = float(np.max(lengths, initial=0.0)) or 1.0
-    return tuple(float(x) for x in np.where(free % DOFS_PER_NODE >= 3, length, 1.0))
+    return tuple(float(x) for x in np.where(free % DOFS_PER_NODE >= 3, length * ROT_W, 1.0))
 
 
 def auto_stepper(system: RotorSystem, problem: SecondOrderProblem, loads: TransientLoads,
