@@ -1,31 +1,42 @@
 """Transient performance and a fair equal-accuracy comparison with solve_ivp (one core).
 
-Two models (:data:`MODELS`), both steel shafts on two ball bearings with clearance and
-proportional contact damping, under gravity and an unbalance at constant speed:
+Three models (:data:`MODELS`), steel shafts on ball bearings with clearance and proportional
+contact damping, under gravity and an unbalance at constant speed:
 
 * ``"bench"``: 20 elements, two disks, two 12-ball bearings, 600 rad/s, 4 ms (126 free DOFs);
 * ``"issue14"``: 24 elements, one disk, two 9-ball bearings, 1000 rad/s, 10 ms (the model
-  of issue 14).
+  of issue 14);
+* ``"rotor1000"``: 165 elements (996 free DOFs), three disks, four 12-ball bearings,
+  600 rad/s, 4 ms (sparse matrices in rotorsim; the reference is Radau, LSODA being too
+  slow at rtol 1e-10 with a dense 1992 x 1992 Jacobian, and solve_ivp runs at rtol 1e-2 to
+  1e-4 only, each costing minutes).
 
 It prints
 
 * the wall time of 100,000 average-acceleration steps of the ``bench`` model;
-* for each model, an equal-accuracy comparison with ``scipy.integrate.solve_ivp`` (Radau,
+* for each model, an equal-accuracy comparison of rotorsim (fixed-step average acceleration
+  over the model's steps, and the automatic path ``rs.transient(..., rtol=)`` over rtol
+  1e-2 ... 1e-7) with ``scipy.integrate.solve_ivp`` (Radau,
   BDF and LSODA, given the exact Jacobian, rtol 1e-2 ... 1e-6) on the same first-order
   system ``y = [q, v]`` with the same force model. Tolerances are set as a user would set
   them: ``atol`` is ``rtol`` times the scale of each component, the displacements' and the
   velocities' separately (the peak-to-peak motion and velocity of the probe DOF in the
   reference run). The error is the largest deviation of the probe DOF (mid-span ``uy``) over
-  41 times from a tight reference (LSODA, rtol 1e-10, the same per-component scales times
-  1e-10), relative to its peak-to-peak motion. For the accuracies 1e-3 and 1e-5 it reports
-  the cheapest run of each method that reaches it and rotorsim's speed-up against the
-  fastest solve_ivp method;
+  41 times from a tight reference (LSODA, or Radau for ``rotor1000``, rtol 1e-10, the same
+  per-component scales times 1e-10), relative to its peak-to-peak motion. For the
+  accuracies 1e-3 and 1e-5 it reports the cheapest run of each method that reaches it and
+  rotorsim's speed-up against the fastest solve_ivp method;
 * memory: the peak traced allocation of runs with 10x more steps keeping 3 DOFs stays flat.
 
-Ratios come from one run; absolute times are noisy.
+The equal-accuracy costs are CPU times of this process (``time.process_time``; one BLAS
+thread, so equal to the wall time on an idle machine and robust on a shared one). Every run
+starts from the same static equilibrium, computed once. Ratios come from one run; absolute
+times are noisy.
 
 Run: ``.venv/bin/python benchmarks/bench_transient.py [--steps N] [--quick]
-[--models bench issue14]``.
+[--models bench issue14 rotor1000]``. ``--quick`` (CI size: a minute or two) runs 5,000
+steps and the models ``bench`` and ``issue14`` unless ``--models`` says otherwise; the full
+run takes about an hour, most of it solve_ivp on ``rotor1000``.
 """
 
 from __future__ import annotations
@@ -234,13 +245,14 @@ def equal_accuracy(bench: BenchModel, reference_rtol: float = 1e-10,
                                                   **{m: [] for m in IVP_METHODS}}
     out: dict[str, float] = {"probe motion [m]": motion,
                              "probe velocity scale [m/s]": scales[1]}
-    settings = [("rotorsim", f"dt={dt:g}", {"dt": dt}) for dt in bench.steps]
+    settings: list[tuple[str, str, dict[str, Any]]] = [
+        ("rotorsim", f"dt={dt:g}", {"dt": dt}) for dt in bench.steps]
     settings += [("rotorsim auto", f"rtol={r:g}", {"dt": None, "rtol": r})
                  for r in (bench.auto_rtols[:3] if quick else bench.auto_rtols)]
     for label, setting, kw in settings:
-        start_clock = time.perf_counter()
+        start_clock = time.process_time()
         res = rotorsim_run(bench, t_end, times=times, initial=start, **kw)
-        wall = time.perf_counter() - start_clock
+        wall = time.process_time() - start_clock
         err = float(np.max(np.abs(res.displacement(bench.probe, "uy") - ref))) / motion
         runs[label].append((err, wall))
         out[f"{label} {setting}: error"] = err
@@ -248,10 +260,10 @@ def equal_accuracy(bench: BenchModel, reference_rtol: float = 1e-10,
         out[f"{label} {setting}: steps"] = float(res.stats["steps"])
     for method in IVP_METHODS:
         for rtol in (bench.rtols[:2] if quick else bench.rtols):
-            start_clock = time.perf_counter()
+            start_clock = time.process_time()
             sol = solve_ivp(rhs, (0.0, t_end), y0, method=method, jac=jac, rtol=rtol,
                             atol=rtol * per_component, t_eval=times)
-            wall = time.perf_counter() - start_clock
+            wall = time.process_time() - start_clock
             err = float(np.max(np.abs(sol.y[probe] - ref))) / motion if sol.success \
                 else math.inf
             runs[method].append((err, wall))
@@ -296,12 +308,13 @@ def main(argv: list[str] | None = None) -> dict[str, dict[str, float]]:
     parser.add_argument("--quick", action="store_true",
                         help="5,000 steps; solve_ivp at its two loosest rtol, rotorsim's "
                              "automatic path at 1e-2..1e-4 only")
-    parser.add_argument("--models", nargs="+", choices=sorted(MODELS), default=list(MODELS))
+    parser.add_argument("--models", nargs="+", choices=sorted(MODELS), default=None)
     args = parser.parse_args(argv)
     n = 5_000 if args.quick else args.steps
+    models = args.models or (["bench", "issue14"] if args.quick else list(MODELS))
     report = {"steps": steps(n),
               **{f"accuracy {name}": equal_accuracy(MODELS[name], quick=args.quick)
-                 for name in args.models},
+                 for name in models},
               "memory": memory(2_000 if args.quick else 10_000)}
     for name, values in report.items():
         print(f"\n[{name}]")

@@ -35,7 +35,13 @@ from rotorsim.errors import ConvergenceError, ModelError
 from rotorsim.time_integration.base import Counters, FloatArray, IntArray, State
 from rotorsim.time_integration.finite_checks import finite_vector
 from rotorsim.time_integration.motion_scale import MotionScale
-from rotorsim.time_integration.radau_stage import StageSystem, Tangent, local_tangent
+from rotorsim.time_integration.radau_stage import (
+    StageSystem,
+    Tangent,
+    local_tangent,
+    pack,
+    unpack,
+)
 
 S6 = math.sqrt(6.0)
 NODES = np.array([(4.0 - S6) / 10.0, (4.0 + S6) / 10.0, 1.0])
@@ -154,8 +160,8 @@ class Radau:
         a = -system.mass_solve(net) if a0 is None else finite_vector(a0, n, "a0")
         cache = _Cache(system, MotionScale.of(self._weights(n), q, self.motion), tangent,
                        float(dt))
-        history = np.zeros((8, n))
-        history[6], history[7, 0] = q, 1.0
+        history = np.concatenate([np.zeros((6, n)), q[None, :],
+                                  pack(1.0, float(dt), tangent, n)])
         return State(float(t0), q, v, a, net, dt=min(float(dt), self.dt_max),
                      peak=np.zeros(n), history=history, cache=cache,
                      counters=Counters(factorizations=1, solves=1,
@@ -198,12 +204,14 @@ class Radau:
                                f"rejections at t = {state.t:.9g} s", self.name,
                                step=state.step + 1)
 
-    def _accepted(self, old: State, new: tuple[FloatArray, ...], attempt: _Attempt,
+    def _accepted(self, old: State, new: _Solution, attempt: _Attempt,
                   err: float, factor: float, tally: Counters) -> State:
-        q, v, a, net, Zq, Zv, contraction = new
+        q, v, a, net, Zq, Zv = new.q, new.v, new.a, new.net, new.Zq, new.Zv
+        contraction, tangent = new.contraction, new.tangent
         cache = attempt.cache
-        history = old.history.copy()
-        history[0:3], history[3:6], history[7, 0] = Zq, Zv, contraction
+        history = np.concatenate([Zq, Zv, old.history[6:7], pack(contraction, cache.h0,
+                                                                 tangent, q.size)])
+        cache.tangent = tangent
         motion = np.maximum(old.peak, np.abs(q - history[6]))
         h = attempt.h
         counters = old.counters.plus(dataclasses.replace(
@@ -215,11 +223,12 @@ class Radau:
                                    history_dt=h, counters=counters, cache=cache)
 
     def _rebuild(self, problem: Any, state: State) -> _Cache:
-        """Runtime cache after a resume: the tangents at the state, the start scales."""
+        """Runtime cache after a resume: the tangent stored in the history, the scale from
+        the start state (the factors are rebuilt on demand)."""
         system = StageSystem(problem, self.name)
-        _, tangent = system.point(state.q, state.v, state.t)
+        _, h0, tangent = unpack(state.history[7:])
         scales = MotionScale.of(self._weights(problem.n), state.history[6], self.motion)
-        return _Cache(system, scales, tangent, state.dt)
+        return _Cache(system, scales, tangent, h0)
 
     def interpolate(self, old: State, new: State, t: FloatArray,
                     dofs: IntArray) -> tuple[FloatArray, FloatArray]:
@@ -257,6 +266,21 @@ def quintic_hermite(old: State, new: State, t: FloatArray,
     return np.asarray(q), np.asarray(v)
 
 
+@dataclass(frozen=True, eq=False)
+class _Solution:
+    """The end of a converged step: state, net force, stage increments (3, n), Newton
+    contraction and the tangents at the last stage."""
+
+    q: FloatArray
+    v: FloatArray
+    a: FloatArray
+    net: FloatArray
+    Zq: FloatArray
+    Zv: FloatArray
+    contraction: float
+    tangent: Tangent
+
+
 @dataclass(eq=False)
 class _Cache:
     """Runtime state of a run: the stage system with its factors, the motion scales, the
@@ -284,9 +308,9 @@ class _Attempt:
         self.m, self.cache, self.s, self.h = method, cache, state, h
         self.tally = Counters()
 
-    def run(self, rejected: bool) -> tuple[tuple[FloatArray, ...] | None, float, float]:
-        """``(new q, v, a, g, Zq, Zv, contraction)`` or None when Newton failed, the scaled
-        error and the proposed step-size factor.
+    def run(self, rejected: bool) -> tuple[_Solution | None, float, float]:
+        """The new point (None when Newton failed), the scaled error and the proposed
+        step-size factor.
 
         Convergence test of Hairer & Wanner (IV.8, eq 8.10): with the contraction ``theta``
         of the last two corrections, stop when ``theta / (1 - theta) |dZ| < newton_tol``;
@@ -339,7 +363,7 @@ class _Attempt:
 
     def _finish(self, Zq: FloatArray, Zv: FloatArray, net: FloatArray, tangent: Tangent,
                 solves: Any, rejected: bool, iterations: int, contraction: float
-                ) -> tuple[tuple[FloatArray, ...], float, float]:
+                ) -> tuple[_Solution, float, float]:
         s, h, system, m = self.s, self.h, self.cache.system, self.m
         q, v = s.q + Zq[2], s.v + Zv[2]
         a = -system.mass_solve(net)
@@ -355,9 +379,7 @@ class _Attempt:
         safety = 0.9 * (2 * m.max_newton + 1) / (2 * m.max_newton + iterations)
         factor = safety * err ** -0.25 if err > 0 else m.max_growth
         self.tally = self.tally.plus(Counters(factorizations=solves.fresh))
-        if err <= 1.0:
-            self.cache.tangent = tangent
-        return (q, v, a, net, Zq, Zv, contraction), err, factor
+        return _Solution(q, v, a, net, Zq, Zv, contraction, tangent), err, factor
 
 
 def _collocation_values(Z: FloatArray, x: FloatArray) -> FloatArray:

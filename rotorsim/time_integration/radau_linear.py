@@ -34,7 +34,7 @@ import scipy.linalg as sl
 import scipy.sparse as sp
 
 from rotorsim.errors import ConvergenceError
-from rotorsim.solvers.linear import DENSE_THRESHOLD, Factorization, factorize
+from rotorsim.solvers.linear import Factorization, factorize
 from rotorsim.time_integration.base import FloatArray, IntArray
 from rotorsim.time_integration.problem import SecondOrderProblem, combine
 

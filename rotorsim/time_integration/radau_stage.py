@@ -36,6 +36,33 @@ NO_TANGENT = Tangent(np.zeros(0, dtype=np.int64), None, None)
 """The tangent of a problem without restoring force."""
 
 
+def pack(contraction: float, h0: float, tangent: Tangent, n: int) -> FloatArray:
+    """Rows (r, n) holding the Newton contraction, the base of the step-size ladder and
+    ``tangent`` (a checkpoint stores only arrays: a resumed run then continues with the
+    very numbers of the uninterrupted one)."""
+    parts = [np.array([contraction, h0, tangent.dofs.size, tangent.stiffness is not None,
+                       tangent.damping is not None], dtype=float),
+             tangent.dofs.astype(float)]
+    parts += [T.ravel() for T in (tangent.stiffness, tangent.damping) if T is not None]
+    flat = np.concatenate(parts)
+    rows = -(-flat.size // n)
+    out = np.zeros(rows * n)
+    out[:flat.size] = flat
+    return out.reshape(rows, n)
+
+
+def unpack(rows: FloatArray) -> tuple[float, float, Tangent]:
+    """Inverse of :func:`pack`: contraction, ladder base, tangent."""
+    flat = rows.ravel()
+    k, has_k, has_c = int(flat[2]), bool(flat[3]), bool(flat[4])
+    dofs = flat[5:5 + k].astype(np.int64)
+    pos, blocks = 5 + k, []
+    for present in (has_k, has_c):
+        blocks.append(flat[pos:pos + k * k].reshape(k, k).copy() if present else None)
+        pos += k * k if present else 0
+    return float(flat[0]), float(flat[1]), Tangent(dofs, blocks[0], blocks[1])
+
+
 def local_tangent(kt: Any, ct: Any, n: int) -> Tangent:
     """A :class:`Tangent` from the tangents a restoring force returns (LocalMatrix, dense,
     sparse or None); general matrices are taken on all ``n`` unknowns."""

@@ -33,8 +33,6 @@ from rotorsim.time_integration.local_tangent import LocalMatrix
 from rotorsim.time_integration.problem import SecondOrderProblem
 from rotorsim.time_integration.radau import Radau
 
-import os
-ROT_W = float(os.environ.get("ROT_W", "1"))
 DEFAULT_RTOL = 1e-4
 """Accuracy of ``method="auto"`` when no ``rtol`` is given."""
 
@@ -48,7 +46,7 @@ def dof_weights(system: RotorSystem, n: int) -> tuple[float, ...] | None:
         return None
     lengths = np.diff(np.asarray(system.nodes_pos, dtype=float))
     length = float(np.max(lengths, initial=0.0)) or 1.0
-    return tuple(float(x) for x in np.where(free % DOFS_PER_NODE >= 3, length * ROT_W, 1.0))
+    return tuple(float(x) for x in np.where(free % DOFS_PER_NODE >= 3, length, 1.0))
 
 
 def auto_stepper(system: RotorSystem, problem: SecondOrderProblem, loads: TransientLoads,
@@ -104,4 +102,5 @@ def _tangents(problem: SecondOrderProblem, q0: FloatArray, t0: float) -> tuple[A
     out = problem.restoring(q0, np.zeros_like(q0), t0)
     if out is None:
         return None, None
-    return tuple(T.tocsr() if isinstance(T, LocalMatrix) else T for T in out[1:3])
+    kt, ct = (T.tocsr() if isinstance(T, LocalMatrix) else T for T in out[1:3])
+    return kt, ct
