@@ -139,7 +139,7 @@ MODELS = {
                             bearing_nodes=(0, 55, 110, 165), rtols=(1e-2, 1e-3, 1e-4),
                             auto_rtols=(1e-2, 1e-3, 1e-4, 1e-5, 1e-6), reference="Radau"),
 }
-"""The two benchmark models (module docstring)."""
+"""The benchmark models (module docstring)."""
 
 
 def rotorsim_run(bench: BenchModel, t_end: float, dt: float | None, times: Any = None,
@@ -319,7 +319,7 @@ def main(argv: list[str] | None = None) -> dict[str, dict[str, float]]:
     for name, values in report.items():
         print(f"\n[{name}]")
         for key, value in values.items():
-            print(f"  {key:48s} {value:.6g}")
+            print(f"  {key:52s} {value:.6g}")
     return report
 
 
