@@ -10,12 +10,13 @@ import pytest
 from scipy.integrate import solve_ivp
 
 from rotorsim.errors import ModelError
+from rotorsim.time_integration.hermite import quintic_hermite
 from rotorsim.time_integration.integrate import integrate
 from rotorsim.time_integration.local_tangent import LocalMatrix
 from rotorsim.time_integration.motion_scale import MotionScale
 from rotorsim.time_integration.output import OutputSpec
 from rotorsim.time_integration.problem import SecondOrderProblem
-from rotorsim.time_integration.radau import RK_MATRIX, Radau, quintic_hermite
+from rotorsim.time_integration.radau import RK_MATRIX, Radau
 
 M_, C_, K_, W_ = 1.0, 0.4, 100.0, 7.0
 """Damped oscillator ``q'' + 0.4 q' + 100 q = cos(7 t)`` from rest."""
@@ -56,6 +57,7 @@ def test_coefficients_are_radau_iia():
         assert np.allclose(RK_MATRIX @ c ** (k - 1), c**k / k, atol=1e-14)
 
 
+@pytest.mark.validation
 def test_observed_order_on_damped_oscillator_is_five():
     # error against the closed form versus the number of steps over rtol 1e-4 ... 1e-8:
     # error ~ steps^-p with p = 5 for Radau IIA (Hairer & Wanner IV.5); 4.5 allows for the
@@ -72,6 +74,7 @@ def test_observed_order_on_damped_oscillator_is_five():
     assert 4.5 <= slope <= 6.0
 
 
+@pytest.mark.validation
 def test_jeffcott_rotor_forward_whirl_matches_closed_form():
     # Jeffcott rotor q = (x, y), gyroscopic-free, unbalance m e W^2 (cos, sin): the steady
     # orbit radius is m e W^2 / |k - m W^2 + i c W|; start on the steady orbit
@@ -103,6 +106,7 @@ def duffing(local):
                               load=lambda t: np.array([3.0 * math.cos(9.0 * t), 0.0]))
 
 
+@pytest.mark.validation
 def test_duffing_against_solve_ivp_reference():
     # independent reference: solve_ivp LSODA at rtol 1e-12 on the first-order form
     p = duffing(local=True)
@@ -120,6 +124,7 @@ def test_duffing_against_solve_ivp_reference():
         assert np.max(np.abs(res.q - ref)) / motion <= rtol
 
 
+@pytest.mark.verification
 def test_local_tangent_path_equals_dense_tangent_path():
     # the Woodbury update on the nonlinear DOFs solves the same Newton systems as the
     # full tangent: equal to the Newton tolerance, far below the error asked

@@ -66,7 +66,7 @@ def reference():
     return times, sol.y[probe]
 
 
-@pytest.mark.verification
+@pytest.mark.validation
 @pytest.mark.parametrize("rtol", [1e-3, 1e-5])
 def test_auto_meets_the_accuracy_asked_on_a_rolling_bearing_rotor(reference, rtol):
     # the requested accuracy is a bound on the error relative to the probe's motion
