@@ -271,7 +271,17 @@ class _Attempt:
             raise ModelError(f"step size must be positive and finite, got {h!r}",
                              method.name)
         self.m, self.cache, self.s, self.h = method, cache, state, h
-        self.tally = Counters()
+        self.count = {"factorizations": 0, "solves": 0, "residual_evaluations": 0,
+                      "iterations": 0}
+
+    def _charge(self, **counts: int) -> None:
+        for key, value in counts.items():
+            self.count[key] += value
+
+    @property
+    def tally(self) -> Counters:
+        """The cost of this attempt."""
+        return Counters(**self.count, max_iterations=self.count["iterations"])
 
     def run(self, rejected: bool) -> tuple[_Solution | None, float, float]:
         """The new point (None when Newton failed), the scaled error and the proposed
@@ -292,8 +302,7 @@ class _Attempt:
         old_norm, contraction = math.inf, max(float(s.history[7, 0]), 1e-16) ** 0.8
         for k in range(m.max_newton):
             g, tangent = system.stage_forces(s.q + Z[:, :n], s.v + Z[:, n:], times, loads)
-            self.tally = self.tally.plus(Counters(residual_evaluations=1, iterations=1,
-                                                  solves=2, max_iterations=k + 1))
+            self._charge(residual_evaluations=1, iterations=1, solves=2)
             if not np.all(np.isfinite(g)):
                 return None, math.inf, 0.5
             dW = solves.correction(W, s.v + Z[:, n:], g, h)
@@ -336,25 +345,22 @@ class _Attempt:
         sc = self.cache.scales
         tol = m.local_tol * sc.scale(np.maximum(s.peak, np.abs(q - s.history[6])))
         err = _norm(eq, sc.weights, tol)
-        self.tally = self.tally.plus(Counters(solves=2))
+        self._charge(solves=2)
         if err > 1.0 and (rejected or s.step == 0):
             eq, ev = solves.error(s, Zq, Zv, h, ERROR_WEIGHTS, again=(eq, ev))
             err = _norm(eq, sc.weights, tol)
-            self.tally = self.tally.plus(Counters(residual_evaluations=1, solves=1))
+            self._charge(residual_evaluations=1, solves=1)
         safety = 0.9 * (2 * m.max_newton + 1) / (2 * m.max_newton + iterations)
         factor = safety * err ** -0.25 if err > 0 else m.max_growth
-        self.tally = self.tally.plus(Counters(factorizations=solves.fresh))
+        self._charge(factorizations=solves.fresh)
         return _Solution(q, v, a, net, Zq, Zv, contraction, tangent), err, factor
 
 
 def _collocation_values(Z: FloatArray, x: FloatArray) -> FloatArray:
     """Values at ``x`` (3,) of the cubic through ``(0, 0)`` and ``(c_i, Z_i)`` (Lagrange
-    form; the node at 0 carries zero)."""
-    diff = x[:, None] - _ALL_NODES[None, :]  # (3, 4)
-    weights = np.empty((x.size, 3))
-    for j in range(3):
-        others = np.delete(np.arange(4), j + 1)
-        weights[:, j] = np.prod(diff[:, others], axis=1) / _DENOMINATORS[j]
+    form; the node at 0 carries zero). Every ``x`` lies beyond the nodes (``x > 1``)."""
+    diff = x[:, None] - _ALL_NODES[None, :]  # (3, 4), no zero entry
+    weights = np.prod(diff, axis=1)[:, None] / diff[:, 1:] / _DENOMINATORS[None, :]
     return weights @ Z
 
 

@@ -161,5 +161,5 @@ def real_times(A: Any, x: Any) -> Any:
     casting ``A`` to complex."""
     if not np.iscomplexobj(x) or not isinstance(A, np.ndarray):
         return A @ x
-    y = A @ np.column_stack([x.real, x.imag])
-    return y[:, 0] + 1j * y[:, 1]
+    pairs = np.ascontiguousarray(x, dtype=complex).view(float).reshape(-1, 2)
+    return np.ascontiguousarray(A @ pairs).reshape(-1).view(complex)
