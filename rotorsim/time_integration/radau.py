@@ -36,6 +36,7 @@ from rotorsim.time_integration.base import Counters, FloatArray, IntArray, State
 from rotorsim.time_integration.finite_checks import finite_vector
 from rotorsim.time_integration.hermite import quintic_hermite
 from rotorsim.time_integration.motion_scale import MotionScale
+from rotorsim.time_integration.problem import SecondOrderProblem
 from rotorsim.time_integration.radau_stage import StageSystem, Tangent, pack, unpack
 
 S6 = math.sqrt(6.0)
@@ -143,7 +144,7 @@ class Radau:
         tol = self.local_tol
         return max(10.0 * np.finfo(float).eps / tol, min(0.03, tol ** 0.5))
 
-    def init(self, problem: Any, t0: float, q0: FloatArray, v0: FloatArray,
+    def init(self, problem: SecondOrderProblem, t0: float, q0: FloatArray, v0: FloatArray,
              *, dt: float, a0: FloatArray | None = None) -> State:
         """State at ``t0`` with first trial step ``dt``; ``a0`` solves ``M a0 = -g``."""
         n = problem.n
@@ -153,8 +154,7 @@ class Radau:
         system = StageSystem(problem, self.name)
         net, tangent = system.point(q, v, float(t0))
         a = -system.mass_solve(net) if a0 is None else finite_vector(a0, n, "a0")
-        cache = _Cache(system, MotionScale.of(self._weights(n), q, self.motion), tangent,
-                       float(dt))
+        cache = _Cache(system, MotionScale.of(self._weights(n), q, self.motion), float(dt))
         history = np.concatenate([np.zeros((6, n)), q[None, :],
                                   pack(1.0, float(dt), tangent, n)])
         return State(float(t0), q, v, a, net, dt=min(float(dt), self.dt_max),
@@ -170,7 +170,7 @@ class Radau:
                              "Radau.weights")
         return np.asarray(self.weights, dtype=float)
 
-    def step(self, problem: Any, state: State) -> State:
+    def step(self, problem: SecondOrderProblem, state: State) -> State:
         """One accepted step; rejected attempts are retried with a smaller step.
 
         Raises
@@ -206,7 +206,6 @@ class Radau:
         cache = attempt.cache
         history = np.concatenate([Zq, Zv, old.history[6:7], pack(contraction, cache.h0,
                                                                  tangent, q.size)])
-        cache.tangent = tangent
         motion = np.maximum(old.peak, np.abs(q - history[6]))
         h = attempt.h
         counters = old.counters.plus(dataclasses.replace(
@@ -217,13 +216,13 @@ class Radau:
                                    error=err, peak=motion, history=history,
                                    history_dt=h, counters=counters, cache=cache)
 
-    def _rebuild(self, problem: Any, state: State) -> _Cache:
-        """Runtime cache after a resume: the tangent stored in the history, the scale from
-        the start state (the factors are rebuilt on demand)."""
+    def _rebuild(self, problem: SecondOrderProblem, state: State) -> _Cache:
+        """Runtime cache after a resume: the scale from the start state, the ladder base
+        from the history (the factors are rebuilt on demand)."""
         system = StageSystem(problem, self.name)
-        _, h0, tangent = unpack(state.history[7:])
+        h0 = unpack(state.history[7:])[1]
         scales = MotionScale.of(self._weights(problem.n), state.history[6], self.motion)
-        return _Cache(system, scales, tangent, h0)
+        return _Cache(system, scales, h0)
 
     def interpolate(self, old: State, new: State, t: FloatArray,
                     dofs: IntArray) -> tuple[FloatArray, FloatArray]:
@@ -248,12 +247,11 @@ class _Solution:
 
 @dataclass(eq=False)
 class _Cache:
-    """Runtime state of a run: the stage system with its factors, the motion scales, the
-    tangents at the current point and the base of the step-size ladder."""
+    """Runtime state of a run: the stage system with its factors, the motion scale and the
+    base of the step-size ladder."""
 
     system: StageSystem
     scales: MotionScale
-    tangent: Tangent
     h0: float
 
     def ladder(self, h: float, h_max: float) -> float:
@@ -293,7 +291,8 @@ class _Attempt:
         """
         m, s, h, system = self.m, self.s, self.h, self.cache.system
         times = s.t + NODES * h
-        solves = system.solvers(h, GAMMA, ALPHA_BETA, s.t, self.cache.tangent)
+        # the tangents of the state itself (the cache is shared by the states of a run)
+        solves = system.solvers(h, GAMMA, ALPHA_BETA, s.t, unpack(s.history[7:])[2])
         scale_q = m.local_tol * self.cache.scales.scale(s.peak) / self.cache.scales.weights
         Z = self._guess()
         loads = system.loads(times)
