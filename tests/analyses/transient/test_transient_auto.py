@@ -96,3 +96,37 @@ def test_bad_accuracy_requests_are_refused(kwargs, culprit):
     rotor, bearings = small_rolling_rotor()
     with pytest.raises(ModelError, match=culprit.replace(".", r"\.")):
         transient(rotor, 5e-4, nonlinear=bearings, speed=SPEED, **kwargs)
+
+
+@pytest.mark.validation
+def test_auto_run_up_of_a_gyroscopic_rotor_against_solve_ivp():
+    # a linear rotor with a heavy disk spun up 0 -> 2000 rad/s: the gyroscopic term W(t) G
+    # changes along the run (factors reused while |W - W_f| h < 0.02, the Newton iteration
+    # absorbing the rest); reference: solve_ivp LSODA at rtol 1e-10 on the same matrices
+    shaft = [rs.ShaftElement(L=0.1, idl=0.0, odl=0.03, material=STEEL) for _ in range(4)]
+    disk = rs.DiskElement.from_geometry(n=2, material=STEEL, width=0.03, i_d=0.03, o_d=0.25)
+    rotor = rs.Rotor(shaft, [disk], [rs.BearingElement(n=0, kxx=5e6, cxx=200.0),
+                                     rs.BearingElement(n=4, kxx=5e6, cxx=200.0)])
+    t_end, unbalance = 0.05, [(2, 1e-4, 0.0)]
+    speed = rs.LinearSpeed(0.0, 2000.0, t_start=0.0, t_stop=t_end)
+    times = np.linspace(0.0, t_end, 51)
+    res = transient(rotor, t_end, rtol=1e-5, speed=speed, unbalance=unbalance, initial="zero",
+                    excitation=rs.Excitation(gravity=None), output=rs.Output(times=times))
+    system = assemble(rotor)
+    profile = speed.bind(0.0, t_end)
+    problem, loads = _problem(system, profile, 0.0, rs.Excitation(gravity=None,
+                                                                   unbalance=unbalance))
+    M, K, C, G = (np.asarray(problem.mass), np.asarray(problem.stiffness),
+                  np.asarray(problem.damping), np.asarray(problem.gyroscopic))
+    Minv, n = np.linalg.inv(M), system.n_free
+
+    def rhs(t, y):
+        D = C + profile.speed(t) * G
+        return np.concatenate([y[n:], Minv @ (loads(t) - K @ y[:n] - D @ y[n:])])
+
+    sol = solve_ivp(rhs, (0.0, t_end), np.zeros(2 * n), method="LSODA", rtol=1e-10,
+                    atol=1e-18, t_eval=times)
+    probe = system.dofs_of(2, ("uy",))[0]
+    ref = sol.y[probe]
+    err = np.max(np.abs(res.displacement(2, "uy") - ref)) / np.ptp(ref)
+    assert err <= 1e-5
