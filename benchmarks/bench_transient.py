@@ -1,31 +1,42 @@
 """Transient performance and a fair equal-accuracy comparison with solve_ivp (one core).
 
-Two models (:data:`MODELS`), both steel shafts on two ball bearings with clearance and
-proportional contact damping, under gravity and an unbalance at constant speed:
+Three models (:data:`MODELS`), steel shafts on ball bearings with clearance and proportional
+contact damping, under gravity and an unbalance at constant speed:
 
 * ``"bench"``: 20 elements, two disks, two 12-ball bearings, 600 rad/s, 4 ms (126 free DOFs);
 * ``"issue14"``: 24 elements, one disk, two 9-ball bearings, 1000 rad/s, 10 ms (the model
-  of issue 14).
+  of issue 14);
+* ``"rotor1000"``: 165 elements (996 free DOFs), three disks, four 12-ball bearings,
+  600 rad/s, 4 ms (sparse matrices in rotorsim; the reference is Radau, LSODA being too
+  slow at rtol 1e-10 with a dense 1992 x 1992 Jacobian, and solve_ivp runs at rtol 1e-2 to
+  1e-4 only, each costing minutes).
 
 It prints
 
 * the wall time of 100,000 average-acceleration steps of the ``bench`` model;
-* for each model, an equal-accuracy comparison with ``scipy.integrate.solve_ivp`` (Radau,
+* for each model, an equal-accuracy comparison of rotorsim (fixed-step average acceleration
+  over the model's steps, and the automatic path ``rs.transient(..., rtol=)`` over rtol
+  1e-2 ... 1e-7) with ``scipy.integrate.solve_ivp`` (Radau,
   BDF and LSODA, given the exact Jacobian, rtol 1e-2 ... 1e-6) on the same first-order
   system ``y = [q, v]`` with the same force model. Tolerances are set as a user would set
   them: ``atol`` is ``rtol`` times the scale of each component, the displacements' and the
   velocities' separately (the peak-to-peak motion and velocity of the probe DOF in the
   reference run). The error is the largest deviation of the probe DOF (mid-span ``uy``) over
-  41 times from a tight reference (LSODA, rtol 1e-10, the same per-component scales times
-  1e-10), relative to its peak-to-peak motion. For the accuracies 1e-3 and 1e-5 it reports
-  the cheapest run of each method that reaches it and rotorsim's speed-up against the
-  fastest solve_ivp method;
+  41 times from a tight reference (LSODA, or Radau for ``rotor1000``, rtol 1e-10, the same
+  per-component scales times 1e-10), relative to its peak-to-peak motion. For the
+  accuracies 1e-3 and 1e-5 it reports the cheapest run of each method that reaches it and
+  rotorsim's speed-up against the fastest solve_ivp method;
 * memory: the peak traced allocation of runs with 10x more steps keeping 3 DOFs stays flat.
 
-Ratios come from one run; absolute times are noisy.
+The equal-accuracy costs are CPU times of this process (``time.process_time``; one BLAS
+thread, so equal to the wall time on an idle machine and robust on a shared one). Every run
+starts from the same static equilibrium, computed once. Ratios come from one run; absolute
+times are noisy.
 
 Run: ``.venv/bin/python benchmarks/bench_transient.py [--steps N] [--quick]
-[--models bench issue14]``.
+[--models bench issue14 rotor1000]``. ``--quick`` (CI size: a minute or two) runs 5,000
+steps and the models ``bench`` and ``issue14`` unless ``--models`` says otherwise; the full
+run takes about an hour, most of it solve_ivp on ``rotor1000``.
 """
 
 from __future__ import annotations
@@ -48,6 +59,8 @@ if str(ROOT) not in sys.path:
     sys.path.insert(0, str(ROOT))
 
 import numpy as np  # noqa: E402
+import scipy.sparse as sp  # noqa: E402
+import scipy.sparse.linalg as spl  # noqa: E402
 from scipy.integrate import solve_ivp  # noqa: E402
 
 import rotorsim as rs  # noqa: E402
@@ -62,6 +75,8 @@ ACCURACIES = (1e-3, 1e-5)
 RTOLS = (1e-2, 1e-3, 1e-4, 1e-5, 1e-6)
 """Relative tolerances of the solve_ivp runs."""
 IVP_METHODS = ("Radau", "BDF", "LSODA")
+AUTO_RTOLS = (1e-2, 1e-3, 1e-4, 1e-5, 1e-6, 1e-7)
+"""Accuracies asked of rotorsim's automatic path (``rs.transient(..., rtol=)``)."""
 
 
 @dataclass(frozen=True)
@@ -78,6 +93,10 @@ class BenchModel:
     speed: float
     t_end: float
     steps: tuple[float, ...]
+    bearing_nodes: tuple[int, ...] = ()
+    rtols: tuple[float, ...] = RTOLS
+    auto_rtols: tuple[float, ...] = AUTO_RTOLS
+    reference: str = "LSODA"
 
     @property
     def probe(self) -> int:
@@ -95,9 +114,10 @@ class BenchModel:
                                               i_d=self.diameter, o_d=self.disk_diameter)
                  for n in self.disk_nodes]
         ball = BallBearing(**self.ball, f_i=0.52, f_o=0.52)  # type: ignore[arg-type]
-        bearings = [RollingBearing(ball, n=n, tag=t, contact_damping="proportional",
+        nodes = self.bearing_nodes or (0, self.elements)
+        bearings = [RollingBearing(ball, n=n, tag="ABCDEFGH"[i], contact_damping="proportional",
                                    damping_factor=2e-5)
-                    for n, t in ((0, "A"), (self.elements, "B"))]
+                    for i, n in enumerate(nodes)]
         return rs.Rotor(shaft, disks), bearings
 
 
@@ -112,15 +132,24 @@ MODELS = {
                            "Kn": 8.0e9, "diametral_clearance": 10e-6},
                           speed=1000.0, t_end=0.010,
                           steps=(4e-5, 2e-5, 1e-5, 5e-6, 2.5e-6, 1.25e-6)),
+    "rotor1000": BenchModel(165, 0.02, 0.06, (27, 82, 137), 0.24,
+                            {"n_balls": 12, "pitch_diameter": 0.085, "ball_diameter": 0.0127,
+                             "Kn": 1.2e10, "diametral_clearance": 10e-6},
+                            speed=600.0, t_end=0.004, steps=(2e-5, 1e-5, 5e-6, 2.5e-6),
+                            bearing_nodes=(0, 55, 110, 165), rtols=(1e-2, 1e-3, 1e-4),
+                            auto_rtols=(1e-2, 1e-3, 1e-4, 1e-5, 1e-6), reference="Radau"),
 }
-"""The two benchmark models (module docstring)."""
+"""The benchmark models (module docstring)."""
 
 
-def rotorsim_run(bench: BenchModel, t_end: float, dt: float, times: Any = None):
+def rotorsim_run(bench: BenchModel, t_end: float, dt: float | None, times: Any = None,
+                 initial: Any = "static", rtol: float | None = None):
+    """rotorsim on ``bench``: fixed steps ``dt`` (average acceleration), or the automatic
+    path at ``rtol`` (``dt`` None)."""
     rotor, bearings = bench.build()
     return transient(rotor, t_end, dt, nonlinear=bearings, speed=bench.speed,
-                     unbalance=bench.unbalance, nodes=[bench.probe],
-                     output=rs.Output(times=[t_end] if times is None else times))
+                     unbalance=bench.unbalance, nodes=[bench.probe], initial=initial,
+                     rtol=rtol, output=rs.Output(times=[t_end] if times is None else times))
 
 
 def steps(n_steps: int, dt: float = 2e-5) -> dict[str, float]:
@@ -134,8 +163,16 @@ def steps(n_steps: int, dt: float = 2e-5) -> dict[str, float]:
 
 
 def first_order(bench: BenchModel):
-    """``y = [q, v]`` right-hand side and Jacobian with the same force model, the start
-    ``y0`` (static equilibrium at rest) and the index of the probe DOF."""
+    """``y = [q, v]`` right-hand side and exact Jacobian with the same force model, the
+    start ``y0`` (static equilibrium at rest), the index of the probe DOF and the start on
+    all DOFs (for rotorsim).
+
+    The Jacobian ``[[0, I], [-M^-1 K_t, -M^-1 D_t]]`` is dense whatever the size (the
+    inverse of a consistent mass matrix is full), so it is given as a dense array, the
+    peers' best: a sparse matrix with that many nonzeros is slower, and a ``jac_sparsity``
+    would cost ``2n`` evaluations per Jacobian. ``M^-1 K`` and ``M^-1 D`` are formed once;
+    a call adds the bearing tangents through the columns of ``M^-1`` at the bearing DOFs.
+    """
     rotor, bearings = bench.build()
     system = assemble(rotor, bearings)
     t_end, speed = bench.t_end, bench.speed
@@ -146,70 +183,87 @@ def first_order(bench: BenchModel):
     profile = ConstantSpeed(speed).bind(0.0, t_end)
     problem, loads = _problem(system, profile, 0.0, rs.Excitation(unbalance=bench.unbalance))
     n = system.n_free
-    M = np.asarray(problem.mass)
-    Minv = np.linalg.inv(M)  # baseline only: dense inverse of the small mass matrix
-    K, C, G = (np.asarray(m) for m in (problem.stiffness, problem.damping,
-                                       problem.gyroscopic))
+    dense = (lambda A: A.toarray() if sp.issparse(A) else np.asarray(A))  # noqa: E731
+    M, K, C, G = (dense(m) for m in (problem.mass, problem.stiffness, problem.damping,
+                                     problem.gyroscopic))
+    mass_lu = spl.splu(sp.csc_matrix(M))
     D = C + speed * G
+    MinvK, MinvD = mass_lu.solve(K), mass_lu.solve(D)
+    nl = system.nonlinear
+    assert nl is not None and problem.restoring is not None
+    dofs = nl.dofs
+    Minv_cols = mass_lu.solve(np.eye(n)[:, dofs])
+    Ksp, Dsp = sp.csr_matrix(K), sp.csr_matrix(D)
     restoring = problem.restoring
-    assert restoring is not None
 
     def rhs(t, y):
         q, v = y[:n], y[n:]
         r, _, _ = restoring(q, v, t)
-        return np.concatenate([v, Minv @ (loads(t) - K @ q - D @ v - r)])
+        return np.concatenate([v, mass_lu.solve(loads(t) - Ksp @ q - Dsp @ v - r)])
 
     def jac(t, y):
         q, v = y[:n], y[n:]
         _, kt, ct = restoring(q, v, t)
         J = np.zeros((2 * n, 2 * n))
         J[:n, n:] = np.eye(n)
-        J[n:, :n] = -Minv @ (K + kt.toarray())
-        J[n:, n:] = -Minv @ (D + ct.toarray())
+        J[n:, :n] = -MinvK
+        J[n:, n:] = -MinvD
+        J[n:, dofs] -= Minv_cols @ kt.block
+        J[n:, n + dofs] -= Minv_cols @ ct.block
         return J
 
     q0, _ = initial_state(system, "static", loads.constant, profile, 0.0)
+    full = np.zeros(system.dof_map.ndof)
+    full[system.dof_map.free] = q0
     return rhs, jac, np.concatenate([q0, np.zeros(n)]), \
-        system.dofs_of(bench.probe, ("uy",))[0]
+        system.dofs_of(bench.probe, ("uy",))[0], full
 
 
 def equal_accuracy(bench: BenchModel, reference_rtol: float = 1e-10,
-                   rtols: tuple[float, ...] = RTOLS) -> dict[str, float]:
-    """Cost of rotorsim (average acceleration over ``bench.steps``) and of solve_ivp
-    (Radau, BDF, LSODA over ``rtols``) for the same accuracy (module docstring): the error
-    of each run, and for each of :data:`ACCURACIES` the cheapest run of each method that
-    reaches it and rotorsim's speed-up against the fastest solve_ivp method."""
-    rhs, jac, y0, probe = first_order(bench)
+                   quick: bool = False) -> dict[str, float]:
+    """Cost of rotorsim (fixed-step average acceleration over ``bench.steps``, and the
+    automatic path over ``bench.auto_rtols``) and of solve_ivp (Radau, BDF, LSODA over
+    ``bench.rtols``) for the same accuracy (module docstring): the error of each run, and
+    for each of :data:`ACCURACIES` the cheapest run of each method that reaches it and
+    rotorsim's speed-up against the fastest solve_ivp method. Every run starts from the same
+    static equilibrium (given to rotorsim as ``initial``), so no run is charged for it."""
+    rhs, jac, y0, probe, full = first_order(bench)
     n = y0.size // 2
+    start = (full, np.zeros_like(full))
     t_end = bench.t_end
     times = np.linspace(0.0, t_end, 41)
     # scales of the displacements and of the velocities, as a user knows them: the motion
     # and the velocity of the probe in a fine rotorsim run
-    scout = rotorsim_run(bench, t_end, min(bench.steps), times=times)
+    scout = rotorsim_run(bench, t_end, min(bench.steps), times=times, initial=start)
     scales = (float(np.ptp(scout.displacement(bench.probe, "uy"))),
               float(np.ptp(scout.velocity(bench.probe, "uy"))))
     per_component = np.concatenate([np.full(n, scales[0]), np.full(n, scales[1])])
-    ref = solve_ivp(rhs, (0.0, t_end), y0, method="LSODA", jac=jac, rtol=reference_rtol,
+    ref = solve_ivp(rhs, (0.0, t_end), y0, method=bench.reference, jac=jac, rtol=reference_rtol,
                     atol=reference_rtol * per_component, t_eval=times).y[probe]
     motion = float(np.ptp(ref))
-    runs: dict[str, list[tuple[float, float]]] = {"rotorsim": [],
+    runs: dict[str, list[tuple[float, float]]] = {"rotorsim": [], "rotorsim auto": [],
                                                   **{m: [] for m in IVP_METHODS}}
     out: dict[str, float] = {"probe motion [m]": motion,
                              "probe velocity scale [m/s]": scales[1]}
-    for dt in bench.steps:
-        start = time.perf_counter()
-        res = rotorsim_run(bench, t_end, dt, times=times)
-        wall = time.perf_counter() - start
+    settings: list[tuple[str, str, dict[str, Any]]] = [
+        ("rotorsim", f"dt={dt:g}", {"dt": dt}) for dt in bench.steps]
+    settings += [("rotorsim auto", f"rtol={r:g}", {"dt": None, "rtol": r})
+                 for r in (bench.auto_rtols[:3] if quick else bench.auto_rtols)]
+    for label, setting, kw in settings:
+        start_clock = time.process_time()
+        res = rotorsim_run(bench, t_end, times=times, initial=start, **kw)
+        wall = time.process_time() - start_clock
         err = float(np.max(np.abs(res.displacement(bench.probe, "uy") - ref))) / motion
-        runs["rotorsim"].append((err, wall))
-        out[f"rotorsim dt={dt:g}: error"] = err
-        out[f"rotorsim dt={dt:g}: s"] = wall
+        runs[label].append((err, wall))
+        out[f"{label} {setting}: error"] = err
+        out[f"{label} {setting}: s"] = wall
+        out[f"{label} {setting}: steps"] = float(res.stats["steps"])
     for method in IVP_METHODS:
-        for rtol in rtols:
-            start = time.perf_counter()
+        for rtol in (bench.rtols[:2] if quick else bench.rtols):
+            start_clock = time.process_time()
             sol = solve_ivp(rhs, (0.0, t_end), y0, method=method, jac=jac, rtol=rtol,
                             atol=rtol * per_component, t_eval=times)
-            wall = time.perf_counter() - start
+            wall = time.process_time() - start_clock
             err = float(np.max(np.abs(sol.y[probe] - ref))) / motion if sol.success \
                 else math.inf
             runs[method].append((err, wall))
@@ -221,10 +275,12 @@ def equal_accuracy(bench: BenchModel, reference_rtol: float = 1e-10,
         fastest = min(IVP_METHODS, key=lambda m: cost[m])
         for method in IVP_METHODS:
             out[f"{method} cheapest at {target:g}: s"] = cost[method]
-        out[f"rotorsim cheapest at {target:g}: s"] = cost["rotorsim"]
-        # NaN: rotorsim does not reach the accuracy with the steps tried
-        out[f"speed-up vs fastest ({fastest}) at {target:g}"] = \
-            cost[fastest] / cost["rotorsim"] if math.isfinite(cost["rotorsim"]) else math.nan
+        for label in ("rotorsim", "rotorsim auto"):
+            out[f"{label} cheapest at {target:g}: s"] = cost[label]
+            # NaN: not reached with the settings tried (by rotorsim or by every peer)
+            ratio = cost[fastest] / cost[label]
+            out[f"{label} speed-up vs fastest ({fastest}) at {target:g}"] = \
+                ratio if math.isfinite(ratio) and ratio > 0 else math.nan
     return out
 
 
@@ -250,19 +306,20 @@ def main(argv: list[str] | None = None) -> dict[str, dict[str, float]]:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--steps", type=int, default=100_000)
     parser.add_argument("--quick", action="store_true",
-                        help="5,000 steps, rtol 1e-2 and 1e-3 only")
-    parser.add_argument("--models", nargs="+", choices=sorted(MODELS), default=list(MODELS))
+                        help="5,000 steps; solve_ivp at its two loosest rtol, rotorsim's "
+                             "automatic path at 1e-2..1e-4 only")
+    parser.add_argument("--models", nargs="+", choices=sorted(MODELS), default=None)
     args = parser.parse_args(argv)
     n = 5_000 if args.quick else args.steps
-    rtols = RTOLS[:2] if args.quick else RTOLS
+    models = args.models or (["bench", "issue14"] if args.quick else list(MODELS))
     report = {"steps": steps(n),
-              **{f"accuracy {name}": equal_accuracy(MODELS[name], rtols=rtols)
-                 for name in args.models},
+              **{f"accuracy {name}": equal_accuracy(MODELS[name], quick=args.quick)
+                 for name in models},
               "memory": memory(2_000 if args.quick else 10_000)}
     for name, values in report.items():
         print(f"\n[{name}]")
         for key, value in values.items():
-            print(f"  {key:32s} {value:.6g}")
+            print(f"  {key:52s} {value:.6g}")
     return report
 
 

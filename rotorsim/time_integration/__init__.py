@@ -1,8 +1,8 @@
 """Rotor-agnostic implicit time integration (DESIGN sections 1 and 6).
 
 Build a :class:`SecondOrderProblem` (``M a + (C + s(t) G) v + K q + r(q, v, t) = f(t)``),
-pick a stepper (:class:`Newmark` family, optionally wrapped in :class:`Adaptive`, or the
-fourth-order :class:`Adams`) and call
+pick a stepper (:class:`Newmark` family, optionally wrapped in :class:`Adaptive`, the
+fourth-order :class:`Adams`, or the error-controlled fifth-order :class:`Radau`) and call
 :func:`integrate` with an :class:`OutputSpec`; long runs write checkpoints and resume from
 them.
 """
@@ -16,6 +16,7 @@ from rotorsim.time_integration.integrate import IntegrationResult, integrate
 from rotorsim.time_integration.newmark import Newmark
 from rotorsim.time_integration.output import OutputSpec, Reducer
 from rotorsim.time_integration.problem import SecondOrderProblem
+from rotorsim.time_integration.radau import Radau
 
 __all__ = [
     "Adams",
@@ -25,6 +26,7 @@ __all__ = [
     "IntegrationResult",
     "Newmark",
     "OutputSpec",
+    "Radau",
     "Reducer",
     "SecondOrderProblem",
     "State",

@@ -17,6 +17,7 @@ from rotorsim.time_integration.integrate import integrate
 from rotorsim.time_integration.newmark import Newmark
 from rotorsim.time_integration.output import OutputSpec, Reducer
 from rotorsim.time_integration.problem import SecondOrderProblem
+from rotorsim.time_integration.radau import Radau
 
 
 class Interrupted(Exception):
@@ -47,6 +48,7 @@ RUNS = {
                                                 reducers=(Reducer("max_abs", after=5.0),))),
     "adaptive-every": (Adaptive(Newmark.generalized_alpha(0.7), rtol=1e-5),
                        OutputSpec(every=3, dofs=[1], reducers=(Reducer("min", "v"),))),
+    "radau-times": (Radau(rtol=1e-5), OutputSpec(times=np.linspace(0.0, 20.0, 101))),
 }
 
 

@@ -173,12 +173,44 @@ class RestoringForce:
         self.internal = out.internal
         r = np.zeros(size)
         r[index] = out.f[0]
+        K = LocalMatrix.trusted(size, index, out.K[0])
         C = LocalMatrix.trusted(size, index, out.C[0])
         if self.damping is not None:  # a torque drive's speed damping (torque_damping)
             r_d, _, C_d = self.damping(q, v, t)
             r += r_d
             C = _joined(C, C_d)
-        return r, LocalMatrix.trusted(size, index, out.K[0]), C
+            # both tangents on the same DOFs: steppers then keep one low-rank update
+            K = _joined(K, LocalMatrix.trusted(size, C_d.dofs,
+                                               np.zeros((C_d.dofs.size, C_d.dofs.size))))
+        return r, K, C
+
+    def batch(self, q: FloatArray, v: FloatArray, t: FloatArray
+              ) -> tuple[Any, FloatArray, FloatArray, FloatArray]:
+        """Several samples in one call of the elements (the stages of a Runge-Kutta step).
+
+        Parameters
+        ----------
+        q, v : arrays (S, size)
+            Unknowns of each sample.
+        t : array (S,)
+            Times [s].
+
+        Returns
+        -------
+        dofs : int array (k,)
+            Where the forces act (``index``).
+        r : array (S, k)
+            Restoring forces on ``dofs`` [N, N m].
+        dr_dq, dr_dv : arrays (S, k, k)
+            Their tangents.
+        """
+        a, index = self.assembly, self.index
+        phi = np.array([self.speed.angle(float(x)) for x in t])
+        speed = np.array([self.speed.speed(float(x)) for x in t])
+        out = a.evaluate(q[:, index], v[:, index], phi, speed)
+        if self.damping is None:
+            return index, out.f, out.K, out.C
+        return _with_damping(self.damping, index, out.f, out.K, out.C, q, v, t)
 
 
 def _joined(a: LocalMatrix, b: LocalMatrix) -> LocalMatrix:
@@ -191,3 +223,24 @@ def _joined(a: LocalMatrix, b: LocalMatrix) -> LocalMatrix:
     block[:k, :k] = a.block
     block[k:, k:] = b.block
     return LocalMatrix.trusted(a.n, np.concatenate([a.dofs, b.dofs]), block)
+
+
+def _with_damping(damping: Any, index: Any, f: FloatArray, K: FloatArray, C: FloatArray,
+                  q: FloatArray, v: FloatArray, t: FloatArray
+                  ) -> tuple[Any, FloatArray, FloatArray, FloatArray]:
+    """The batch of :meth:`RestoringForce.batch` with a torque drive's speed damping added
+    on the union of the DOFs."""
+    S = f.shape[0]
+    extra = [damping(q[s], v[s], float(t[s])) for s in range(S)]
+    dofs = np.union1d(index, extra[0][2].dofs).astype(np.int64)
+    k = dofs.size
+    at = np.searchsorted(dofs, index)
+    r_all, K_all, C_all = np.zeros((S, k)), np.zeros((S, k, k)), np.zeros((S, k, k))
+    r_all[:, at] = f
+    K_all[:, at[:, None], at[None, :]] = K
+    C_all[:, at[:, None], at[None, :]] = C
+    for s, (r_d, _, C_d) in enumerate(extra):
+        pos = np.searchsorted(dofs, C_d.dofs)
+        r_all[s, pos] += r_d[C_d.dofs]
+        C_all[s, pos[:, None], pos[None, :]] += C_d.block
+    return dofs, r_all, K_all, C_all

@@ -66,6 +66,9 @@ DENSE_STEPPING = 400
 then cost less than scipy.sparse's call overhead."""
 
 
+AUTO_FIRST_STEPS = 1000
+"""Without ``dt`` the first trial step is the span over this (the error control adapts
+it at once)."""
 OUTPUT_DEFAULTS = Output(every=1)
 CHECKPOINT_DEFAULTS = Checkpointing(every=1000)
 """Defaults of the group fields left at None."""
@@ -76,13 +79,14 @@ CHECKPOINT_DEFAULTS = Checkpointing(every=1000)
 def transient(
     model: Rotor | RotorSystem,
     t_end: float | Sequence[float],
-    dt: float,
+    dt: float | None = None,
     *,
     nonlinear: Sequence[NonlinearElement] = (),
     speed: float | SpeedProfile | TorqueDrive | Callable[[float], float] = 0.0,
     unbalance: Sequence[tuple[int, float, float]] = (),
     excitation: Excitation | None = None,
-    method: str | TimeStepper = "average_acceleration",
+    method: str | TimeStepper | None = None,
+    rtol: float | None = None,
     initial: str | tuple[ArrayLike, ArrayLike] = "static",
     nodes: Sequence[int] | None = None,
     output: Output | None = None,
@@ -99,8 +103,9 @@ def transient(
         or a RotorSystem assembled with them.
     t_end : float or (t0, t_end)
         End time [s] (from 0), or the time span.
-    dt : float
-        Time step [s] (first trial step when adaptive).
+    dt : float, optional
+        Time step [s] (first trial step when adaptive). Without it the run is
+        error-controlled (``method="auto"``).
     nonlinear : sequence of NonlinearElement
         More nonlinear elements, e.g.
         :class:`~rotorsim.elements.rolling.element.RollingBearing` (with a Rotor only).
@@ -125,7 +130,12 @@ def transient(
         ``"average_acceleration"`` (default, alias ``"newmark"``), ``"linear_acceleration"``,
         ``"hht"``,
         ``"generalized_alpha"``, ``"adams"`` (enhanced 4th-order Adams, seed 002 App. F),
-        ``"adaptive"`` (error-controlled average acceleration) or a stepper object.
+        ``"adaptive"`` (error-controlled average acceleration), ``"auto"`` (the
+        error-controlled fifth-order Radau IIA at ``rtol`` of the motion, module
+        :mod:`~.auto`) or a stepper object. Default: ``"auto"`` when ``dt`` is omitted or
+        ``rtol`` is given, else ``"average_acceleration"``.
+    rtol : float, optional
+        Accuracy asked of the automatic path, relative to the motion (default 1e-4).
     initial : {"static", "zero"} or (q0, v0)
         Static equilibrium at rest (default), zero, or given displacements and velocities
         on ALL DOFs (``6 * n_nodes``).
@@ -177,15 +187,24 @@ def transient(
     ((501, 6), ['node 2 ux', 'node 2 uy'])
     """
     ex, out, ck = _groups(unbalance, excitation, nodes, output, checkpoint)
-    if not (isinstance(dt, int | float) and np.isfinite(dt) and dt > 0):
+    auto = method == "auto" or (method is None and (dt is None or rtol is not None))
+    if dt is not None and not (isinstance(dt, int | float) and np.isfinite(dt) and dt > 0):
         raise ModelError(f"dt must be a positive number [s], got {dt!r}", f"{WHERE}.dt")
+    if rtol is not None and not auto:
+        raise ModelError(f"rtol is the accuracy of method='auto', not of {method!r}",
+                         f"{WHERE}.rtol")
+    if dt is None and not auto:
+        raise ModelError("give dt, or leave method to 'auto'", f"{WHERE}.dt")
     system = _system(model, nonlinear)
     t0, t_end = _span(t_end)
-    _check_step_count(dt, t_end - t0)
+    if dt is not None:
+        _check_step_count(dt, t_end - t0)
+    dt = (t_end - t0) / AUTO_FIRST_STEPS if dt is None else dt
     profile = bind_speed(speed, system, model if isinstance(model, Rotor) else None,
                          (t0, t_end), max(4096, int((t_end - t0) / dt)))
     problem, loads_fn = _problem(system, profile, t0, ex)
-    stepper = _stepper(method)
+    stepper = _stepper("average_acceleration" if method is None else method) \
+        if not auto else None
     start = None
     if initial == "static" and isinstance(model, Rotor) and system.nonlinear is not None:
         start = rolling_start(model, nonlinear, system, ex.gravity, ex.direction,
@@ -207,6 +226,11 @@ def transient(
         problem, basis, report = reduce_problem(system, problem, loads_fn, int(reduction),
                                                 profile.speed(t0))
         q0, v0 = basis.project(q0), basis.project(v0)
+    if stepper is None:
+        from rotorsim.analyses.transient.auto import DEFAULT_RTOL, auto_stepper
+
+        stepper = auto_stepper(system, problem, loads_fn, profile, t0, t_end, q0,
+                               DEFAULT_RTOL if rtol is None else rtol)
     sample_times = None if out.times is None else np.asarray(out.times, dtype=float)
     spec = OutputSpec(times=sample_times, every=None if out.times is not None else out.every,
                       dofs=kept if basis is None else None)
@@ -217,7 +241,7 @@ def transient(
         from rotorsim.analyses.transient.reduction import expand_run
 
         run = expand_run(run, basis, kept)
-    options = {"t_span": [t0, t_end], "dt": dt, "method": stepper.name,
+    options = {"t_span": [t0, t_end], "dt": dt, "method": stepper.name, "rtol": rtol,
                "speed": profile.describe(), "gravity": ex.gravity,
                "unbalance": [list(map(float, u)) for u in ex.unbalance],
                "base": None if ex.base is None else list(ex.base.direction),
@@ -353,7 +377,7 @@ def _stepper(method: str | TimeStepper) -> TimeStepper:
     try:
         return Newmark.from_name(method)
     except TypeError as exc:
-        raise ModelError(f"{exc}, 'adams' or 'adaptive'", f"{WHERE}.method") from None
+        raise ModelError(f"{exc}, 'adams', 'adaptive' or 'auto'", f"{WHERE}.method") from None
 
 
 def _kept_dofs(system: RotorSystem, nodes: Sequence[int] | None) -> np.ndarray:
