@@ -66,6 +66,7 @@ from .options import (
     Harmonics,
     Output,
     StabilityOptions,
+    SteadyStop,
 )
 from .plotting import plot
 from .results.bearing import BearingEquilibriumResult, StiffnessVariation
@@ -139,6 +140,7 @@ __all__ = [
     "StabilityOptions",
     "StaticResult",
     "Status",
+    "SteadyStop",
     "StiffnessVariation",
     "SweepResult",
     "SystemMatrices",
