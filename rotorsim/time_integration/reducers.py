@@ -51,7 +51,8 @@ class Reducer:
         weighted by its length); ``max_amplitude``: the largest ``sqrt(x^2 + y^2)`` of
         consecutive pairs ``(x, y)`` (the values must come in pairs); ``peak_to_peak``:
         ``max - min`` over each segment (one row per segment, see ``segment``), or over the
-        whole run without ``segment``. Extremes are taken over the accepted steps, so a
+        whole run without ``segment``; a last segment holding one state only (the run
+        ended on its first step) gives no row. Extremes are taken over the accepted steps, so a
         peak between two steps is resolved to the step size.
     quantity : {"q", "v", "a"}
         Which state vector.
@@ -172,6 +173,7 @@ class Accumulator:
         self._low = np.array(saved.get("low", np.full(m, np.nan)))
         self._rows = [np.array(r) for r in saved.get("rows", np.zeros((0, m)))]
         self._segments = [float(s) for s in saved.get("segments", np.zeros(0))]
+        self._count = int(saved.get("count", np.zeros(1))[0])  # states in the open segment
 
     def update_state(self, state: State) -> None:
         """Add the accepted state ``state`` (when ``t >= after``)."""
@@ -199,11 +201,13 @@ class Accumulator:
     def _peak_to_peak(self, x: FloatArray, segment: int) -> None:
         if self._segments and segment == self._segments[-1]:
             self._acc, self._low = np.fmax(self._acc, x), np.fmin(self._low, x)
+            self._count += 1
             return
         if self._segments:
             self._rows.append(self._acc - self._low)
         self._segments.append(float(segment))
         self._acc, self._low = np.array(x, dtype=float), np.array(x, dtype=float)
+        self._count = 1
 
     def values(self) -> dict[str, FloatArray]:
         """The reduced arrays: ``{key: values}`` (and ``{key}_{segment_label}`` for a
@@ -217,11 +221,13 @@ class Accumulator:
             return {key: np.sqrt(mean)}
         if r.kind != "peak_to_peak":
             return {key: self._acc.copy()}
-        rows = [*self._rows, self._acc - self._low] if self._segments else []
-        table = np.array(rows).reshape(len(rows), self._acc.size)
         if r.segment is None:
-            return {key: table[0] if len(rows) else np.full(self._acc.size, np.nan)}
-        return {key: table, f"{key}_{r.segment_label}": np.array(self._segments)}
+            return {key: self._acc - self._low}
+        # an open segment of one state (the run ended on its first step) says nothing
+        keep = len(self._segments) - (self._count == 1 and len(self._segments) > 1)
+        rows = [*self._rows, self._acc - self._low][:keep]
+        return {key: np.array(rows).reshape(len(rows), self._acc.size),
+                f"{key}_{r.segment_label}": np.array(self._segments[:keep])}
 
     def snapshot(self) -> dict[str, FloatArray]:
         """Arrays that restore this accumulator (``saved`` of :meth:`Reducer.accumulator`):
@@ -233,5 +239,6 @@ class Accumulator:
         if self.reducer.kind == "peak_to_peak":
             out.update({"low": self._low.copy(),
                         "rows": np.array(self._rows).reshape(len(self._rows), m),
-                        "segments": np.array(self._segments)})
+                        "segments": np.array(self._segments),
+                        "count": np.array([float(self._count)])})
         return out

@@ -109,15 +109,17 @@ def steady_detector(steady: SteadyStop | None, out_nodes: Sequence[int] | None,
 
 def stop_record(run: IntegrationResult, detector: SteadyDetector | None,
                 profile: BoundSpeed) -> dict[str, Any] | None:
-    """``options["stopped"]`` of a run that stopped early (None when it did not)."""
+    """``options["stopped"]`` of a run that stopped early (None when it did not): the
+    reason, the time, the revolution (the last one completed) and for a steady stop the
+    relative change of the peak-to-peak over the last revolution."""
     if not run.stopped:
         return None
     t = float(run.state.t)
     record: dict[str, Any] = {"reason": run.stopped, "t": t,
                               "revolution": math.floor(profile.angle(t) / TWO_PI)}
-    if detector is not None:
-        record["criterion"] = "steady"
-        record["relative_change"] = float(detector.change)
+    if detector is not None:  # the last closed revolution, which ends at t
+        record.update(criterion="steady", revolution=detector.segment_index,
+                      relative_change=float(detector.change))
     return record
 
 
