@@ -137,6 +137,31 @@ def expanded(run: IntegrationResult, basis: ReducedBasis, kept: np.ndarray,
                                dofs=np.asarray(kept, dtype=np.int64))
 
 
+LOAD_CHUNK = 2048
+"""Samples per evaluation of the bearing loads after a run: the tangents the elements
+return with their forces (``(S, n, n)`` each) then take a bounded amount of memory, not
+one proportional to a long run's length."""
+
+
+def bearing_loads(run: IntegrationResult, system: RotorSystem, angle: FloatArray,
+                  speed: FloatArray) -> FloatArray:
+    """Load ``[Fx, Fy, Fz, Mx, My]`` (k, b, 5) on the inner ring of every nonlinear
+    bearing at every sample, evaluated :data:`LOAD_CHUNK` samples at a time."""
+    nl = system.nonlinear
+    assert nl is not None
+    cols = np.searchsorted(run.dofs, nl.dofs)
+    v = bearing_velocities(run, system)
+    if v is None:  # recorded with the samples whenever there are nonlinear DOFs
+        raise AssertionError("the bearing loads need the velocities of the bearing DOFs")
+    q = run.q[:, cols]
+    loads = np.empty((run.t.size, len(nl.elements), 5))
+    for start in range(0, run.t.size, LOAD_CHUNK):
+        part = slice(start, start + LOAD_CHUNK)
+        out = nl.evaluate(q[part], v[part], angle[part], speed[part])
+        loads[part] = np.stack([f[:, :5] for f in out.element_forces], axis=1)
+    return loads
+
+
 def bearing_velocities(run: IntegrationResult, system: RotorSystem) -> FloatArray | None:
     """Velocities (k, nl.k) of the nonlinear DOFs from a run's records (None without)."""
     nl = system.nonlinear

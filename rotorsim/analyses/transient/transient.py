@@ -398,12 +398,7 @@ def _bearing_histories(system: RotorSystem, run: IntegrationResult,
     nl = system.nonlinear
     if nl is None:
         return (np.zeros((run.t.size, 0, 5)), (), np.zeros(0, dtype=np.int64), np.zeros(0))
-    cols = np.searchsorted(run.dofs, nl.dofs)
-    v = run_control.bearing_velocities(run, system)
-    if v is None:  # recorded with the samples whenever there are nonlinear DOFs
-        raise AssertionError("the bearing loads need the velocities of the bearing DOFs")
-    out = nl.evaluate(run.q[:, cols], v, angle, speed)
-    loads = np.stack([f[:, :5] for f in out.element_forces], axis=1)
+    loads = run_control.bearing_loads(run, system, angle, speed)
     tags = tuple(str(getattr(el, "tag", None) or i) for i, el in enumerate(nl.elements))
     models = [getattr(el, "bearing", None) for el in nl.elements]
     counts = np.array([int(getattr(b, "n_elements", 0) or 0) for b in models], dtype=np.int64)

@@ -196,3 +196,14 @@ def test_reducer_options_are_checked():
         rs.transient(jeffcott(), 0.01, 1e-4, velocities=True)
     with pytest.raises(ModelError, match=r"periodic\.output\.reducers: not an option"):
         rs.periodic(jeffcott(), start=10.0, stop=20.0, output=rs.Output(reducers=("rms",)))
+
+
+def test_bearing_loads_are_evaluated_in_chunks(rolling_rotor, monkeypatch):
+    """Rigid-ring ball bearings evaluate each sample alone: chunks change nothing."""
+    from rotorsim.analyses.transient import run_control
+
+    kw = dict(speed=300.0, nodes=[5], unbalance=[(5, 1e-5, 0.0)])
+    whole = rs.transient(rolling_rotor, 0.001, 2e-5, **kw)
+    monkeypatch.setattr(run_control, "LOAD_CHUNK", 7)
+    chunked = rs.transient(rolling_rotor, 0.001, 2e-5, **kw)
+    np.testing.assert_array_equal(chunked.bearing_loads, whole.bearing_loads)
