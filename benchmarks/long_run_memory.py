@@ -35,7 +35,7 @@ os.environ.setdefault("OMP_NUM_THREADS", "1")
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
-import rotorsim as rs  # noqa: E402
+import rotorsim as rs
 
 MODEL = Path(__file__).resolve().parents[1] / "models" / "rolling_ball.toml"
 DT, SPEED = 2e-5, 1000.0

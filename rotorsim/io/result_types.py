@@ -63,8 +63,8 @@ register_result_type(StiffnessVariation, {
 register_result_type(TransientResult, {
     "t": "s", "q": "m, rad", "v": "m/s, rad/s", "dofs": "1", "speed": _ANGULAR,
     "angle": "rad", "acceleration": "rad/s^2", "bearing_loads": "N, N m",
-    "bearing_elements": "1", "bearing_kappa": "1", "nodes_pos": "m", "reduced": "m, rad (revolution indices: 1)",
-    "element_loads": "N", "contact_angles": "rad"})
+    "bearing_elements": "1", "bearing_kappa": "1", "nodes_pos": "m",
+    "reduced": "m, rad (revolution indices: 1)", "element_loads": "N", "contact_angles": "rad"})
 register_result_type(TransientState, {
     "t": "s", "q": "m, rad", "v": "m/s, rad/s", "a": "m/s^2, rad/s^2", "angle": "rad",
     "speed": _ANGULAR, "dt": "s", "reduction_speed": _ANGULAR})
