@@ -53,8 +53,8 @@ def output_spec(out: Output, system: RotorSystem, kept: np.ndarray,
         velocities: Any = True
     elif nl is None:
         velocities = False
-    else:  # the bearing loads need them; reduced coordinates 0..k-1 are the nl DOFs
-        velocities = nl.dofs if basis is None else np.arange(nl.k)
+    else:  # the bearing loads need them; the leading reduced coordinates are the nl DOFs
+        velocities = nl.dofs if basis is None else np.arange(basis.boundary.size)
     after = -math.inf if out.after is None else float(out.after)
     reducers = tuple(_reducer(name, system, kept, rows, profile, after)
                      for name in out.reducers)
@@ -123,16 +123,16 @@ def stop_record(run: IntegrationResult, detector: SteadyDetector | None,
     return record
 
 
-def expanded(run: IntegrationResult, basis: ReducedBasis, kept: np.ndarray,
-             system: RotorSystem) -> IntegrationResult:
+def expanded(run: IntegrationResult, basis: ReducedBasis, kept: np.ndarray
+             ) -> IntegrationResult:
     """A reduced run's samples on the kept free DOFs (``q = T x``); velocities likewise, or
-    those of the nonlinear DOFs only (the leading reduced coordinates are these DOFs)."""
+    those of the boundary (nonlinear) DOFs only, the leading reduced coordinates."""
     rows = basis.T[kept]
     v, v_dofs = run.v, run.v_dofs
     if v is not None and v_dofs is not None and v_dofs.size == basis.size:
         v, v_dofs = v @ rows.T, kept
-    elif v is not None and system.nonlinear is not None:
-        v_dofs = system.nonlinear.dofs
+    elif v is not None:
+        v_dofs = basis.boundary
     return dataclasses.replace(run, q=run.q @ rows.T, v=v, v_dofs=v_dofs,
                                dofs=np.asarray(kept, dtype=np.int64))
 

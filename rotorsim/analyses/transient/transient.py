@@ -223,7 +223,7 @@ def transient(
                     stop_when=detector)
     final = cont.final_state(run, full, problem, basis, profile, dt, basis_speed)
     if basis is not None:
-        run = run_control.expanded(run, basis, kept, system)
+        run = run_control.expanded(run, basis, kept)
     options = {"t_span": [t0, t_end], "dt": dt, "method": stepper.name,
                "speed": profile.describe(), "gravity": ex.gravity,
                "unbalance": [list(map(float, u)) for u in ex.unbalance],
