@@ -138,6 +138,13 @@ class _Rows:
     def array(self) -> FloatArray:
         return self._data[: self._size].copy()
 
+    def take(self) -> FloatArray:
+        """The rows, the buffer shrunk in place (no copy: the peak memory of a long run is
+        its buffer, not buffer plus copy); the buffer then belongs to the caller."""
+        data, self._data = self._data, np.empty((0, self._data.shape[1]))
+        data.resize((self._size, data.shape[1]), refcheck=False)
+        return data
+
 
 class OutputRecorder:
     """Runtime collector of one run's samples and reductions (checkpointable)."""
@@ -210,9 +217,10 @@ class OutputRecorder:
         return out
 
     def arrays(self) -> tuple[FloatArray, FloatArray, FloatArray | None]:
-        """Sample times (k,), ``q`` (k, m) and ``v`` (k, len(velocity_dofs)) or None."""
-        return (self._t.array()[:, 0], self._q.array(),
-                None if self._v is None else self._v.array())
+        """Sample times (k,), ``q`` (k, m) and ``v`` (k, len(velocity_dofs)) or None; the
+        buffers are handed over, so call it once, last."""
+        return (self._t.take()[:, 0].copy(), self._q.take(),
+                None if self._v is None else self._v.take())
 
     def _append_state(self, state: State) -> None:
         v = None if self.velocity_dofs is None else state.v[self.velocity_dofs][None, :]
