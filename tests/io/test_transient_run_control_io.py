@@ -100,7 +100,7 @@ phase = 0
 def test_transient_subcommand_with_reducers_and_steady_stop(tmp_path, capsys):
     """A Jeffcott rotor (damping ratio 0.02, wn 1265 rad/s) at 7000 rpm: its free vibration
     decays as exp(-25 t), so the peak-to-peak per revolution settles within 1e-3 after
-    ~0.3 s (tests/analyses/transient/test_run_control.py checks it against the exact
+    ~0.3 s (tests/analyses/transient/test_transient_run_control.py checks it against the exact
     response)."""
     path = tmp_path / "jeffcott.toml"
     path.write_text(JEFFCOTT)
