@@ -41,10 +41,10 @@ class SteadyStop(OptionGroup):
     --------
     >>> SteadyStop(rtol=1e-4).revolutions
     3
-    >>> SteadyStop(dofs=["uw"])
+    >>> SteadyStop(revolutions=0)
     Traceback (most recent call last):
     ...
-    rotorsim.options.group.OptionError: SteadyStop.dofs: expected DOF names among ux, uy, uz, ...
+    rotorsim.options.group.OptionError: SteadyStop.revolutions: must be a positive integer, got 0
     """
 
     nodes: Sequence[int] | None = field(
