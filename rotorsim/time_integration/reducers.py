@@ -20,6 +20,7 @@ Examples
 
 from __future__ import annotations
 
+import functools
 import hashlib
 import math
 from collections.abc import Callable
@@ -29,7 +30,7 @@ from typing import Any, Literal
 import numpy as np
 
 from rotorsim.errors import ModelError
-from rotorsim.time_integration.base import FloatArray, State
+from rotorsim.time_integration.base import FloatArray, IntArray, State
 
 ReducerKind = Literal["max_abs", "max", "min", "rms", "max_amplitude", "peak_to_peak"]
 REDUCER_KINDS: tuple[str, ...] = ("max_abs", "max", "min", "rms", "max_amplitude",
@@ -149,7 +150,11 @@ class Reducer:
         x = getattr(state, self.quantity)
         if self.transform is not None:
             return np.asarray(self.transform @ x)
-        return x if self.dofs is None else x[list(self.dofs)]
+        return x if self.dofs is None else x[self._index]
+
+    @functools.cached_property
+    def _index(self) -> IntArray:
+        return np.asarray(self.dofs, dtype=np.int64)
 
     def accumulator(self, n: int, saved: dict[str, FloatArray] | None = None) -> Accumulator:
         """A fresh accumulator (or one restored from :meth:`Accumulator.snapshot`)."""
