@@ -76,6 +76,7 @@ from .options import (
     Harmonics,
     Output,
     StabilityOptions,
+    SteadyStop,
 )
 from .plotting import plot
 from .results.bearing import BearingEquilibriumResult, StiffnessVariation
@@ -153,6 +154,7 @@ __all__ = [
     "StabilityOptions",
     "StaticResult",
     "Status",
+    "SteadyStop",
     "StiffnessVariation",
     "SweepResult",
     "SystemMatrices",

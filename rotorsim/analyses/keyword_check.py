@@ -53,7 +53,10 @@ MOVED: dict[str, dict[str, str]] = {
         **_EXCITATION, **_homes("excitation", "Excitation", {"forces": "forces"}),
         **_CHECKPOINT,
         **_homes("output", "Output", {k: k for k in ("every", "times", "rolling_elements",
-                                                      "progress")}),
+                                                      "progress", "velocities", "reducers")}),
+        "keep_velocities": "output=rs.Output(velocities=...)",
+        "continue_from": "initial=<the TransientResult to continue>",
+        "stop_when_steady": "steady=rs.SteadyStop(...)",
     },
 }
 """Keywords of each verb that moved into an option group, and their new home."""

@@ -29,6 +29,8 @@ def adhoc_job(model: Any, args: argparse.Namespace) -> tuple[str, Any]:
             changes[option] = _count(str(getattr(args, option)))
     if getattr(args, "no_stability", False):
         changes["stability"] = "none"
+    if kind == "transient":
+        changes.update(_run_control_changes(args))
     if getattr(args, "speed", None) is not None:
         changes["speed"] = to_si(args.speed, "speed", "--speed")
     ranges = () if kind == "periodic_parameter" else (("start", "start", "speed"),
@@ -86,6 +88,25 @@ def _parameter_changes(model: Any, spec: Any, args: argparse.Namespace) -> dict[
     start, stop = parameter_range(model, vary, given.get("start", getattr(spec, "start", 0)),
                                   given.get("stop", getattr(spec, "stop", 0)))
     return {"vary": vary, "start": start, "stop": stop}
+
+
+def _run_control_changes(args: argparse.Namespace) -> dict[str, Any]:
+    """Flat keys of ``--every``, ``--velocities``, ``--reducers``, ``--stop-when-steady``,
+    ``--steady-rtol`` and ``--steady-revolutions``."""
+    from rotorsim.options import Output, SteadyStop
+
+    changes: dict[str, Any] = {}
+    for group, field in ((Output, "every"), (SteadyStop, "rtol"), (SteadyStop, "revolutions")):
+        value = getattr(args, option_dest(group, field), None)
+        if value is not None:
+            changes[option_dest(group, field)] = value
+    if args.velocities:
+        changes["velocities"] = True
+    if args.reducers is not None:
+        changes["reducers"] = tuple(r.strip() for r in args.reducers.split(",") if r.strip())
+    if args.stop_when_steady:
+        changes["stop_when_steady"] = True
+    return changes
 
 
 def _count(text: str) -> int:

@@ -8,7 +8,7 @@ from collections.abc import Sequence
 from pathlib import Path
 from typing import NoReturn
 
-from rotorsim.options import Checkpointing, ContinuationOptions, Harmonics
+from rotorsim.options import Checkpointing, ContinuationOptions, Harmonics, Output, SteadyStop
 from rotorsim.options.flat import flat_key, option_field
 from rotorsim.options.group import OptionGroup
 
@@ -96,6 +96,7 @@ def build_parser() -> argparse.ArgumentParser:
             p.add_argument("--dt", help='time step, e.g. "20 us"')
             p.add_argument("--speed", help='spin speed (start of a ramp), e.g. "3000 rpm"')
             p.add_argument("--speed-stop", help="end speed of a linear run-up/coast-down")
+            _add_run_control_options(p)
         if kind == "periodic":
             p.add_argument("--start", help='first speed of the branch, e.g. "1000 rpm"')
             p.add_argument("--stop", help="last speed of the branch")
@@ -125,6 +126,20 @@ def build_parser() -> argparse.ArgumentParser:
     bearing.add_argument("--fast", action="store_true",
                          help="6 instead of 24 positions over one element pass (smoke runs)")
     return parser
+
+
+def _add_run_control_options(p: argparse.ArgumentParser) -> None:
+    """What a transient keeps and when it stops (``rs.Output``, ``rs.SteadyStop``)."""
+    add_option(p, Output, "every", metavar="N")
+    p.add_argument("--velocities", action="store_true",
+                   help=option_field(Output, "velocities").metadata["help"])
+    p.add_argument("--reducers", metavar="NAMES",
+                   help="comma-separated reductions over every step: max_abs, peak_to_peak "
+                        "(per revolution), max_amplitude (radial), rms")
+    p.add_argument("--stop-when-steady", action="store_true",
+                   help="stop once the peak-to-peak per revolution has settled")
+    add_option(p, SteadyStop, "rtol")
+    add_option(p, SteadyStop, "revolutions", metavar="N")
 
 
 def _add_output_options(p: argparse.ArgumentParser) -> None:

@@ -232,6 +232,9 @@ def transient_summary(result: Any, units: str = "rpm") -> str:
         t_end = (result.options.get("t_span") or [0.0, result.t[-1]])[-1]
         head += (f"\nSTOPPED SHORT of t_end = {t_end:.4g} s (status {result.status.name}): "
                  f"{failure}")
+    stopped = (result.options or {}).get("stopped")
+    if stopped:
+        head += f"\nstopped early at t = {stopped['t']:.4g} s: {stopped['reason']}"
     rows = []
     nodes = sorted({int(i) // 6 for i in result.dofs})
     for node in nodes:
@@ -248,6 +251,11 @@ def transient_summary(result: Any, units: str = "rpm") -> str:
                              f"{np.abs(loads[:, b, 2]).max():.2f}")
                             for b, tag in enumerate(result.bearing_tags)],
                            ("bearing", "min |Fr| [N]", "max |Fr| [N]", "max |Fz| [N]")))
+    if "max_amplitude" in result.reduced:
+        amplitude = result.reduced["max_amplitude"]
+        lines.append(table([(int(n), f"{a * 1e6:.3f}") for n, a in
+                            zip(result.amplitude_nodes, amplitude, strict=True)],
+                           ("node", "max radial amplitude [um] (every step)")))
     return "\n".join(lines)
 
 

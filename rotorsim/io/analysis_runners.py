@@ -121,11 +121,15 @@ def _transient(rotor: Rotor, model: Model, spec: Any, fast: bool, progress: bool
         ramp = spec.t_end if spec.ramp_time is None else spec.ramp_time
         speed = LinearSpeed(spec.speed, spec.speed_stop, 0.0, ramp)
     unbalance = model.loads.unbalance if spec.unbalance is None else spec.unbalance
+    steady = None
+    if spec.stop_when_steady:
+        steady = spec.steady if spec.steady.nodes or spec.nodes is None else \
+            dataclasses.replace(spec.steady, nodes=spec.nodes)
     return transient(rotor, t_end, spec.dt, speed=speed, unbalance=list(unbalance),
                      excitation=_excitation(model), method=spec.method, initial=spec.initial,
                      nodes=spec.nodes,
                      output=dataclasses.replace(spec.output, progress=progress),
-                     on_failure=spec.on_failure, checkpoint=restart)
+                     on_failure=spec.on_failure, checkpoint=restart, steady=steady)
 
 
 def _excitation(model: Model) -> Excitation:

@@ -149,7 +149,9 @@ def option_fields(spec: type[AnalysisSpec]) -> dict[str, Any]:
 def _option_annotation(meta: Any, default: Any) -> tuple[Any, Any]:
     kind, bounds = meta["file"], {k: meta[k] for k in ("ge", "gt", "le") if k in meta}
     annotation: Any
-    if "choices" in meta:
+    if kind is list:  # a list of names among the choices
+        annotation = list[Literal[meta["choices"]]]  # type: ignore[valid-type]
+    elif "choices" in meta:
         annotation = Literal[(*meta["choices"], *([meta["none"]] if "none" in meta else []))]
     else:
         annotation = Annotated[kind, Field(**bounds)] if bounds else kind
@@ -169,6 +171,7 @@ class _TransientKeys(RestartableTable):
     on_failure: Literal["stop", "raise"] = "stop"
     unbalance: Annotated[list[UnbalanceTable], Field(min_length=1)] | None = None
     drive: DriveTable | None = None
+    stop_when_steady: bool = False
 
     @model_validator(mode="after")
     def _step_within_run(self) -> "_TransientKeys":

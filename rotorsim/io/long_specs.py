@@ -19,6 +19,7 @@ from rotorsim.options import (
     Harmonics,
     Output,
     StabilityOptions,
+    SteadyStop,
 )
 
 
@@ -103,13 +104,17 @@ class TransientSpec(RestartableSpec):
     [s] (default ``t_end``); ``unbalance=None`` uses the model's ``[[loads.unbalance]]``;
     rolling bearings act with their full nonlinear force. ``on_failure="stop"`` (default)
     keeps the run up to a failed step with status ``NOT_CONVERGED``; ``"raise"`` raises.
-    ``output`` holds the kept samples (key ``every``). With a ``drive``
-    (:class:`DriveSpec`) the speed follows from torques
-    (:class:`rotorsim.TorqueDrive`) and ``speed`` is the initial speed."""
+    ``output`` holds the kept samples, velocities and reducers (keys ``every``,
+    ``velocities``, ``reducers``, ``after``); ``stop_when_steady`` stops the run once steady
+    by the criterion of ``steady`` (keys ``steady_rtol``, ``steady_atol``,
+    ``steady_revolutions``; the watched nodes are ``nodes``). With a ``drive``
+    (:class:`DriveSpec`) the speed follows from torques (:class:`rotorsim.TorqueDrive`)
+    and ``speed`` is the initial speed."""
 
     type: ClassVar[str] = "transient"
     FILE_OPTIONS: ClassVar[dict[str, tuple[str, ...]]] = {
-        **RestartableSpec.FILE_OPTIONS, "output": ("every",)}
+        **RestartableSpec.FILE_OPTIONS, "output": ("every", "velocities", "reducers", "after"),
+        "steady": ("rtol", "atol", "revolutions")}
     t_end: float
     dt: float
     speed: float = 0.0
@@ -121,6 +126,8 @@ class TransientSpec(RestartableSpec):
     unbalance: Unbalance | None = None
     output: Output = Output()  # noqa: RUF009  (frozen)
     drive: DriveSpec | None = None
+    stop_when_steady: bool = False
+    steady: SteadyStop = SteadyStop()  # noqa: RUF009  (frozen)
 
 
 _BRANCH_OPTIONS: dict[str, tuple[str, ...]] = {

@@ -19,6 +19,8 @@ from rotorsim.results.periodic import PeriodicBifurcation, PeriodicResult
 from rotorsim.results.spectra import HarmonicFit, Spectrum
 from rotorsim.results.static import StaticResult
 from rotorsim.results.transient import TransientResult
+from rotorsim.results.transient_state import TransientState
+from rotorsim.time_integration.base import Counters, State
 
 _ANGULAR = "rad/s"
 register_result_type(ModalResult, {
@@ -61,7 +63,18 @@ register_result_type(StiffnessVariation, {
 register_result_type(TransientResult, {
     "t": "s", "q": "m, rad", "v": "m/s, rad/s", "dofs": "1", "speed": _ANGULAR,
     "angle": "rad", "acceleration": "rad/s^2", "bearing_loads": "N, N m",
-    "bearing_elements": "1", "bearing_kappa": "1", "nodes_pos": "m"})
+    "bearing_elements": "1", "bearing_kappa": "1", "nodes_pos": "m",
+    "reduced": "m, rad (revolution indices: 1)", "element_loads": "N", "contact_angles": "rad"})
+register_result_type(TransientState, {
+    "t": "s", "q": "m, rad", "v": "m/s, rad/s", "a": "m/s^2, rad/s^2", "angle": "rad",
+    "speed": _ANGULAR, "dt": "s", "reduction_speed": _ANGULAR})
+_STEPPER = " (reduced coordinates after a reduction)"
+register_result_type(State, {  # the stepper's own coordinates
+    "t": "s", "q": "m, rad" + _STEPPER, "v": "m/s, rad/s" + _STEPPER,
+    "a": "m/s^2, rad/s^2" + _STEPPER, "force": "N, N m" + _STEPPER,
+    "peak": "m, rad" + _STEPPER, "history": "m/s^2, rad/s^2" + _STEPPER, "dt": "s",
+    "error": "1", "factor_dt": "s", "factor_spin": _ANGULAR, "history_dt": "s"})
+register_result_type(Counters)
 _SIGNAL = "signal units"  # spectra of any signal: m, rad, N... as the input
 register_result_type(Spectrum, {
     "frequency": _ANGULAR, "amplitude": _SIGNAL, "phase": "rad", "dt": "s", "t_start": "s"})

@@ -9,6 +9,8 @@ h5py's native ``(r, i)`` compound, str as UTF-8 variable-length strings), ``str_
 attr ``n_nodes``, dataset ``fixed`` and the string dataset ``dof_labels``, ``"node 8 uy"``
 for every global DOF), ``status`` (int attr), ``bool``/``int``/``float``/
 ``complex``/``str`` (Python scalar attr), ``numpy`` (numpy scalar attr, dtype kept),
+``array_dict`` (a non-empty dict of str to arrays, e.g. ``TransientResult.reduced``:
+subgroup ``<field>`` with one dataset per entry and attr ``keys``, their JSON-listed order),
 ``json`` (attr with the tagged JSON of :func:`to_jsonable`: ``options``, ``stats``,
 ``summary``, lists, other tuples) and ``none`` (nothing stored). Units of scalar attrs are
 in the group attr ``attr_units`` (JSON ``{field: units}``). A result with an integer field
@@ -168,6 +170,12 @@ def _write_field(group: h5py.Group, name: str, value: Any, units: str | None,
     if kind is not None and _fits_attr(value):
         group.attrs[name] = value
         return kind
+    if _is_array_dict(value):
+        sub = group.create_group(name)
+        sub.attrs["keys"] = json.dumps(list(value))
+        for key, item in value.items():
+            _write_array(sub, key, item, units, f"{where}[{key!r}]")
+        return "array_dict"
     if type(value) is tuple and value and all(
             dataclasses.is_dataclass(v) and not isinstance(v, type) for v in value):
         sub = group.create_group(name)  # tuple of results: items "0", "1", ... in order
@@ -180,6 +188,14 @@ def _write_field(group: h5py.Group, name: str, value: Any, units: str | None,
         return "str_tuple"
     group.attrs[name] = json.dumps(to_jsonable(value, where), allow_nan=False)
     return "json"
+
+
+def _is_array_dict(value: Any) -> bool:
+    """A non-empty dict of arrays under plain names: stored as datasets, not as JSON (an
+    HDF5 attribute holds at most 64 kB; a long run's reductions need more)."""
+    return (type(value) is dict and bool(value) and all(
+        type(k) is str and k and "/" not in k and k not in (".", "..")
+        and isinstance(v, np.ndarray) for k, v in value.items()))
 
 
 def _fits_attr(value: bool | int | float | complex | str) -> bool:
@@ -288,6 +304,9 @@ def _read_field(group: h5py.Group, name: str, kind: str) -> Any:
         return tuple(_read_result(sub[str(i)]) for i in range(int(sub.attrs["length"])))
     if kind == "array":
         return _read_array(group[name])
+    if kind == "array_dict":
+        sub = group[name]
+        return {key: _read_array(sub[key]) for key in json.loads(sub.attrs["keys"])}
     if kind == "str_tuple":
         return tuple(str(s) for s in group[name].asstr()[()])
     value = group.attrs[name]

@@ -8,8 +8,10 @@ A verb's options are grouped by concern into frozen dataclasses:
   balance.
 - :class:`ContinuationOptions`: steps, point budget and tolerance of branch following.
 - :class:`StabilityOptions`: Floquet method, stability model, tolerance, bifurcations.
-- :class:`Output`: kept nodes, samples, rolling-element histories, progress bars.
+- :class:`Output`: kept nodes, samples, velocities, reducers, rolling-element histories,
+  progress bars.
 - :class:`Checkpointing`: checkpoint file, interval and resume.
+- :class:`SteadyStop`: when a transient stops early because its response is steady.
 
 Each field carries its default, a one-line help text and its unit in the field's metadata
 (:func:`~rotorsim.options.group.about`), and is validated when the group is built
@@ -28,6 +30,7 @@ from rotorsim.options.group import OptionError, OptionGroup
 from rotorsim.options.harmonics import Harmonics
 from rotorsim.options.output import Output
 from rotorsim.options.stability import StabilityOptions
+from rotorsim.options.steady import SteadyStop
 
 __all__ = [
     "Checkpointing",
@@ -38,4 +41,5 @@ __all__ = [
     "OptionGroup",
     "Output",
     "StabilityOptions",
+    "SteadyStop",
 ]

@@ -66,5 +66,5 @@ def to_flat(group: OptionGroup, names: Iterable[str]) -> dict[str, Any]:
             f = option_field(type(group), name)
             value = given[name]
             out[flat_key(type(group), name)] = f.metadata.get("none") if value is None \
-                else value
+                else list(value) if isinstance(value, tuple) else value
     return out

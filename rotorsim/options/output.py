@@ -14,6 +14,10 @@ if TYPE_CHECKING:
     from numpy.typing import ArrayLike
 
 
+REDUCERS = ("max_abs", "peak_to_peak", "max_amplitude", "rms")
+"""Reducers of a transient's kept DOFs (``Output.reducers``)."""
+
+
 @dataclass(frozen=True)
 class Output(OptionGroup):
     """Recorded DOFs, samples and progress of :func:`~rotorsim.transient`,
@@ -36,11 +40,25 @@ class Output(OptionGroup):
         every sample (``result.element_loads``, ``result.contact_angles``). Transients only.
     progress : bool
         Show a progress bar (on a terminal).
+    velocities : bool
+        Also keep the velocities of the kept DOFs (``result.v``; default False: memory
+        goes to the displacements). Transients only.
+    reducers : sequence of str
+        Reductions of the kept DOFs over every accepted time step with ``t >= after``, in
+        ``result.reduced`` (:data:`REDUCERS`): ``"max_abs"`` (largest ``|q|``),
+        ``"peak_to_peak"`` (per shaft revolution), ``"max_amplitude"`` (largest radial
+        amplitude ``sqrt(ux^2 + uy^2)`` of each node) and ``"rms"`` (time-weighted root
+        mean square). With a large ``every`` they summarise a long run in little memory.
+        Transients only.
+    after : float, optional
+        Start of the reductions [s] (default: the start of the run). Transients only.
 
     Examples
     --------
     >>> Output(nodes=[2, 5], every=10).nodes
     (2, 5)
+    >>> Output(reducers=["rms", "peak_to_peak"]).reducers
+    ('rms', 'peak_to_peak')
     >>> Output(every=0)
     Traceback (most recent call last):
     ...
@@ -59,6 +77,15 @@ class Output(OptionGroup):
         default=False, metadata=about("keep the load of every rolling element",
                                       file=bool))
     progress: bool = field(default=False, metadata=about("show a progress bar"))
+    velocities: bool = field(
+        default=False, metadata=about("keep the velocities of the kept DOFs", file=bool))
+    reducers: Sequence[str] = field(
+        default=(), metadata=about("reductions over the run: max_abs, peak_to_peak (per "
+                                   "revolution), max_amplitude (radial), rms", file=list,
+                                   choices=REDUCERS))
+    after: float | None = field(
+        default=None, metadata=about("start of the reductions (default: the start)", "s",
+                                     file=float))
 
     def __post_init__(self) -> None:
         if self.nodes is not None:
@@ -76,9 +103,25 @@ class Output(OptionGroup):
                 raise self._fail("times", f"expected finite sample times [s], got "
                                           f"{self.times!r}")
             object.__setattr__(self, "times", times)
-        for name in ("rolling_elements", "progress"):
+        self._check_reducers()
+        for name in ("rolling_elements", "progress", "velocities"):
             if not isinstance(getattr(self, name), bool):
                 raise self._fail(name, f"must be True or False, got {getattr(self, name)!r}")
+
+
+    def _check_reducers(self) -> None:
+        if not _sequence(self.reducers) or not all(isinstance(r, str) for r in self.reducers):
+            raise self._fail("reducers", f"expected names of reducers, got {self.reducers!r}")
+        reducers = tuple(self.reducers)
+        unknown = [r for r in reducers if r not in REDUCERS]
+        if unknown or len(set(reducers)) != len(reducers):
+            raise self._fail("reducers", f"expected distinct names among "
+                                         f"{', '.join(REDUCERS)}; got {list(reducers)}")
+        object.__setattr__(self, "reducers", reducers)
+        if self.after is not None and not (isinstance(self.after, numbers.Real)
+                                           and math.isfinite(self.after)):
+            raise self._fail("after", f"expected a finite time [s], got {self.after!r}")
+
 
 
 def _sequence(value: object) -> bool:

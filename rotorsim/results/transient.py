@@ -12,6 +12,7 @@ from rotorsim.assembly.dof_map import DofMap
 from rotorsim.elements.base import DOF_NAMES
 from rotorsim.errors import ModelError, Status
 from rotorsim.results.dof_access import KeptDofs
+from rotorsim.results.transient_state import TransientState, radial_pairs
 
 if TYPE_CHECKING:
     from rotorsim.results.order_tracking import OrderTrack, Waterfall
@@ -35,7 +36,8 @@ class TransientResult(KeptDofs):
     q : array (k, m)
         Displacements of the kept DOFs [m, rad].
     v : array (k, m) or None
-        Their velocities [m/s, rad/s] (when kept).
+        Their velocities [m/s, rad/s], kept on request only (``rs.Output(velocities=True)``;
+        None otherwise).
     dofs : int array (m,)
         Indices of the kept DOFs among ALL DOFs (``6 * node + local``).
     speed, angle, acceleration : arrays (k,)
@@ -51,8 +53,12 @@ class TransientResult(KeptDofs):
         Cage speed ratio of each bearing: the varying-compliance (ball pass) frequency is
         ``bearing_elements * bearing_kappa * W``.
     reduced : dict of str to array
-        Running reductions over all steps (e.g. ``max_abs_q``), on the DOFs each names in
-        ``reduced_dofs``.
+        Reductions over all accepted steps with ``t >= after`` (``rs.Output(reducers=...)``):
+        ``max_abs`` and ``rms`` (m,) on the columns of ``q``; ``max_amplitude`` (p,) the
+        largest radial amplitude ``sqrt(ux^2 + uy^2)`` of each of :attr:`amplitude_nodes`;
+        ``peak_to_peak`` (r, m) per shaft revolution, with the revolution index
+        ``floor(phi / 2 pi)`` of each row in ``peak_to_peak_revolution`` (r,) (the first and
+        last rows may cover part of a revolution).
     dof_map : DofMap
     nodes_pos : array (n_nodes,)
         Axial node positions [m].
@@ -65,6 +71,10 @@ class TransientResult(KeptDofs):
         With ``rolling_elements=True``: the (inner-contact) load [N] and contact angle [rad]
         of every rolling element of each bearing (by tag) at every sample; element ``j``
         sits at ``psi_0 + 2 pi j / Z + kappa phi``.
+    final : TransientState or None
+        The final full state (all free DOFs, shaft angle and speed, the stepper's state):
+        pass the result as ``initial=`` to continue the run (None in files of older
+        versions).
     """
 
     t: FloatArray
@@ -88,6 +98,19 @@ class TransientResult(KeptDofs):
     summary: dict[str, Any] = field(default_factory=dict)
     element_loads: dict[str, FloatArray] = field(default_factory=dict)
     contact_angles: dict[str, FloatArray] = field(default_factory=dict)
+    final: TransientState | None = None
+
+    @property
+    def amplitude_nodes(self) -> IntArray:
+        """Nodes whose ``ux`` and ``uy`` are both kept, in increasing order: the entries of
+        ``reduced["max_amplitude"]``."""
+        return radial_pairs(self.dofs).nodes
+
+    @property
+    def stopped(self) -> dict[str, Any] | None:
+        """Why and when the run stopped before ``t_end`` (``options["stopped"]``: reason,
+        time, revolution), or None when it ran to the end."""
+        return self.options.get("stopped")
 
     def displacement(self, node: int, dof: str = "uy") -> FloatArray:
         """Time history of one DOF [m, rad]."""
@@ -112,8 +135,8 @@ class TransientResult(KeptDofs):
     def velocity(self, node: int, dof: str = "uy") -> FloatArray:
         """Velocity history of one DOF (requires velocities to be kept)."""
         if self.v is None:
-            raise ModelError("velocities were not kept (keep_velocities=True)",
-                             "TransientResult")
+            raise ModelError("velocities were not kept: run with "
+                             "output=rs.Output(velocities=True)", "TransientResult.velocity")
         return self.v[:, self.column(node, dof)]
 
     def orbit(self, node: int, t_min: float | None = None) -> tuple[FloatArray, FloatArray]:

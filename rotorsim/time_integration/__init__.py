@@ -3,8 +3,10 @@
 Build a :class:`SecondOrderProblem` (``M a + (C + s(t) G) v + K q + r(q, v, t) = f(t)``),
 pick a stepper (:class:`Newmark` family, optionally wrapped in :class:`Adaptive`, the
 fourth-order :class:`Adams`, or the error-controlled fifth-order :class:`Radau`) and call
-:func:`integrate` with an :class:`OutputSpec`; long runs write checkpoints and resume from
-them.
+:func:`integrate` with an :class:`OutputSpec` (samples, kept unknowns and velocities,
+reducers); long runs write checkpoints and resume from them, continue from the final state
+of an earlier run (``start=``) and may stop once steady (``stop_when=``, e.g. a
+:class:`SteadyDetector`).
 """
 
 from rotorsim.errors import CheckpointError
@@ -17,6 +19,7 @@ from rotorsim.time_integration.newmark import Newmark
 from rotorsim.time_integration.output import OutputSpec, Reducer
 from rotorsim.time_integration.problem import SecondOrderProblem
 from rotorsim.time_integration.radau import Radau
+from rotorsim.time_integration.steady import SteadyDetector
 
 __all__ = [
     "Adams",
@@ -30,6 +33,7 @@ __all__ = [
     "Reducer",
     "SecondOrderProblem",
     "State",
+    "SteadyDetector",
     "TimeStepper",
     "cubic_hermite",
     "integrate",

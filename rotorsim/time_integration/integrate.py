@@ -2,7 +2,9 @@
 
 ``integrate`` owns everything that is not one step: clipping the last step onto the end of
 the span, handing each accepted step to the output recorder, writing checkpoints every N
-steps, continuing from a checkpoint, the progress bar and the final result with its stats.
+steps, continuing from a checkpoint or from the final state of an earlier run, stopping
+early when a predicate says so (e.g. once the response is steady, :mod:`~.steady`), the
+progress bar and the final result with its stats.
 """
 
 from __future__ import annotations
@@ -23,7 +25,13 @@ from numpy.typing import ArrayLike
 from rotorsim.errors import ConvergenceError, ModelError, Status
 from rotorsim.progress import progress_bar
 from rotorsim.solvers.threads import one_blas_thread
-from rotorsim.time_integration.base import FloatArray, IntArray, State, TimeStepper
+from rotorsim.time_integration.base import (
+    Counters,
+    FloatArray,
+    IntArray,
+    State,
+    TimeStepper,
+)
 from rotorsim.time_integration.checkpoint import load_checkpoint, save_checkpoint
 from rotorsim.time_integration.output import OutputRecorder, OutputSpec
 from rotorsim.time_integration.problem import SecondOrderProblem
@@ -44,8 +52,10 @@ class IntegrationResult:
     ----------
     t : array (k,)
         Sample times [s].
-    q, v : arrays (k, m)
-        Kept unknowns at the sample times (``v`` is None when velocities are not kept).
+    q : array (k, m)
+        Kept unknowns at the sample times.
+    v : array (k, len(v_dofs)) or None
+        Velocities of the unknowns ``v_dofs`` (None when no velocities are kept).
     dofs : int array (m,)
         Indices of the kept unknowns.
     reduced : dict of str to array
@@ -62,7 +72,11 @@ class IntegrationResult:
     method : str
         Stepper name.
     message : str
-        Why the run stopped short ("" when it reached ``t_end``).
+        Why the run failed short of ``t_end`` ("" when it did not fail).
+    v_dofs : int array or None
+        Indices of the unknowns whose velocities ``v`` holds (None when ``v`` is None).
+    stopped : str
+        Why ``stop_when`` ended the run before ``t_end`` ("" when it did not).
     """
 
     t: FloatArray
@@ -75,16 +89,21 @@ class IntegrationResult:
     status: Status
     method: str
     message: str = ""
+    v_dofs: IntArray | None = None
+    stopped: str = ""
 
 
 @one_blas_thread()
 def integrate(problem: SecondOrderProblem, stepper: TimeStepper, t_span: Sequence[float],
-              q0: ArrayLike, v0: ArrayLike, *, dt: float, output: OutputSpec | None = None,
+              q0: ArrayLike | None, v0: ArrayLike | None, *, dt: float,
+              output: OutputSpec | None = None,
               a0: ArrayLike | None = None, checkpoint: str | os.PathLike[str] | None = None,
               checkpoint_every: int = 1000, resume: str | os.PathLike[str] | None = None,
               progress: bool = False,
               callback: Callable[[State], None] | None = None,
-              on_failure: str = "raise") -> IntegrationResult:
+              on_failure: str = "raise", start: State | None = None,
+              stop_when: Callable[[State], str | bool | None] | None = None
+              ) -> IntegrationResult:
     """Integrate ``M a + (C + s G) v + K q + r(q, v, t) = f(t)`` over ``t_span``.
 
     Parameters
@@ -94,8 +113,8 @@ def integrate(problem: SecondOrderProblem, stepper: TimeStepper, t_span: Sequenc
         E.g. ``Newmark.average_acceleration()`` or ``Adaptive(Newmark.hht(-0.1))``.
     t_span : (t0, t_end)
         Time span [s], ``t_end > t0``.
-    q0, v0 : array-like (n,)
-        Initial displacements and velocities.
+    q0, v0 : array-like (n,) or None
+        Initial displacements and velocities (None with ``start``).
     dt : float
         Step size (first trial step for an adaptive stepper) [s].
     output : OutputSpec, optional
@@ -122,6 +141,16 @@ def integrate(problem: SecondOrderProblem, stepper: TimeStepper, t_span: Sequenc
         at the last accepted step and return what was computed with status
         ``NOT_CONVERGED`` and the error in ``message`` (the checkpoint then holds the
         last accepted step).
+    start : State, optional
+        Continue from this state of an earlier run (``state`` of its result) instead of
+        calling ``stepper.init``: its arrays, multistep history and factorisation keys are
+        taken as they are, so the run goes on as if never interrupted; ``start.t`` must be
+        ``t0`` and ``start.dt`` is the next step. Its counters restart at zero, so ``stats``
+        count this call only (``steps`` too).
+    stop_when : callable, optional
+        ``stop_when(state)`` after each accepted step (after ``callback``): a non-empty
+        string or True ends the run there, with status ``OK``, the final state kept and the
+        reason in ``stopped``.
 
     Returns
     -------
@@ -156,22 +185,26 @@ def integrate(problem: SecondOrderProblem, stepper: TimeStepper, t_span: Sequenc
                          "integrate")
     spec = output if output is not None else OutputSpec()
     spec.check(problem.n, t0, t_end)
+    if start is not None:
+        start = _checked_start(start, problem.n, t0)
+        q0, v0, a0 = start.q, start.v, start.a
     config = run_config(problem, stepper, (t0, t_end), dt, spec, (q0, v0, a0))
     clock = time.perf_counter()
+    first_step = 0 if start is None else start.step
     if resume is not None:
         state, saved, _ = load_checkpoint(resume, config=config)
         recorder = OutputRecorder(spec, problem.n, saved)
     else:
-        state = stepper.init(problem, t0, np.asarray(q0, dtype=float),
-                             np.asarray(v0, dtype=float), dt=dt,
-                             a0=None if a0 is None else np.asarray(a0, dtype=float))
+        state = start if start is not None else stepper.init(
+            problem, t0, np.asarray(q0, dtype=float), np.asarray(v0, dtype=float), dt=dt,
+            a0=None if a0 is None else np.asarray(a0, dtype=float))
         recorder = OutputRecorder(spec, problem.n)
         recorder.start(state)
         if checkpoint is not None:
             save_checkpoint(checkpoint, state, config=config, output=recorder.snapshot())
     bar = progress_bar(progress, total=t_end - t0, initial=state.t - t0, desc=stepper.name,
                        unit="s", bar_format=TIME_BAR)
-    status, message = Status.OK, ""
+    status, message, stopped = Status.OK, "", ""
     try:
         while state.t < t_end:
             try:
@@ -188,6 +221,11 @@ def integrate(problem: SecondOrderProblem, stepper: TimeStepper, t_span: Sequenc
                 save_checkpoint(checkpoint, state, config=config, output=recorder.snapshot())
             if callback is not None:
                 callback(state)
+            if stop_when is not None:
+                reason = stop_when(state)
+                if reason:
+                    stopped = reason if isinstance(reason, str) else "stop_when"
+                    break
     finally:
         if bar is not None:
             bar.close()
@@ -196,8 +234,8 @@ def integrate(problem: SecondOrderProblem, stepper: TimeStepper, t_span: Sequenc
         save_checkpoint(checkpoint, state, config=config, output=recorder.snapshot())
     t, q, v = recorder.arrays()
     return IntegrationResult(t, q, v, recorder.dofs, recorder.reduced, state,
-                             _stats(state, time.perf_counter() - clock), status,
-                             stepper.name, message)
+                             _stats(state, time.perf_counter() - clock, first_step), status,
+                             stepper.name, message, recorder.velocity_dofs, stopped)
 
 
 def run_config(problem: SecondOrderProblem, stepper: TimeStepper, t_span: tuple[float, float],
@@ -244,8 +282,22 @@ def _span(t_span: Sequence[float]) -> tuple[float, float]:
     return t0, t_end
 
 
-def _stats(state: State, wall_time: float) -> dict[str, float]:
-    out: dict[str, float] = {"steps": state.step, **dataclasses.asdict(state.counters)}
-    out["iterations_per_step"] = state.counters.iterations / max(state.step, 1)
+def _checked_start(start: State, n: int, t0: float) -> State:
+    """``start`` with its counters reset, after checking its size and time."""
+    if not isinstance(start, State):
+        raise ModelError(f"start must be a State, got {type(start).__name__}", "integrate")
+    if start.q.shape != (n,):
+        raise ModelError(f"start has {start.q.size} unknowns, the problem {n}",
+                         "integrate.start")
+    if start.t != t0:
+        raise ModelError(f"start is at t = {start.t!r} s, the span begins at {t0!r} s",
+                         "integrate.start")
+    return dataclasses.replace(start, counters=Counters(), cache=None)
+
+
+def _stats(state: State, wall_time: float, first_step: int = 0) -> dict[str, float]:
+    steps = state.step - first_step
+    out: dict[str, float] = {"steps": steps, **dataclasses.asdict(state.counters)}
+    out["iterations_per_step"] = state.counters.iterations / max(steps, 1)
     out["wall_time"] = wall_time
     return out

@@ -1,72 +1,25 @@
 """What a time integration keeps (STYLE practice 5: output is not the stepper's business).
 
 An :class:`OutputSpec` chooses the samples (given times, by the stepper's interpolant, or
-every n-th accepted step), the unknowns kept (``dofs``) and running reducers (such as the
-largest ``|q|`` after a start-up time) evaluated on every accepted step. Memory grows with
+every n-th accepted step), the unknowns kept (``dofs``), whose velocities are kept
+(``velocities``) and running reducers (:mod:`~.reducers`: largest ``|q|``, RMS, radial
+amplitude, peak-to-peak per revolution, ...) evaluated on every accepted step. Memory grows with
 the number of samples times ``len(dofs)``, never with the number of steps times ``n``.
 """
 
 from __future__ import annotations
 
 import hashlib
-import json
-from collections.abc import Callable
 from dataclasses import dataclass, field
-from typing import Literal
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from rotorsim.errors import ModelError
 from rotorsim.time_integration.base import FloatArray, IntArray, State, TimeStepper
+from rotorsim.time_integration.reducers import Accumulator, Reducer
 
-ReducerKind = Literal["max_abs", "max", "min"]
-_UPDATE: dict[str, Callable[[FloatArray, FloatArray], FloatArray]] = {
-    "max_abs": lambda acc, x: np.fmax(acc, np.abs(x)), "max": np.fmax, "min": np.fmin}
-
-
-@dataclass(frozen=True)
-class Reducer:
-    """A running reduction over all accepted steps (and the initial state).
-
-    Parameters
-    ----------
-    kind : {"max_abs", "max", "min"}
-        Reduction per unknown.
-    quantity : {"q", "v", "a"}
-        Which state vector.
-    dofs : tuple of int, optional
-        Unknowns reduced (all if omitted).
-    after : float
-        Only states with ``t >= after`` count [s] (e.g. skip the start-up transient).
-    name : str, optional
-        Key in ``IntegrationResult.reduced`` (default ``"<kind>_<quantity>"``).
-
-    Examples
-    --------
-    >>> Reducer("max_abs", dofs=(0, 2), after=10.0).key
-    'max_abs_q'
-    """
-
-    kind: ReducerKind = "max_abs"
-    quantity: Literal["q", "v", "a"] = "q"
-    dofs: tuple[int, ...] | None = None
-    after: float = -np.inf
-    name: str | None = None
-
-    def __post_init__(self) -> None:
-        if self.kind not in _UPDATE:
-            raise TypeError(f"unknown reducer kind {self.kind!r}; valid: {', '.join(_UPDATE)}")
-        if self.quantity not in ("q", "v", "a"):
-            raise TypeError(f"unknown quantity {self.quantity!r}; valid: q, v, a")
-        if not self.key or "/" in self.key:
-            raise ModelError(f"name must be non-empty without '/', got {self.name!r}",
-                             "Reducer")
-
-    @property
-    def key(self) -> str:
-        """Name of the reduced array in the result."""
-        return self.name or f"{self.kind}_{self.quantity}"
-
+__all__ = ["OutputRecorder", "OutputSpec", "Reducer"]
 
 @dataclass(frozen=True, eq=False)
 class OutputSpec:
@@ -83,8 +36,9 @@ class OutputSpec:
         also when the number of steps is not a multiple of ``every``.
     dofs : sequence of int, optional
         Unknowns kept in the samples (default all).
-    velocities : bool
-        Keep ``v`` beside ``q``.
+    velocities : bool or sequence of int
+        Keep ``v`` of all kept unknowns (True), of none (False) or of these unknowns
+        (indices into the problem's unknowns, e.g. only those a post-processor needs).
     reducers : tuple of Reducer
 
     Examples
@@ -97,7 +51,7 @@ class OutputSpec:
     times: FloatArray | None = None
     every: int | None = None
     dofs: IntArray | None = None
-    velocities: bool = True
+    velocities: bool | ArrayLike = True
     reducers: tuple[Reducer, ...] = field(default=())
 
     def __post_init__(self) -> None:
@@ -115,16 +69,26 @@ class OutputSpec:
                              "OutputSpec")
         if self.dofs is not None:
             object.__setattr__(self, "dofs", np.array(self.dofs, dtype=np.int64).reshape(-1))
+        if not isinstance(self.velocities, bool | np.bool_):
+            object.__setattr__(self, "velocities",
+                               np.array(self.velocities, dtype=np.int64).reshape(-1))
         keys = [r.key for r in self.reducers]
         if len(set(keys)) != len(keys):
             raise ModelError(f"reducer names must be unique, got {keys}", "OutputSpec")
 
     def check(self, n: int, t0: float, t_end: float) -> None:
         """Validate against a problem of size ``n`` and the span ``[t0, t_end]``."""
-        for where, dofs in [("OutputSpec.dofs", self.dofs)] + [
-                (f"Reducer '{r.key}'.dofs", r.dofs) for r in self.reducers]:
-            if dofs is not None and (len(dofs) == 0 or min(dofs) < 0 or max(dofs) >= n):
+        vdofs = None if isinstance(self.velocities, bool | np.bool_) else np.asarray(
+            self.velocities, dtype=np.int64)
+        checks: list[tuple[str, IntArray | None]] = [("OutputSpec.dofs", self.dofs),
+                                                     ("OutputSpec.velocities", vdofs)]
+        for where, dofs in checks:
+            if dofs is not None and len(dofs) and (min(dofs) < 0 or max(dofs) >= n):
                 raise ModelError(f"indices must lie in [0, {n}), got {list(dofs)}", where)
+        if self.dofs is not None and not len(self.dofs):
+            raise ModelError("give at least one unknown", "OutputSpec.dofs")
+        for r in self.reducers:
+            r.check(n)
         if self.times is not None and len(self.times) and (
                 self.times[0] < t0 or self.times[-1] > t_end):
             raise ModelError(f"times must lie in [{t0}, {t_end}]", "OutputSpec.times")
@@ -133,10 +97,19 @@ class OutputSpec:
         """JSON-able summary (times by digest) used to match checkpoints."""
         times = None if self.times is None else hashlib.blake2b(
             self.times.tobytes(), digest_size=8).hexdigest()
-        return {"times": times, "every": self.every, "velocities": self.velocities,
+        velocities = self.velocities if isinstance(self.velocities, bool | np.bool_) \
+            else self.velocities.tolist()  # type: ignore[union-attr]
+        return {"times": times, "every": self.every, "velocities": bool(velocities)
+                if isinstance(velocities, np.bool_) else velocities,
                 "dofs": None if self.dofs is None else self.dofs.tolist(),
-                "reducers": [json.loads(json.dumps(r.__dict__, default=str))
-                             for r in self.reducers]}
+                "reducers": [r.describe() for r in self.reducers]}
+
+    def velocity_dofs(self, n: int) -> IntArray | None:
+        """Unknowns whose velocities are kept in a problem of size ``n`` (None: none)."""
+        v = self.velocities
+        if isinstance(v, bool | np.bool_):
+            return (np.arange(n) if self.dofs is None else self.dofs) if v else None
+        return np.asarray(v, dtype=np.int64)
 
 
 class _Rows:
@@ -165,6 +138,13 @@ class _Rows:
     def array(self) -> FloatArray:
         return self._data[: self._size].copy()
 
+    def take(self) -> FloatArray:
+        """The rows, the buffer shrunk in place (no copy: the peak memory of a long run is
+        its buffer, not buffer plus copy); the buffer then belongs to the caller."""
+        data, self._data = self._data, np.empty((0, self._data.shape[1]))
+        data.resize((self._size, data.shape[1]), refcheck=False)
+        return data
+
 
 class OutputRecorder:
     """Runtime collector of one run's samples and reductions (checkpointable)."""
@@ -172,21 +152,28 @@ class OutputRecorder:
     def __init__(self, spec: OutputSpec, n: int, saved: dict[str, FloatArray] | None = None):
         self.spec = spec
         self.dofs: IntArray = np.arange(n) if spec.dofs is None else spec.dofs
-        m = len(self.dofs)
+        self.velocity_dofs = spec.velocity_dofs(n)
         saved = saved or {}
         self._t = _Rows(1, saved.get("t"))
-        self._q = _Rows(m, saved.get("q"))
-        self._v = _Rows(m, saved.get("v")) if spec.velocities else None
+        self._q = _Rows(len(self.dofs), saved.get("q"))
+        self._v = None if self.velocity_dofs is None else _Rows(len(self.velocity_dofs),
+                                                                saved.get("v"))
         self._next = int(saved["next_time"][0]) if "next_time" in saved else 0
-        self.reduced = {r.key: np.array(saved[f"reduced/{r.key}"]) if f"reduced/{r.key}"
-                        in saved else np.full(n if r.dofs is None else len(r.dofs), np.nan)
-                        for r in spec.reducers}
+        self._accumulators: list[Accumulator] = [
+            r.accumulator(n, _saved_reducer(saved, r.key)) for r in spec.reducers]
+
+    @property
+    def reduced(self) -> dict[str, FloatArray]:
+        """The reduced arrays so far (see :meth:`~.reducers.Accumulator.values`)."""
+        out: dict[str, FloatArray] = {}
+        for acc in self._accumulators:
+            out.update(acc.values())
+        return out
 
     def start(self, state: State) -> None:
         """Record the initial state."""
         if self.spec.times is None or (len(self.spec.times) and self.spec.times[0] == state.t):
-            self._append(np.array([state.t]), state.q[self.dofs][None, :],
-                         state.v[self.dofs][None, :])
+            self._append_state(state)
             self._next = 1 if self.spec.times is not None else 0
         self._reduce(state)
 
@@ -195,13 +182,15 @@ class OutputRecorder:
         times = self.spec.times
         if times is None:
             if new.step % int(self.spec.every or 1) == 0:
-                self._append(np.array([new.t]), new.q[self.dofs][None, :],
-                             new.v[self.dofs][None, :])
+                self._append_state(new)
         else:
             stop = int(np.searchsorted(times, new.t, side="right"))
             if stop > self._next:
                 ts = times[self._next: stop]
                 q, v = stepper.interpolate(old, new, ts, self.dofs)
+                vdofs = self.velocity_dofs
+                if vdofs is not None and not np.array_equal(vdofs, self.dofs):
+                    v = stepper.interpolate(old, new, ts, vdofs)[1]
                 self._append(ts, q, v)
                 self._next = stop
         self._reduce(new)
@@ -211,8 +200,7 @@ class OutputRecorder:
         (idempotent, so a run resumed from a finished checkpoint keeps it once)."""
         if self.spec.times is not None or (self._t.size and self._t.last()[0] == state.t):
             return False
-        self._append(np.array([state.t]), state.q[self.dofs][None, :],
-                     state.v[self.dofs][None, :])
+        self._append_state(state)
         return True
 
     def snapshot(self) -> dict[str, FloatArray]:
@@ -221,23 +209,38 @@ class OutputRecorder:
                "next_time": np.array([float(self._next)])}
         if self._v is not None:
             out["v"] = self._v.array()
-        out.update({f"reduced/{k}": v.copy() for k, v in self.reduced.items()})
+        for acc in self._accumulators:
+            key = acc.reducer.key
+            for part, value in acc.snapshot().items():
+                out[f"reduced/{key}" if part == "value" else
+                    f"reducer_state/{key}/{part}"] = value
         return out
 
     def arrays(self) -> tuple[FloatArray, FloatArray, FloatArray | None]:
-        """Sample times (k,), ``q`` (k, m) and ``v`` (k, m) or None."""
-        return (self._t.array()[:, 0], self._q.array(),
-                None if self._v is None else self._v.array())
+        """Sample times (k,), ``q`` (k, m) and ``v`` (k, len(velocity_dofs)) or None; the
+        buffers are handed over, so call it once, last."""
+        return (self._t.take()[:, 0].copy(), self._q.take(),
+                None if self._v is None else self._v.take())
 
-    def _append(self, t: FloatArray, q: FloatArray, v: FloatArray) -> None:
+    def _append_state(self, state: State) -> None:
+        v = None if self.velocity_dofs is None else state.v[self.velocity_dofs][None, :]
+        self._append(np.array([state.t]), state.q[self.dofs][None, :], v)
+
+    def _append(self, t: FloatArray, q: FloatArray, v: FloatArray | None) -> None:
         self._t.extend(t[:, None])
         self._q.extend(q)
-        if self._v is not None:
+        if self._v is not None and v is not None:
             self._v.extend(v)
 
     def _reduce(self, state: State) -> None:
-        for r in self.spec.reducers:
-            if state.t >= r.after:
-                x = getattr(state, r.quantity)
-                x = x if r.dofs is None else x[list(r.dofs)]
-                self.reduced[r.key] = _UPDATE[r.kind](self.reduced[r.key], x)
+        for acc in self._accumulators:
+            acc.update_state(state)
+
+
+def _saved_reducer(saved: dict[str, FloatArray], key: str) -> dict[str, FloatArray]:
+    """The checkpointed parts of reducer ``key`` (``reduced/<key>`` is its value)."""
+    out = {part.rsplit("/", 1)[1]: value for part, value in saved.items()
+           if part.startswith(f"reducer_state/{key}/")}
+    if f"reduced/{key}" in saved:
+        out["value"] = saved[f"reduced/{key}"]
+    return out

@@ -149,10 +149,34 @@ def _transient_results() -> dict[str, Any]:
         bearing_tags=(), bearing_elements=np.zeros(0, dtype=np.int64),
         bearing_kappa=np.zeros(0), reduced={}, dof_map=DofMap(2),
         nodes_pos=np.array([0.0, 1.0]))
-    return {"transient": run, "spectrum": amplitude_spectrum(t, x),
+    return {"transient": run, "transient_continuable": _continuable(run),
+            "transient_state": _continuable(run).final,
+            "stepper_state": _continuable(run).final.stepper,
+            "counters": _continuable(run).final.stepper.counters,
+            "spectrum": amplitude_spectrum(t, x),
             "harmonic_fit": harmonic_fit(t, x, 100.0),
             "waterfall": waterfall(t, x, run.speed, segment=0.05),
             "order_track": order_track(t, x, angle, [1.0], revolutions_per_block=2)}
+
+
+def _continuable(run: Any) -> Any:
+    """A transient with reductions and a final state (stepper state with a history)."""
+    from rotorsim.results.transient_state import TransientState
+    from rotorsim.time_integration.base import Counters, State
+
+    rng = np.random.default_rng(3)
+    n = 6
+    stepper = State(0.399, rng.random(n), rng.random(n), rng.random(n), rng.random(n),
+                    step=399, dt=1e-3, peak=np.zeros(0), counters=Counters(iterations=7),
+                    history=rng.random((2, n)), history_dt=1e-3)
+    final = TransientState(t=0.399, q=rng.random(n), v=rng.random(n), a=rng.random(n),
+                           angle=43.9, speed=119.95, method="adams4", dt=1e-3,
+                           problem="0123abcd", reduction=0, reduction_speed=100.0,
+                           stepper=stepper)
+    reduced = {"max_abs": rng.random(1), "peak_to_peak": rng.random((7, 1)),
+               "peak_to_peak_revolution": np.arange(7.0)}
+    return dataclasses.replace(run, reduced=reduced, final=final,
+                               options={"stopped": {"reason": "steady", "t": 0.399}})
 
 
 def _periodic_results() -> dict[str, Any]:
@@ -185,7 +209,9 @@ def _periodic_results() -> dict[str, Any]:
 RESULT_NAMES = ["modal", "campbell", "critical_exact", "critical_campbell", "map",
                 "unbalance", "receptance", "static", "static_system", "deflected_shape",
                 "ellipse", "intersections", "bearing_equilibrium", "energy_minimum",
-                "stiffness_over_pass", "transient", "spectrum", "harmonic_fit", "waterfall",
+                "stiffness_over_pass", "transient", "transient_continuable",
+                "transient_state", "stepper_state", "counters", "spectrum", "harmonic_fit",
+                "waterfall",
                 "order_track", "periodic", "periodic_bifurcation",
                 "periodic_without_stability"]
 

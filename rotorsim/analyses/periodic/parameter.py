@@ -73,7 +73,8 @@ DEFAULTS = PeriodicDefaults(
     stability=StabilityOptions(tol=DEFAULT_TOL), checkpoint=Checkpointing(every=25),
     unused={"harmonics": ("fundamental", "condense"), "excitation": ("base", "forces"),
             "stability": ("modes", "tol"),
-            "output": ("every", "times", "rolling_elements")})
+            "output": ("every", "times", "rolling_elements", "velocities",
+                       "reducers", "after")})
 """Defaults of the group fields left at None, and the fields ``periodic_parameter`` does
 not use."""
 

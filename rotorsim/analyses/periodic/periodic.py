@@ -87,7 +87,9 @@ PARAMETERS = ("speed", "frequency")
 DEFAULTS = PeriodicDefaults(
     continuation=ContinuationOptions(max_step=0.02, max_points=500),
     stability=StabilityOptions(tol=DEFAULT_TOL), checkpoint=Checkpointing(every=25),
-    unused={"excitation": ("forces",), "output": ("every", "times", "rolling_elements")})
+    unused={"excitation": ("forces",),
+            "output": ("every", "times", "rolling_elements", "velocities", "reducers",
+                       "after")})
 """Defaults of the group fields left at None, and the fields ``periodic`` does not use."""
 
 

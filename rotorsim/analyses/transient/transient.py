@@ -25,12 +25,14 @@ from numpy.typing import ArrayLike
 
 from rotorsim.analyses.keyword_check import checked_keywords
 from rotorsim.analyses.statics.linearized_rotor import rolling_start
+from rotorsim.analyses.transient import continuation as cont
+from rotorsim.analyses.transient import run_control
 from rotorsim.analyses.transient.loads import (
     BaseExcitation,
     RestoringForce,
     TransientLoads,
 )
-from rotorsim.analyses.transient.speed_profile import BoundSpeed, SpeedProfile
+from rotorsim.analyses.transient.speed_profile import BoundSpeed, SpeedProfile, as_speed_profile
 from rotorsim.analyses.transient.start import initial_state
 from rotorsim.analyses.transient.torque_damping import with_torque_damping
 from rotorsim.analyses.transient.torque_drive import BoundTorqueDrive, TorqueDrive
@@ -49,15 +51,15 @@ from rotorsim.assembly.system import RotorSystem, SystemMatrices, assemble
 from rotorsim.elements.base import DOFS_PER_NODE, FloatArray, NonlinearElement
 from rotorsim.errors import ModelError
 from rotorsim.model.rotor import Rotor
-from rotorsim.options import Checkpointing, Excitation, Output
+from rotorsim.options import Checkpointing, Excitation, Output, SteadyStop
 from rotorsim.results.transient import TransientResult
+from rotorsim.results.transient_state import TransientState
 from rotorsim.solvers.threads import one_blas_thread
 from rotorsim.time_integration.adams import Adams
 from rotorsim.time_integration.adaptive import Adaptive
 from rotorsim.time_integration.base import TimeStepper
 from rotorsim.time_integration.integrate import IntegrationResult, integrate
 from rotorsim.time_integration.newmark import Newmark
-from rotorsim.time_integration.output import OutputSpec
 from rotorsim.time_integration.problem import SecondOrderProblem
 
 WHERE = "transient"
@@ -87,12 +89,13 @@ def transient(
     excitation: Excitation | None = None,
     method: str | TimeStepper | None = None,
     rtol: float | None = None,
-    initial: str | tuple[ArrayLike, ArrayLike] = "static",
+    initial: str | tuple[ArrayLike, ArrayLike] | TransientResult | TransientState = "static",
     nodes: Sequence[int] | None = None,
     output: Output | None = None,
     checkpoint: str | os.PathLike[str] | Checkpointing | None = None,
     reduction: int | None = None,
     on_failure: str = "raise",
+    steady: SteadyStop | None = None,
 ) -> TransientResult:
     """Integrate the rotor's equation of motion from 0 (or ``t0``) to ``t_end``.
 
@@ -102,7 +105,8 @@ def transient(
         The rotor with its linear bearings and its nonlinear elements (rolling bearings),
         or a RotorSystem assembled with them.
     t_end : float or (t0, t_end)
-        End time [s] (from 0), or the time span.
+        End time [s] (from 0, or from the end of the run given as ``initial``), or the
+        time span.
     dt : float, optional
         Time step [s] (first trial step when adaptive). Without it the run is
         error-controlled (``method="auto"``).
@@ -136,9 +140,13 @@ def transient(
         ``rtol`` is given, else ``"average_acceleration"``.
     rtol : float, optional
         Accuracy asked of the automatic path, relative to the motion (default 1e-4).
-    initial : {"static", "zero"} or (q0, v0)
-        Static equilibrium at rest (default), zero, or given displacements and velocities
-        on ALL DOFs (``6 * n_nodes``).
+    initial : {"static", "zero"}, (q0, v0) or TransientResult
+        Static equilibrium at rest (default), zero, given displacements and velocities
+        on ALL DOFs (``6 * n_nodes``), or a finished run to continue
+        (:mod:`~.continuation`): from its end time, with its final state (the stepper's
+        too, so the result equals an uninterrupted run up to round-off) and its final
+        shaft angle; same model, method and reduction, and a ``speed`` that continues its
+        final speed.
     nodes : sequence of int, optional
         Nodes whose DOFs are kept (default all); the nonlinear elements' DOFs are always
         kept to compute the bearing loads (or ``output.nodes``, not both).
@@ -146,7 +154,10 @@ def transient(
         Kept nodes; every n-th step (default 1, ignored with ``times``) or the sample
         times [s] (dense output by the stepper's interpolant); the load and contact angle
         of every rolling element of each bearing at every sample (``rolling_elements``:
-        ``result.element_loads``, ``result.contact_angles``); the progress bar.
+        ``result.element_loads``, ``result.contact_angles``); the velocities (default not
+        kept); reducers of the kept DOFs over every step (``result.reduced``: max_abs,
+        peak-to-peak per revolution, radial max_amplitude, rms, from ``after`` on); the
+        progress bar.
     checkpoint : path or Checkpointing, optional
         As in :func:`~rotorsim.time_integration.integrate.integrate`: an HDF5 checkpoint
         every ``every`` steps (default 1000), resume from one (same result as an
@@ -159,6 +170,9 @@ def transient(
         When a step fails: raise, or return the run up to the last accepted step with
         ``status`` ``NOT_CONVERGED`` and the error in ``options["failure"]`` (what the
         command line does: partial results are written and the exit code is 3).
+    steady : SteadyStop, optional
+        Stop at the end of a shaft revolution once the per-revolution peak-to-peak of the
+        watched DOFs has settled (status ``OK``; ``result.stopped`` says why and when).
 
     Returns
     -------
@@ -196,25 +210,35 @@ def transient(
     if dt is None and not auto:
         raise ModelError("give dt, or leave method to 'auto'", f"{WHERE}.dt")
     system = _system(model, nonlinear)
-    t0, t_end = _span(t_end)
+    previous = cont.previous_state(initial)
+    t0, t_end = _span(t_end) if previous is None else cont.continued_span(previous, t_end)
     if dt is not None:
         _check_step_count(dt, t_end - t0)
     dt = (t_end - t0) / AUTO_FIRST_STEPS if dt is None else dt
-    profile = bind_speed(speed, system, model if isinstance(model, Rotor) else None,
+    schedule = as_speed_profile(speed) if not isinstance(speed, TorqueDrive) else speed
+    if previous is not None:
+        schedule = cont.continued_speed(schedule, previous)
+    profile = bind_speed(schedule, system, model if isinstance(model, Rotor) else None,
                          (t0, t_end), max(4096, int((t_end - t0) / dt)))
     problem, loads_fn = _problem(system, profile, t0, ex)
     stepper = _stepper("average_acceleration" if method is None else method) \
         if not auto else None
-    start = None
-    if initial == "static" and isinstance(model, Rotor) and system.nonlinear is not None:
-        start = rolling_start(model, nonlinear, system, ex.gravity, ex.direction,
-                              list(ex.loads), profile.speed(t0), profile.angle(t0))
-    q0, v0 = initial_state(system, initial, loads_fn.constant, profile, t0, start)
+    q0: FloatArray | None = None
+    v0: FloatArray | None = None
+    if previous is None:
+        start = None
+        if initial == "static" and isinstance(model, Rotor) and system.nonlinear is not None:
+            start = rolling_start(model, nonlinear, system, ex.gravity, ex.direction,
+                                  list(ex.loads), profile.speed(t0), profile.angle(t0))
+        q0, v0 = initial_state(system, initial, loads_fn.constant, profile, t0, start)  # type: ignore[arg-type]
+    else:
+        cont.check_start(previous, system, profile, t0)
     kept = _kept_dofs(system, out.nodes)
     if isinstance(profile, BoundTorqueDrive) and out.nodes is not None and ex.unbalance:
         # the spin-feedback report needs the motion of the unbalance nodes
         kept = np.union1d(kept, _kept_dofs(system, [int(u[0]) for u in ex.unbalance]))
-    basis, report = None, None
+    full, basis, report = problem, None, None
+    basis_speed = profile.speed(t0) if previous is None else previous.reduction_speed
     if reduction is not None:
         from rotorsim.analyses.transient.reduction import reduce_problem
 
@@ -224,32 +248,42 @@ def transient(
                              f"{WHERE}.reduction")
 
         problem, basis, report = reduce_problem(system, problem, loads_fn, int(reduction),
-                                                profile.speed(t0))
-        q0, v0 = basis.project(q0), basis.project(v0)
+                                                basis_speed)
+        if q0 is not None and v0 is not None:
+            q0, v0 = basis.project(q0), basis.project(v0)
     if stepper is None:
         from rotorsim.analyses.transient.auto import DEFAULT_RTOL, auto_stepper
 
-        stepper = auto_stepper(system, problem, loads_fn, profile, t0, t_end, q0,
+        start_q = q0 if q0 is not None else previous.stepper.q  # type: ignore[union-attr]
+        stepper = auto_stepper(system, problem, loads_fn, profile, t0, t_end, start_q,
                                DEFAULT_RTOL if rtol is None else rtol)
-    sample_times = None if out.times is None else np.asarray(out.times, dtype=float)
-    spec = OutputSpec(times=sample_times, every=None if out.times is not None else out.every,
-                      dofs=kept if basis is None else None)
-    run = integrate(problem, stepper, (t0, t_end), q0, v0, dt=dt, output=spec,
+    resumed = None if previous is None else cont.start_state(previous, full, problem,
+                                                            stepper, dt, basis)
+    detector = run_control.steady_detector(steady, out.nodes, system, basis, profile)
+    run = integrate(problem, stepper, (t0, t_end), q0, v0, dt=dt,
+                    output=run_control.output_spec(out, system, kept, basis, profile),
                     checkpoint=ck.path, checkpoint_every=int(ck.every or 0), resume=ck.resume,
-                    progress=out.progress, on_failure=on_failure)
+                    progress=out.progress, on_failure=on_failure, start=resumed,
+                    stop_when=detector)
+    final = cont.final_state(run, full, problem, basis, profile, dt, basis_speed)
     if basis is not None:
-        from rotorsim.analyses.transient.reduction import expand_run
-
-        run = expand_run(run, basis, kept)
+        run = run_control.expanded(run, basis, kept)
     options = {"t_span": [t0, t_end], "dt": dt, "method": stepper.name, "rtol": rtol,
                "speed": profile.describe(), "gravity": ex.gravity,
                "unbalance": [list(map(float, u)) for u in ex.unbalance],
                "base": None if ex.base is None else list(ex.base.direction),
-               "initial": initial if isinstance(initial, str) else "given",
+               "initial": initial if isinstance(initial, str) else
+               "given" if previous is None else "continued",
                "every": out.every, "reduction": report}
+    if out.reducers:
+        options["reducers"] = {"names": list(out.reducers), "after": out.after}
     if run.message:
         options["failure"] = run.message
+    stopped = run_control.stop_record(run, detector, profile)
+    if stopped is not None:
+        options["stopped"] = stopped
     result = _result(system, run, profile, kept, options)
+    result = dataclasses.replace(result, v=run_control.kept_velocities(run, out), final=final)
     if out.rolling_elements and system.nonlinear is not None:
         from rotorsim.analyses.transient.element_histories import rolling_element_histories
 
@@ -403,7 +437,7 @@ def _result(system: RotorSystem, run: IntegrationResult, profile: BoundSpeed,
     speed = np.array([profile.speed(float(x)) for x in t])
     angle = np.array([profile.angle(float(x)) for x in t])
     accel = np.array([profile.acceleration(float(x)) for x in t])
-    loads, tags, counts, kappa = _bearing_histories(system, run, kept, angle, speed)
+    loads, tags, counts, kappa = _bearing_histories(system, run, angle, speed)
     return TransientResult(
         t=t, q=run.q, v=run.v, dofs=system.dof_map.free[kept], speed=speed, angle=angle,
         acceleration=accel, bearing_loads=loads, bearing_tags=tags,
@@ -413,16 +447,13 @@ def _result(system: RotorSystem, run: IntegrationResult, profile: BoundSpeed,
         summary=dict(system.summary))
 
 
-def _bearing_histories(system: RotorSystem, run: IntegrationResult, kept: np.ndarray,
+def _bearing_histories(system: RotorSystem, run: IntegrationResult,
                        angle: FloatArray, speed: FloatArray
                        ) -> tuple[FloatArray, tuple[str, ...], np.ndarray, FloatArray]:
     nl = system.nonlinear
     if nl is None:
         return (np.zeros((run.t.size, 0, 5)), (), np.zeros(0, dtype=np.int64), np.zeros(0))
-    cols = np.searchsorted(kept, nl.dofs)
-    v = run.v if run.v is not None else np.zeros_like(run.q)
-    out = nl.evaluate(run.q[:, cols], v[:, cols], angle, speed)
-    loads = np.stack([f[:, :5] for f in out.element_forces], axis=1)
+    loads = run_control.bearing_loads(run, system, angle, speed)
     tags = tuple(str(getattr(el, "tag", None) or i) for i, el in enumerate(nl.elements))
     models = [getattr(el, "bearing", None) for el in nl.elements]
     counts = np.array([int(getattr(b, "n_elements", 0) or 0) for b in models], dtype=np.int64)
