@@ -101,7 +101,7 @@ def check_start(previous: TransientState, system: RotorSystem, profile: BoundSpe
                          f"run ended at {previous.angle!r} rad", "transient.speed")
 
 
-def start_state(previous: TransientState, full: SecondOrderProblem,
+def start_state(previous: TransientState, full: Any,
                 problem: SecondOrderProblem, stepper: TimeStepper, dt: float,
                 basis: ReducedBasis | None) -> State:
     """The stepper state to continue from, after checking model, method and basis."""
@@ -120,7 +120,7 @@ def start_state(previous: TransientState, full: SecondOrderProblem,
     return dataclasses.replace(previous.stepper, dt=dt)
 
 
-def final_state(run: IntegrationResult, full: SecondOrderProblem,
+def final_state(run: IntegrationResult, full: Any,
                 problem: SecondOrderProblem, basis: ReducedBasis | None,
                 profile: BoundSpeed, dt: float, reduction_speed: float) -> TransientState:
     """The run's final state: physical on all free DOFs, and the stepper's as it is."""

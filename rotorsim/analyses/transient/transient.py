@@ -39,6 +39,7 @@ from rotorsim.analyses.transient.torque_drive import BoundTorqueDrive, TorqueDri
 from rotorsim.analyses.transient.torsion_loads import TorsionLoad, bind_speed
 from rotorsim.analyses.transient.variable_bearings import (
     SpeedDependentBearings,
+    model_identity,
     without_variable_bearings,
 )
 from rotorsim.assembly.loads import (
@@ -257,7 +258,8 @@ def transient(
         start_q = q0 if q0 is not None else previous.stepper.q  # type: ignore[union-attr]
         stepper = auto_stepper(system, problem, loads_fn, profile, t0, t_end, start_q,
                                DEFAULT_RTOL if rtol is None else rtol)
-    resumed = None if previous is None else cont.start_state(previous, full, problem,
+    identity = model_identity(system, full)
+    resumed = None if previous is None else cont.start_state(previous, identity, problem,
                                                             stepper, dt, basis)
     detector = run_control.steady_detector(steady, out.nodes, system, basis, profile)
     run = integrate(problem, stepper, (t0, t_end), q0, v0, dt=dt,
@@ -265,7 +267,7 @@ def transient(
                     checkpoint=ck.path, checkpoint_every=int(ck.every or 0), resume=ck.resume,
                     progress=out.progress, on_failure=on_failure, start=resumed,
                     stop_when=detector)
-    final = cont.final_state(run, full, problem, basis, profile, dt, basis_speed)
+    final = cont.final_state(run, identity, problem, basis, profile, dt, basis_speed)
     if basis is not None:
         run = run_control.expanded(run, basis, kept)
     options = {"t_span": [t0, t_end], "dt": dt, "method": stepper.name, "rtol": rtol,

@@ -23,8 +23,11 @@ net force); it is refused at a varying speed unless it is constant over the tabl
 
 from __future__ import annotations
 
+import hashlib
 from collections.abc import Sequence
 from dataclasses import dataclass, field
+from types import SimpleNamespace
+from typing import Any
 
 import numpy as np
 import scipy.sparse as sp
@@ -34,6 +37,7 @@ from rotorsim.assembly.system import RotorSystem
 from rotorsim.elements.base import DOFS_PER_NODE, FloatArray
 from rotorsim.elements.linear_bearing import BearingElement
 from rotorsim.errors import ModelError
+from rotorsim.time_integration.problem import SecondOrderProblem, matrix_digest
 
 IntArray = NDArray[np.int64]
 
@@ -119,6 +123,25 @@ def without_variable_bearings(system: RotorSystem, speed: float) -> dict[str, sp
         mass = bearing.matrices(speed).M
         data["M"] = data["M"] + system.pattern.scatter(group, mass[None])
     return {k: system.pattern.matrix(v) for k, v in data.items()}
+
+
+def model_identity(system: RotorSystem, problem: SecondOrderProblem) -> Any:
+    """What a continued run compares with the run it continues: ``problem`` itself, or,
+    when ``system`` has bearings tabulated over speed, an object whose ``fingerprint``
+    digests their tables and the matrices without them. A run at constant speed folds the
+    bearings into its matrices at that speed and a run at varying speed does not, so the
+    problems' own fingerprints would differ for the same model."""
+    if not system.variable_bearings:
+        return problem
+    digest = hashlib.blake2b(digest_size=16)
+    for matrix in without_variable_bearings(system, 0.0).values():
+        digest.update(matrix_digest(matrix).to_bytes(8, "little"))
+    tables = SpeedDependentBearings.from_system(system)
+    for array in (tables.dofs, tables.grid, tables.stiffness, tables.damping):
+        digest.update(np.ascontiguousarray(array).tobytes())
+    for name in ("restoring", "load"):
+        digest.update(f"{name}:{getattr(problem, name) is not None}".encode())
+    return SimpleNamespace(fingerprint=digest.hexdigest())
 
 
 def _element_dofs(bearing: BearingElement) -> IntArray:

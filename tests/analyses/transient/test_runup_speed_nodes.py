@@ -271,3 +271,21 @@ def test_torque_driven_runup_on_tabulated_bearings_reports_the_spin_feedback():
     assert run.speed[-1] > run.speed[0] + 1.0
     feedback = run.options["spin_feedback"]
     assert feedback["questionable"] is False and 0.0 < feedback["ratio"] < 1e-3
+
+
+def test_a_runup_on_tabulated_bearings_continues_at_constant_speed():
+    """Run up, then continue at the top speed (the bearings folded into the matrices): the
+    same as one run whose ramp ends halfway, to round-off and the Newton tolerance (the
+    model identity digests the tables, not the matrices at one speed)."""
+    rotor = _rotor()
+    kw = dict(unbalance=[(3, 2e-4, 0.0)], excitation=NO_GRAVITY, nodes=[3])
+    ramp = rs.LinearSpeed(200.0, 400.0, 0.0, 0.01)
+    whole = transient(rotor, 0.02, 5e-5, speed=ramp, initial="zero", **kw)
+    first = transient(rotor, 0.01, 5e-5, speed=ramp, initial="zero", **kw)
+    second = transient(rotor, 0.02, 5e-5, speed=400.0, initial=first, **kw)
+    np.testing.assert_allclose(second.q[-1], whole.q[-1], rtol=0, atol=1e-9 * _scale(whole))
+    changed = rs.Rotor(  # another table: refusedrotor.shaft_elements, rotor.disk_elements,
+                       [rs.BearingElement(n=0, tag="B0", **{**TABLE, "kxx": [1e7, 2e7, 5e7]}),
+                        rotor.bearing_elements[1]])
+    with pytest.raises(ModelError, match="model differs"):
+        transient(changed, 0.02, 5e-5, speed=400.0, initial=first, **kw)
