@@ -69,13 +69,14 @@ class SpeedDependentBearings:
     _last: tuple[float, FloatArray, FloatArray] | None = field(default=None, repr=False)
 
     @classmethod
-    def from_system(cls, system: RotorSystem) -> SpeedDependentBearings:
+    def from_system(cls, system: RotorSystem, *, check_mass: bool = True
+                    ) -> SpeedDependentBearings:
         """The speed-dependent bearings of ``system`` (``system.variable_bearings``).
 
         Raises
         ------
         ModelError
-            When a bearing's added mass varies over its speed table.
+            When ``check_mass`` and a bearing's added mass varies over its speed table.
         """
         bearings = [b for _, b in system.variable_bearings]
         full = [_element_dofs(b) for b in bearings]
@@ -86,7 +87,8 @@ class SpeedDependentBearings:
         K = np.zeros((grid.size, dofs.size, dofs.size))
         C = np.zeros_like(K)
         for b, f in zip(bearings, free, strict=True):
-            _check_constant_mass(b)
+            if check_mass:
+                _check_constant_mass(b)
             keep = f >= 0
             pos = np.searchsorted(dofs, f[keep])
             cells = np.ix_(pos, pos)
@@ -136,7 +138,7 @@ def model_identity(system: RotorSystem, problem: SecondOrderProblem) -> Any:
     digest = hashlib.blake2b(digest_size=16)
     for matrix in without_variable_bearings(system, 0.0).values():
         digest.update(matrix_digest(matrix).to_bytes(8, "little"))
-    tables = SpeedDependentBearings.from_system(system)
+    tables = SpeedDependentBearings.from_system(system, check_mass=False)
     for array in (tables.dofs, tables.grid, tables.stiffness, tables.damping):
         digest.update(np.ascontiguousarray(array).tobytes())
     for name in ("restoring", "load"):

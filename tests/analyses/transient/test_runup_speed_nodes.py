@@ -284,8 +284,8 @@ def test_a_runup_on_tabulated_bearings_continues_at_constant_speed():
     first = transient(rotor, 0.01, 5e-5, speed=ramp, initial="zero", **kw)
     second = transient(rotor, 0.02, 5e-5, speed=400.0, initial=first, **kw)
     np.testing.assert_allclose(second.q[-1], whole.q[-1], rtol=0, atol=1e-9 * _scale(whole))
-    changed = rs.Rotor(  # another table: refusedrotor.shaft_elements, rotor.disk_elements,
-                       [rs.BearingElement(n=0, tag="B0", **{**TABLE, "kxx": [1e7, 2e7, 5e7]}),
-                        rotor.bearing_elements[1]])
+    changed = rotor.with_bearings(  # another table: refused
+        [rs.BearingElement(n=0, tag="B0", **{**TABLE, "kxx": [1e7, 2e7, 5e7]}),
+         rotor.bearing_elements[1]])
     with pytest.raises(ModelError, match="model differs"):
         transient(changed, 0.02, 5e-5, speed=400.0, initial=first, **kw)
