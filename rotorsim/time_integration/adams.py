@@ -301,15 +301,7 @@ class _AdamsStep:
         """Linear net force ``(C + s G + C_s) v + (K + K_s) q - f`` and the tangents of ``r``
         at a point."""
         p = self.p
-        g = p.stiffness @ q - external
-        if p.damping is not None:
-            g = g + p.damping @ v
-        if p.gyroscopic is not None:
-            g = g + spin * (p.gyroscopic @ v)
-        if p.speed_terms is not None:
-            dofs = p.speed_terms.dofs
-            Ks, Cs = p.speed_terms(spin)
-            g[dofs] += Ks @ q[dofs] + Cs @ v[dofs]
+        g = p.linear_force(q, v, spin, external)
         if p.restoring is None:
             return g, None, None
         self.tally["residual_evaluations"] += 1

@@ -184,22 +184,15 @@ class SecondOrderProblem:
 
     def forces(self, q: FloatArray, v: FloatArray, t: float, *, spin: float | None = None,
                external: FloatArray | None = None) -> ForceEvaluation:
-        """Net force ``g = (C + s G) v + K q + r - f`` and the tangents of ``r``.
+        """Net force ``g = (C + s G + C_s) v + (K + K_s) q + r - f`` and the tangents of
+        ``r``.
 
         ``spin`` and ``external`` may be passed when already evaluated at ``t``.
         """
-        g = self.stiffness @ q
-        if self.damping is not None:
-            g = g + self.damping @ v
+        s = 0.0
         if self.gyroscopic is not None or self.speed_terms is not None:
             s = self.spin(t) if spin is None else spin
-            if self.gyroscopic is not None:
-                g = g + s * (self.gyroscopic @ v)
-            if self.speed_terms is not None:
-                dofs = self.speed_terms.dofs
-                Ks, Cs = self.speed_terms(s)
-                g[dofs] += Ks @ q[dofs] + Cs @ v[dofs]
-        g = g - (self.external(t) if external is None else external)
+        g = self.linear_force(q, v, s, self.external(t) if external is None else external)
         if self.restoring is None:
             return ForceEvaluation(g, None, None)
         out = self.restoring(q, v, t)
@@ -211,6 +204,21 @@ class SecondOrderProblem:
             raise ModelError(f"restoring force has shape {r.shape}, expected ({self.n},)",
                              "SecondOrderProblem.restoring")
         return ForceEvaluation(g + r, kt, ct)
+
+    def linear_force(self, q: FloatArray, v: FloatArray, spin: float,
+                     external: FloatArray) -> FloatArray:
+        """``(C + s G + C_s(s)) v + (K + K_s(s)) q - f`` at the schedule value ``spin`` with
+        the load ``external`` [N]: the net force without the restoring force."""
+        g = self.stiffness @ q
+        if self.damping is not None:
+            g = g + self.damping @ v
+        if self.gyroscopic is not None:
+            g = g + spin * (self.gyroscopic @ v)
+        if self.speed_terms is not None:
+            dofs = self.speed_terms.dofs
+            Ks, Cs = self.speed_terms(spin)
+            g[dofs] += Ks @ q[dofs] + Cs @ v[dofs]
+        return g - external
 
     def damping_at(self, spin: float) -> Matrix | None:
         """``C + s G + C_s(s)`` at the schedule value ``spin`` (None when all are absent)."""
