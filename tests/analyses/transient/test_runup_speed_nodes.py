@@ -10,6 +10,7 @@ import re
 import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
+from transient_interrupt import resumed_run
 
 import rotorsim as rs
 from rotorsim.analyses.linear.frequency_response import unbalance_response
@@ -207,27 +208,7 @@ def test_resume_of_a_runup_on_tabulated_bearings_equals_the_uninterrupted_run(tm
     kw = dict(speed=rs.LinearSpeed(200.0, 1400.0, 0.0, 0.02), unbalance=[(3, 2e-4, 0.0)],
               excitation=NO_GRAVITY, initial="zero", nodes=[3])
     full = transient(rotor, 0.02, 5e-5, **kw)
-
-    class Stop(Exception):
-        pass
-
-    import rotorsim.analyses.transient.transient as module
-
-    original = module.integrate
-
-    def interrupted(*args, **kwargs):
-        def cb(state):
-            if state.step == 230:
-                raise Stop
-
-        return original(*args, **kwargs, callback=cb)
-
-    path = tmp_path / "run.h5"
-    monkeypatch.setattr(module, "integrate", interrupted)
-    with pytest.raises(Stop):
-        transient(rotor, 0.02, 5e-5, checkpoint=rs.Checkpointing(path, every=75), **kw)
-    monkeypatch.setattr(module, "integrate", original)
-    resumed = transient(rotor, 0.02, 5e-5, checkpoint=rs.Checkpointing(resume=path), **kw)
+    resumed = resumed_run(monkeypatch, tmp_path / "run.h5", 230, 75, rotor, 0.02, 5e-5, **kw)
     np.testing.assert_array_equal(resumed.q, full.q)
 
 

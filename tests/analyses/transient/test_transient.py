@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from transient_interrupt import resumed_run
 
 import rotorsim as rs
 from rotorsim.analyses.linear.frequency_response import unbalance_response
@@ -176,27 +177,7 @@ def test_resume_equals_uninterrupted(tmp_path, monkeypatch):
     rotor = model.rotor.with_nonlinear(model.rolling_bearings)
     kw = dict(speed=LinearSpeed(0.0, 500.0, 0.0, 0.003), nodes=[5], unbalance=[(5, 1e-5, 0.0)])
     full = transient(rotor, 0.003, 2e-5, **kw)
-    path = tmp_path / "run.h5"
-
-    class Stop(Exception):
-        pass
-
-    import rotorsim.analyses.transient.transient as module
-
-    original = module.integrate
-
-    def interrupted(*args, **kwargs):
-        def cb(state):
-            if state.step == 70:
-                raise Stop
-
-        return original(*args, **kwargs, callback=cb)
-
-    monkeypatch.setattr(module, "integrate", interrupted)
-    with pytest.raises(Stop):
-        transient(rotor, 0.003, 2e-5, checkpoint=rs.Checkpointing(path, every=25), **kw)
-    monkeypatch.setattr(module, "integrate", original)
-    resumed = transient(rotor, 0.003, 2e-5, checkpoint=rs.Checkpointing(resume=path), **kw)
+    resumed = resumed_run(monkeypatch, tmp_path / "run.h5", 70, 25, rotor, 0.003, 2e-5, **kw)
     np.testing.assert_array_equal(resumed.q, full.q)
     np.testing.assert_array_equal(resumed.bearing_loads, full.bearing_loads)
 
