@@ -176,9 +176,9 @@ def first_order(bench: BenchModel):
     rotor, bearings = bench.build()
     system = assemble(rotor, bearings)
     t_end, speed = bench.t_end, bench.speed
+    from rotorsim.analyses.transient.equation import rotor_problem as _problem
     from rotorsim.analyses.transient.speed_profile import ConstantSpeed
     from rotorsim.analyses.transient.start import initial_state
-    from rotorsim.analyses.transient.transient import _problem
 
     profile = ConstantSpeed(speed).bind(0.0, t_end)
     problem, loads = _problem(system, profile, 0.0, rs.Excitation(unbalance=bench.unbalance))

@@ -106,8 +106,8 @@ def reference_check(t_end: float = 0.004) -> dict[str, float]:
     equations."""
     from scipy.integrate import solve_ivp
 
+    from rotorsim.analyses.transient.equation import rotor_problem as _problem
     from rotorsim.analyses.transient.speed_profile import ConstantSpeed
-    from rotorsim.analyses.transient.transient import _problem
 
     r = rotor()
     system = rs.assemble(r)

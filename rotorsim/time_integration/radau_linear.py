@@ -40,7 +40,7 @@ from rotorsim.time_integration.problem import SecondOrderProblem, combine
 
 DENSE_LIMIT = 400
 """Up to this size the shifted matrices are factorised densely (the problem's matrices are
-dense there too: see ``transient.DENSE_STEPPING``)."""
+dense there too: see ``equation.DENSE_STEPPING``)."""
 
 
 @dataclass(frozen=True, eq=False)

@@ -18,7 +18,7 @@ from __future__ import annotations
 import dataclasses
 import os
 from collections.abc import Callable, Sequence
-from typing import Any, cast
+from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -27,28 +27,19 @@ from rotorsim.analyses.keyword_check import checked_keywords
 from rotorsim.analyses.statics.linearized_rotor import rolling_start
 from rotorsim.analyses.transient import continuation as cont
 from rotorsim.analyses.transient import run_control
+from rotorsim.analyses.transient.arguments import check_step_count, system_of, time_span
+from rotorsim.analyses.transient.equation import rotor_problem
 from rotorsim.analyses.transient.loads import (
     BaseExcitation,
-    RestoringForce,
-    TransientLoads,
 )
 from rotorsim.analyses.transient.speed_profile import BoundSpeed, SpeedProfile, as_speed_profile
 from rotorsim.analyses.transient.start import initial_state
-from rotorsim.analyses.transient.torque_damping import with_torque_damping
 from rotorsim.analyses.transient.torque_drive import BoundTorqueDrive, TorqueDrive
-from rotorsim.analyses.transient.torsion_loads import TorsionLoad, bind_speed
+from rotorsim.analyses.transient.torsion_loads import bind_speed
 from rotorsim.analyses.transient.variable_bearings import (
-    SpeedDependentBearings,
     model_identity,
-    without_variable_bearings,
 )
-from rotorsim.assembly.loads import (
-    gravity_load,
-    nodal_load,
-    rigid_translation,
-    unbalance_amplitudes,
-)
-from rotorsim.assembly.system import RotorSystem, SystemMatrices, assemble
+from rotorsim.assembly.system import RotorSystem
 from rotorsim.elements.base import DOFS_PER_NODE, FloatArray, NonlinearElement
 from rotorsim.errors import ModelError
 from rotorsim.model.rotor import Rotor
@@ -61,14 +52,8 @@ from rotorsim.time_integration.adaptive import Adaptive
 from rotorsim.time_integration.base import TimeStepper
 from rotorsim.time_integration.integrate import IntegrationResult, integrate
 from rotorsim.time_integration.newmark import Newmark
-from rotorsim.time_integration.problem import SecondOrderProblem
 
 WHERE = "transient"
-DENSE_STEPPING = 400
-"""Up to this many free DOFs the matrices are dense: a step's few matrix-vector products
-then cost less than scipy.sparse's call overhead."""
-
-
 AUTO_FIRST_STEPS = 1000
 """Without ``dt`` the first trial step is the span over this (the error control adapts
 it at once)."""
@@ -210,18 +195,18 @@ def transient(
                          f"{WHERE}.rtol")
     if dt is None and not auto:
         raise ModelError("give dt, or leave method to 'auto'", f"{WHERE}.dt")
-    system = _system(model, nonlinear)
+    system = system_of(model, nonlinear)
     previous = cont.previous_state(initial)
-    t0, t_end = _span(t_end) if previous is None else cont.continued_span(previous, t_end)
+    t0, t_end = time_span(t_end) if previous is None else cont.continued_span(previous, t_end)
     if dt is not None:
-        _check_step_count(dt, t_end - t0)
+        check_step_count(dt, t_end - t0)
     dt = (t_end - t0) / AUTO_FIRST_STEPS if dt is None else dt
     schedule = as_speed_profile(speed) if not isinstance(speed, TorqueDrive) else speed
     if previous is not None:
         schedule = cont.continued_speed(schedule, previous)
     profile = bind_speed(schedule, system, model if isinstance(model, Rotor) else None,
                          (t0, t_end), max(4096, int((t_end - t0) / dt)))
-    problem, loads_fn = _problem(system, profile, t0, ex)
+    problem, loads_fn = rotor_problem(system, profile, t0, ex)
     stepper = _stepper("average_acceleration" if method is None else method) \
         if not auto else None
     q0: FloatArray | None = None
@@ -315,88 +300,6 @@ def _groups(unbalance: Sequence[tuple[int, float, float]], excitation: Excitatio
     out = Output.coerce(output, f"{WHERE}.output").merged(WHERE, nodes=nodes)
     ck = Checkpointing.coerce(checkpoint, f"{WHERE}.checkpoint")
     return ex, out.resolved(OUTPUT_DEFAULTS), ck.resolved(CHECKPOINT_DEFAULTS)
-
-
-def _system(model: Rotor | RotorSystem, nonlinear: Sequence[NonlinearElement]) -> RotorSystem:
-    if isinstance(model, RotorSystem):
-        if nonlinear:
-            raise ModelError("give the nonlinear elements to assemble(), or a Rotor here",
-                             WHERE)
-        return model
-    if not isinstance(model, Rotor):
-        raise ModelError(f"expected a Rotor or RotorSystem, got {type(model).__name__}",
-                         WHERE)
-    return assemble(model, nonlinear=tuple(nonlinear))
-
-
-MAX_STEPS = 10**9
-"""Largest number of time steps of one run: more is a unit slip (``dt`` in s, not us), not
-a run that would end in any reasonable time."""
-
-
-def _check_step_count(dt: float, duration: float) -> None:
-    """Refuse a step longer than the run, or so short that the run would never end."""
-    if dt > duration:
-        raise ModelError(f"dt {dt} s exceeds the duration {duration} s: check the units",
-                         f"{WHERE}.dt")
-    if duration / dt > MAX_STEPS:
-        raise ModelError(f"dt {dt} s gives {duration / dt:.3g} steps over {duration} s, more "
-                         f"than {MAX_STEPS:.0e}: check the units", f"{WHERE}.dt")
-
-
-def _span(t_span: float | Sequence[float]) -> tuple[float, float]:
-    values: list[Any] = [0.0, t_span] if np.ndim(t_span) == 0 else list(t_span)  # type: ignore[arg-type]
-    try:
-        t0, t_end = (float(x) for x in values)
-    except (TypeError, ValueError):
-        raise ModelError(f"t_end must be a time or (t0, t_end), got {t_span!r}",
-                         WHERE) from None
-    if not (np.isfinite(t0) and np.isfinite(t_end) and t_end > t0):
-        raise ModelError(f"t_end must be finite and after t0, got {t_span!r}", f"{WHERE}.t_end")
-    return t0, t_end
-
-
-def _problem(system: RotorSystem, profile: BoundSpeed, t0: float, ex: Excitation
-             ) -> tuple[SecondOrderProblem, TransientLoads]:
-    unbalance, forces = ex.unbalance, ex.forces
-    base = cast("BaseExcitation | None", ex.base)  # checked by _groups
-    description = profile.describe()
-    constant_speed = description["kind"] == "constant"
-    variable = None
-    if system.variable_bearings and not constant_speed:
-        variable = SpeedDependentBearings.from_system(system)
-        mats = SystemMatrices(**without_variable_bearings(system, profile.speed(t0)))
-    else:
-        mats = system.matrices(profile.speed(t0) if constant_speed else 0.0)
-    constant = np.zeros(system.n_free)
-    if ex.gravity is not None:
-        constant += gravity_load(system, ex.gravity, ex.direction)
-    for i, (node, dof, value) in enumerate(ex.loads):
-        constant += nodal_load(system, int(node), str(dof), float(value),
-                               where=f"loads[{i}]")
-    if forces is not None and not callable(forces):
-        raise ModelError("forces must be a callable f(t) -> array (n_free,)", WHERE)
-    base_load = None
-    if base is not None:
-        e = rigid_translation(system.dof_map.n_nodes, base.direction)[system.dof_map.free]
-        base_load = -(mats.M @ e)
-    loads_fn = TransientLoads(
-        n=system.n_free, speed=profile, constant=constant,
-        unbalance=unbalance_amplitudes(system, unbalance) if unbalance else None,
-        base=base_load, base_acceleration=None if base is None else base.acceleration,
-        forces=forces, torsion=TorsionLoad.build(system, profile, mats.M)
-        if isinstance(profile, BoundTorqueDrive) else None)
-    loads_fn(t0)  # fail early on bad callbacks
-    restoring = with_torque_damping(None if system.nonlinear is None else
-                                    RestoringForce(system.nonlinear, profile), system, profile)
-    has_gyro = mats.G.nnz > 0
-    M, K, C, G = (m.toarray() if system.n_free <= DENSE_STEPPING else m
-                  for m in (mats.M, mats.K, mats.C, mats.G))
-    problem = SecondOrderProblem(
-        mass=M, stiffness=K, damping=C, restoring=restoring, load=loads_fn,
-        gyroscopic=G if has_gyro else None, speed_terms=variable,
-        speed=profile.speed if has_gyro or variable is not None else None)
-    return problem, loads_fn
 
 
 def _stepper(method: str | TimeStepper) -> TimeStepper:

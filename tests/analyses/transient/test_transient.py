@@ -73,7 +73,7 @@ def test_unbalance_angular_acceleration_term_is_the_reaction_of_the_eccentric_ma
 
 
 def _loads(system, profile, unbalance):
-    from rotorsim.analyses.transient.transient import _problem
+    from rotorsim.analyses.transient.equation import rotor_problem as _problem
 
     bound = profile.bind(0.0, 1.0)
     _, loads = _problem(system, bound, 0.0, rs.Excitation(unbalance, gravity=None))

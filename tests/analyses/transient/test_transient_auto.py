@@ -8,8 +8,9 @@ import pytest
 from scipy.integrate import solve_ivp
 
 import rotorsim as rs
+from rotorsim.analyses.transient.equation import rotor_problem as _problem
 from rotorsim.analyses.transient.speed_profile import ConstantSpeed
-from rotorsim.analyses.transient.transient import _problem, transient
+from rotorsim.analyses.transient.transient import transient
 from rotorsim.assembly.system import assemble
 from rotorsim.elements.rolling.ball.bearing import BallBearing
 from rotorsim.elements.rolling.element import RollingBearing
