@@ -108,6 +108,12 @@ class PeriodicResult(KeptDofs):
         Options used (JSON-able), cost counters (points, residual evaluations,
         factorisations, Newton iterations, rejected steps, Floquet time, wall time), status
         of the branch (OK when it reached its bound), why it ended, model summary.
+    unresolved : tuple of PeriodicBifurcation
+        Sign changes of a test function that did not survive confirmation
+        (:mod:`rotorsim.analyses.periodic.confirm`): not bifurcations, but listed so that
+        nothing is silently dropped. ``located`` is False, ``parameter`` the middle of the
+        interval and ``method`` says how many sign changes were merged, where, and why
+        they were rejected.
     """
 
     parameter: FloatArray
@@ -136,6 +142,7 @@ class PeriodicResult(KeptDofs):
     status: Status = Status.OK
     reason: str = ""
     summary: dict[str, Any] = field(default_factory=dict)
+    unresolved: tuple[PeriodicBifurcation, ...] = ()
 
     def __len__(self) -> int:
         return int(self.parameter.size)
