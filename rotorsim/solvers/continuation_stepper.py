@@ -15,9 +15,13 @@ One step (seed 002 eqs 3.40-3.42):
 2. corrector: damped Newton on ``R(y) = 0, b . (y - y_p) = 0`` (eqs 3.41-3.42);
 3. the new tangent ``t`` solves ``[[dR/dy], [b^T]] t = e`` at the new point. The step is
    rejected and retried with ``ds / 2`` when the corrector fails, moves farther than
-   ``ds``, or the tangent turns by more than ``max_angle``. A turn that does not shrink
-   when the step is halved marks a corner (contact onset, clearance): the point is
-   accepted and the next predictor is the secant, as it is when the tangent solve fails;
+   ``ds``, or the tangent turns by more than ``max_angle``. After four rejections (and
+   again at ``min_step``) a step in a local parametrisation (the predictor's largest
+   component, or the parameter, held at its prediction) is tried and accepted as a
+   corner: at a non-smooth point (a contact that opens or closes) the normal plane of the
+   predictor may miss the branch. A turn that does not shrink when the step is halved
+   marks a corner (contact onset, clearance): the point is accepted and the next
+   predictor is the secant, as it is when the tangent solve fails;
 4. the next ``ds`` grows (at most x2) when the corrector needed fewer than
    ``target_iterations`` iterations and the tangent turned little, and shrinks otherwise.
 
@@ -68,6 +72,11 @@ __all__ = ["Continuation", "ContinuationCounters", "ContinuationState"]
 CORNER_RATIO = 0.8
 """A turn that keeps more than this fraction when the step is halved is a corner (a smooth
 curve halves it, a ``max(x, 0)**1.5`` contact law keeps 0.71 of it, a corner keeps all)."""
+
+
+LOCAL_AFTER = 4
+"""Rejected trials (the step cut 16-fold) after which a step in the local parametrisation
+is tried (:meth:`Continuation._local_step`); it is tried again at ``min_step``."""
 
 
 @dataclass(frozen=True, eq=False)
@@ -279,9 +288,36 @@ class Continuation:
                 previous_turn = turn
                 failure = (f"the tangent turned by {turn:.3g} rad > max_angle", False)
             rejected += 1
+            if rejected == LOCAL_AFTER or ds <= self.min_step:
+                local = self._local_step(system, y0, b, ds, stats)
+                if local is not None:
+                    return local, rejected, failure
             if ds <= self.min_step:
                 return None, rejected, failure
             ds = max(0.5 * ds, self.min_step)
+
+    def _local_step(self, system: ScaledSystem, y0: FloatArray, b: FloatArray, ds: float,
+                    stats: Stats) -> _Accepted | None:
+        """A step in a local parametrisation, for a non-smooth point where the corrector
+        on the predictor's normal plane fails: the component the predictor moves most, or
+        else the parameter, is held at its predicted value. Accepted as a corner, or
+        None."""
+        y_pred = y0 + ds * b
+        for k in dict.fromkeys((int(np.argmax(np.abs(b))), b.size - 1)):
+            border = np.zeros_like(b)
+            border[k] = 1.0
+            corr = correct(system, y_pred, border, float(y_pred[k]),
+                           dataclasses.replace(self.corrector, max_correction=ds), stats)
+            if not corr.converged or corr.evaluation is None:
+                continue
+            chord = corr.y - y0  # past a corner the branch may turn by 90 degrees or more
+            if np.linalg.norm(chord) > 2.0 * ds or float(chord @ b) <= 0.0:
+                continue
+            tan = tangent(corr.evaluation, chord / np.linalg.norm(chord), stats)
+            turn = 0.0 if tan is None else _angle(b, tan.t)
+            return _Accepted(corr.y, tan, corr.iterations, corr.evaluation.residual, ds,
+                             turn, True, corr.relaxed)
+        return None
 
     def _accept(self, system: ScaledSystem, state: ContinuationState, y0: FloatArray,
                 acc: _Accepted, stats: Stats, rejected: int) -> ContinuationState:

@@ -37,7 +37,7 @@ from rotorsim.elements.base import FloatArray
 from rotorsim.harmonic_balance.bifurcation import BifurcationEvent
 from rotorsim.solvers.continuation import Branch
 from rotorsim.solvers.continuation_core import CorrectorOptions, ScaledSystem
-from rotorsim.solvers.continuation_locate import Segment, screened, steepness
+from rotorsim.solvers.continuation_locate import Segment, illinois, steepness
 
 IMAG_TOL = 1e-6
 """``|Im mu| <= IMAG_TOL max(|mu|, 1)`` counts as real."""
@@ -140,7 +140,11 @@ def _locate(system: ScaledSystem, corrector: CorrectorOptions, points: FloatArra
     if lo is None or hi is None or lo.value * hi.value > 0.0:
         return None
     ends, length = (lo.value, hi.value), hi.s - lo.s
-    lo, hi, regular = screened(segment, lo, hi, tol, max_iter)
+    # no early jump screen: the count-based test switches between multiplier sets (a
+    # complex pair becoming real), so its bracket values may differ by O(1) although the
+    # crossing multiplier moves smoothly; the steepness at the located zero is judged
+    lo, hi = illinois(segment, lo, hi, tol, max_iter)
+    regular = True
     best = lo if abs(lo.value) <= abs(hi.value) else hi
     x, lam = system.from_y(best.y)
     return BifurcationEvent(kind, lam, x, i, j, ends, regular and hi.s - lo.s <= tol,
