@@ -40,7 +40,7 @@ from typing import Any, Literal
 import numpy as np
 from numpy.typing import ArrayLike
 
-from rotorsim.errors import ModelError
+from rotorsim.errors import ConvergenceError, ModelError
 from rotorsim.harmonic_balance.fourier import FloatArray, harmonic_numbers, whole
 from rotorsim.harmonic_balance.problem import HBProblem
 from rotorsim.harmonic_balance.residual import (
@@ -49,11 +49,14 @@ from rotorsim.harmonic_balance.residual import (
     continuation_function,
     make_residual,
 )
+from rotorsim.harmonic_balance.solve import solve_point
 from rotorsim.solvers.continuation import Branch
 from rotorsim.solvers.continuation_stepper import Continuation
 from rotorsim.solvers.continuation_switch import Jump, continue_from
 
 WHERE = "branch switching"
+REFINE_STEPS = 12
+"""Secant iterations placing a period doubling on the odd block's singularity."""
 
 
 def spread_harmonics(X: ArrayLike, factor: int, harmonics: int) -> FloatArray:
@@ -168,9 +171,11 @@ def odd_rows(residual: HBResidual) -> FloatArray:
 
 
 def period_doubling_point(residual: HBResidual, x: ArrayLike, omega: float,
-                          param: float = 0.0, *, harmonics: int | None = None,
-                          samples: int | None = None, condense: bool | None = None,
-                          x_scale: ArrayLike | float = 1.0) -> PeriodDoubling:
+                          param: float = 0.0, *,
+                          parameter: Literal["omega", "param"] = "omega",
+                          harmonics: int | None = None, samples: int | None = None,
+                          condense: bool | None = None, x_scale: ArrayLike | float = 1.0,
+                          refine: bool = True) -> PeriodDoubling:
     """The period-doubling point ``(x, omega)`` of ``residual`` in the doubled basis.
 
     Parameters
@@ -178,10 +183,12 @@ def period_doubling_point(residual: HBResidual, x: ArrayLike, omega: float,
     residual : HBResidual
         The period-1 discretisation (``H`` harmonics, ``N`` samples).
     x : array (residual.size,)
-        The period-1 solution at the located period doubling.
+        The period-1 solution at (or next to) the period doubling.
     omega : float
         Its fundamental [rad/s].
     param : float
+    parameter : {"omega", "param"}
+        The parameter along which ``refine`` moves.
     harmonics, samples : int, optional
         Of the doubled problem (default ``2H`` and ``2N``: the same harmonics and time
         resolution as the period-1 problem, plus the odd ones).
@@ -190,6 +197,12 @@ def period_doubling_point(residual: HBResidual, x: ArrayLike, omega: float,
     x_scale : float or array (residual.size,)
         Scale of the period-1 unknowns (per unknown); the odd block is scaled with it,
         harmonic by harmonic.
+    refine : bool
+        Move the point along the period-1 branch (Newton solves at fixed parameter) to
+        where the odd block is singular, by the secant method on its smallest singular
+        value signed by its determinant: the period doubling of this discretisation,
+        which a Floquet method locates only to its own accuracy (Hsu's method, the
+        ``1 + tol`` threshold).
     """
     H2 = 2 * residual.harmonics if harmonics is None else int(harmonics)
     N2 = 2 * residual.samples if samples is None else int(samples)
@@ -200,23 +213,82 @@ def period_doubling_point(residual: HBResidual, x: ArrayLike, omega: float,
     per = residual.size // residual.aft.rows
     if doubled.size // doubled.aft.rows != per:
         raise ModelError("condense must match the period-1 residual's unknowns", WHERE)
-    x1 = as_unknowns(x, residual.size).reshape(residual.aft.rows, per)
-    x2 = spread_harmonics(x1, 2, H2).reshape(-1)
     scale = np.broadcast_to(np.asarray(x_scale, dtype=float), (residual.size,))
-    per_dof = scale.reshape(residual.aft.rows, per).max(axis=0)
-    ev = doubled.evaluate(x2, omega / 2.0, param)
-    assert ev.jacobian is not None
-    odd = odd_rows(doubled)
-    xs = np.tile(per_dof, doubled.aft.rows)[odd]
-    J = ev.jacobian[np.ix_(odd, odd)] * xs[None, :]
-    rows = np.max(np.abs(J), axis=1)
-    J = J / np.where(rows > 0, rows, 1.0)[:, None]
-    _, s, vt = np.linalg.svd(J)
+    block = _OddBlock(residual, doubled, scale.reshape(residual.aft.rows, per).max(axis=0))
+    x1 = as_unknowns(x, residual.size)
+    lam = float(omega) if parameter == "omega" else float(param)
+    if refine:
+        x1, lam = block.refined(x1, lam, parameter, omega, param, scale)
+    w, p = (lam, param) if parameter == "omega" else (omega, lam)
+    _, s, vt = np.linalg.svd(block.matrix(x1, w, p))
     phi = np.zeros(doubled.size)
-    phi[odd] = vt[-1] * xs
+    phi[block.odd] = vt[-1] * block.xs
     phi /= np.linalg.norm(phi)
     phi *= 1.0 if phi[np.argmax(np.abs(phi))] > 0 else -1.0
-    return PeriodDoubling(doubled, x2, omega / 2.0, float(param), phi, s[-2:])
+    return PeriodDoubling(doubled, block.spread(x1), w / 2.0, float(p), phi, s[-2:])
+
+
+@dataclass(frozen=True, eq=False)
+class _OddBlock:
+    """The scaled odd-harmonic block of the doubled Jacobian at period-1 points."""
+
+    residual: HBResidual
+    doubled: HBResidual
+    per_dof: FloatArray
+
+    @property
+    def odd(self) -> Any:
+        return odd_rows(self.doubled)
+
+    @property
+    def xs(self) -> FloatArray:
+        return np.tile(self.per_dof, self.doubled.aft.rows)[self.odd]
+
+    def spread(self, x1: FloatArray) -> FloatArray:
+        X = x1.reshape(self.residual.aft.rows, -1)
+        return spread_harmonics(X, 2, self.doubled.harmonics).reshape(-1)
+
+    def matrix(self, x1: FloatArray, omega: float, param: float) -> FloatArray:
+        """Odd block at the period-1 point ``x1``, columns scaled, rows normalised."""
+        ev = self.doubled.evaluate(self.spread(x1), omega / 2.0, param)
+        assert ev.jacobian is not None
+        J = ev.jacobian[np.ix_(self.odd, self.odd)] * self.xs[None, :]
+        rows = np.max(np.abs(J), axis=1)
+        return J / np.where(rows > 0, rows, 1.0)[:, None]
+
+    def test(self, x1: FloatArray, omega: float, param: float) -> float:
+        """Smallest singular value signed by the determinant (zero at the doubling)."""
+        J = self.matrix(x1, omega, param)
+        sign, _ = np.linalg.slogdet(J)
+        return float(sign * np.linalg.svd(J, compute_uv=False)[-1])
+
+    def refined(self, x1: FloatArray, lam: float, parameter: str, omega: float,
+                param: float, scale: FloatArray) -> tuple[FloatArray, float]:
+        """Secant iteration on :meth:`test` along the period-1 branch; the start when it
+        fails or leaves a neighbourhood of 1e-2 relative."""
+        def point(value: float, guess: FloatArray) -> tuple[FloatArray, float]:
+            w, p = (value, param) if parameter == "omega" else (omega, value)
+            sol = solve_point(self.residual, w, guess, param=p, x_scale=scale)
+            return sol.x, self.test(sol.x, w, p)
+
+        try:
+            xa, ga = point(lam, x1)
+            width = 1e-6 * max(abs(lam), 1.0)
+            b = lam + width
+            xb, gb = point(b, xa)
+            a = lam
+            for _ in range(REFINE_STEPS):
+                if gb == ga or abs(b - a) <= 1e-13 * max(abs(b), 1.0):
+                    break
+                c = b - gb * (b - a) / (gb - ga)
+                if abs(c - lam) > 1e-2 * max(abs(lam), 1.0):
+                    return x1, lam
+                a, xa, ga = b, xb, gb
+                b = c
+                xb, gb = point(b, xa)
+        except ConvergenceError:
+            return x1, lam
+        return xb, b
 
 
 def switch_period_doubling(residual: HBResidual, x: ArrayLike, omega: float,
@@ -261,8 +333,8 @@ def switch_period_doubling(residual: HBResidual, x: ArrayLike, omega: float,
     See ``tests/harmonic_balance/test_branch_switching.py`` (a Duffing oscillator with a
     static preload, whose period-1 response near twice its natural frequency doubles).
     """
-    pd = period_doubling_point(residual, x, omega, param, harmonics=harmonics,
-                               samples=samples, x_scale=x_scale)
+    pd = period_doubling_point(residual, x, omega, param, parameter=parameter,
+                               harmonics=harmonics, samples=samples, x_scale=x_scale)
     fun = continuation_function(pd.residual, parameter, omega=pd.omega, param=param,
                                 terms=True)
     lam = pd.omega if parameter == "omega" else float(param)
