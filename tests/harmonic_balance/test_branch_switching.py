@@ -113,7 +113,7 @@ def test_period_two_branch_from_a_doubling_is_confirmed_by_time_integration(doub
     pd_event = events[0]
     assert abs(pd_event.multipliers[np.argmin(np.abs(pd_event.multipliers + 1))] + 1) < 1e-4
     opts = Continuation(lam_max=1.1, max_step=0.05)
-    branch, pd, jump = switch_period_doubling(res, pd_event.x, pd_event.lam, opts,
+    branch, pd, _ = switch_period_doubling(res, pd_event.x, pd_event.lam, opts,
                                               step=1e-3)
     # the odd block is singular at the refined point, its second singular value is not
     assert pd.singular_values[1] < 1e-12 < 0.1 < pd.singular_values[0]
@@ -166,7 +166,7 @@ def test_second_branch_through_a_pitchfork_is_confirmed_by_time_integration():
     e = events[0]
     along = np.append(branch.x[e.index + 1] - branch.x[e.index],
                       branch.lam[e.index + 1] - branch.lam[e.index])
-    second, jump = switch_branch_point(res, e.x, e.lam, along,
+    second, _ = switch_branch_point(res, e.x, e.lam, along,
                                        Continuation(lam_min=1.35, lam_max=1.8,
                                                     max_step=0.1), step=0.01)
     Y = second.x.reshape(len(second), -1, 2)[:, :, 1]

@@ -1,0 +1,117 @@
+"""rs.switch_branch and periodic(peaks=...) on a small rotor.
+
+The rotor: a 0.3 m, 40 mm steel shaft (two elements) with a 200 mm disk at mid-span on
+two linear bearings (2e6 N/m, 100 N s/m), a hardening spring ``k3 uy^3`` (k3 = 3.6e14
+N/m^3) at the disk, turning slowly (10 rad/s) under gravity, its housing shaken
+vertically (9 um) at the continued frequency. Gravity preloads the cubic spring, so the
+disk's vertical motion about its sag has a quadratic stiffness term: driven near twice its
+natural frequency (about 2 x 600 rad/s) its response period-doubles, the rotor version of
+the preloaded Duffing oscillator of ``tests/harmonic_balance/test_branch_switching.py``.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import pytest
+
+import rotorsim as rs
+from rotorsim.elements.base import ElementForce
+from rotorsim.errors import ModelError
+from rotorsim.harmonic_balance.branch_switching import spread_harmonics
+
+STEEL = rs.Material(name="steel", E=211e9, G_s=81.2e9, rho=7810)
+
+
+@dataclass(frozen=True)
+class CubicSpring:
+    """``f_y = k3 uy^3`` at node ``n`` (a user nonlinear element)."""
+
+    n: int
+    k3: float
+    contact_damping: str = "none"
+
+    @property
+    def nodes(self) -> tuple[int, ...]:
+        return (self.n,)
+
+    def force(self, u, v, phi, speed, internal=None):
+        S = u.shape[0]
+        f, K = np.zeros((S, 6)), np.zeros((S, 6, 6))
+        f[:, 1] = self.k3 * u[:, 1] ** 3
+        K[:, 1, 1] = 3 * self.k3 * u[:, 1] ** 2
+        return ElementForce(f, K, np.zeros((S, 6, 6)))
+
+
+def rotor(k3: float = 3.6e14) -> rs.Rotor:
+    shaft = [rs.ShaftElement(L=0.15, idl=0.0, odl=0.04, material=STEEL) for _ in range(2)]
+    disk = rs.DiskElement.from_geometry(n=1, material=STEEL, width=0.04, i_d=0.04, o_d=0.2)
+    bearings = [rs.BearingElement(n=n, kxx=2e6, kyy=2e6, cxx=100, cyy=100) for n in (0, 2)]
+    return rs.Rotor(shaft, [disk], bearings, nonlinear_elements=[CubicSpring(1, k3)])
+
+
+SHAKER = rs.Excitation(base=rs.HarmonicBase(9e-6))
+COMMON = {"parameter": "frequency", "speed": 10.0, "harmonics": 2, "nodes": [1],
+          "excitation": SHAKER, "stability": "hsu"}
+
+
+@pytest.fixture(scope="module")
+def period_one():
+    return rs.periodic(rotor(), start=1150.0, stop=1250.0,
+                       continuation=rs.ContinuationOptions(max_step=0.1), **COMMON)
+
+
+def test_period_two_branch_from_a_rotor_period_doubling(period_one):
+    res = period_one
+    assert [b.kind for b in res.bifurcations] == ["period_doubling"]
+    pd = res.bifurcations[0]
+    two = rs.switch_branch(rotor(), res, pd, stop=1250.0, stability="hsu",
+                           continuation=rs.ContinuationOptions(max_step=0.1))
+    assert two.status.name == "OK" and two.parameter[-1] == pytest.approx(1250.0)
+    assert two.harmonics == 4 and two.samples == 2 * res.samples
+    assert np.allclose(two.fundamental, two.parameter / 2)      # omega / 2
+    sw = two.options["switched_from"]
+    assert sw["kind"] == "period_doubling" and sw["singular_values"][1] < 1e-10
+    # Hsu's multipliers (H = 2, 16 samples) place the doubling within 0.2 % of the odd
+    # block of the doubled HB, where the period-2 branch starts (a pitchfork there: the
+    # jump of one first step, 0.025 scaled, moves the parameter by O(step^2); measured 1e-5)
+    start = sw["doubled_basis_parameter"]
+    assert abs(start - pd.parameter) < 2e-3 * pd.parameter
+    assert abs(two.parameter[0] - start) < 1e-4 * start
+    # the subharmonic (harmonic 1 of omega / 2) grows from ~0 at the doubling
+    half = np.abs(two.harmonic(1, "uy", 1))
+    assert half[0] < 1e-6 and half[-1] > 3e-5
+    # at its first point the even harmonics are the period-1 solution at the doubling
+    i = pd.index
+    w = (start - res.parameter[i]) / (res.parameter[i + 1] - res.parameter[i])
+    C1 = (1 - w) * res.coefficients[i] + w * res.coefficients[i + 1]
+    even = spread_harmonics(C1, 2, two.harmonics)[0::4]
+    assert np.abs(two.coefficients[0][0::4] - even).max() < 1e-2 * np.abs(C1).max()
+    assert np.all(two.stable)
+
+
+def test_peaks_are_located_on_request_and_cost_nothing_otherwise(period_one):
+    assert period_one.peaks == ()
+    # a softer spring: the primary resonance (about 577 rad/s) bends a little, and peaks
+    res = rs.periodic(rotor(3.6e12), start=450.0, stop=700.0,
+                      peaks=[(1, "uy"), (1, "orbit")],
+                      continuation=rs.ContinuationOptions(max_step=1.0),
+                      **{**COMMON, "stability": None})
+    kinds = [(p.node, p.dof, p.kind) for p in res.peaks]
+    assert kinds == [(1, "uy", "max"), (1, "orbit", "max")]
+    uy, orbit = res.peaks
+    assert uy.located and res.parameter[uy.index] <= uy.parameter <= res.parameter[uy.index + 1]
+    # the located maximum is above every point's (sampled) amplitude and next to it
+    assert uy.amplitude >= res.amplitude(1, "uy").max() * (1 - 1e-9)
+    assert uy.amplitude < 1.01 * res.amplitude(1, "uy").max()
+    # ux stays 0, so the orbit is the vertical line: the same peak (located to 1e-10)
+    assert orbit.amplitude == pytest.approx(uy.amplitude, rel=1e-9)
+    assert orbit.parameter == pytest.approx(uy.parameter, rel=1e-8)
+
+
+def test_bad_switch_requests_are_refused(period_one):
+    with pytest.raises(ModelError, match="not an index"):
+        rs.switch_branch(rotor(), period_one, 5, stop=1250.0)
+    with pytest.raises(ModelError, match="unknown dof"):
+        rs.periodic(rotor(), start=450.0, stop=460.0, peaks=[(1, "uq")], **COMMON)
