@@ -49,6 +49,7 @@ def peak(harmonics):
     return res, peaks[0]
 
 
+@pytest.mark.validation
 def test_single_harmonic_peak_equals_the_closed_form():
     a_ref, w_ref = closed_form_peak()
     assert (round(a_ref, 5), round(w_ref, 5)) == (2.84162, 1.26663)   # the reference
