@@ -38,6 +38,7 @@ from numpy.typing import ArrayLike
 from rotorsim.errors import ConvergenceError, ModelError
 from rotorsim.solvers.continuation import Branch, continue_branch
 from rotorsim.solvers.continuation_core import (
+    CorrectorOptions,
     FloatArray,
     ResidualCallback,
     ScaledSystem,
@@ -69,6 +70,9 @@ class Jump:
         switched branch is measured with them).
     iterations : int
         Corrector iterations of the jump.
+    singular_values : array (2,) or None
+        At a branch point: the two smallest singular values of the scaled extended
+        Jacobian (:func:`branch_point_direction`); None for a given direction.
     """
 
     x: FloatArray
@@ -77,6 +81,7 @@ class Jump:
     direction: FloatArray
     options: Continuation
     iterations: int
+    singular_values: FloatArray | None = None
 
 
 def scaled_system(residual: ResidualCallback, x: FloatArray, lam: float,
@@ -127,6 +132,73 @@ def branch_point_direction(system: ScaledSystem, y: FloatArray, along: FloatArra
     d = null @ (null.T @ _perpendicular(null, t1))
     d /= np.linalg.norm(d)
     return d * (1.0 if d[np.argmax(np.abs(d))] > 0 else -1.0), s[-2:]
+
+
+def locate_branch_point(system: ScaledSystem, options: Continuation, y0: FloatArray,
+                        y1: FloatArray, *, tol: float = 1e-10,
+                        max_iter: int = 60) -> tuple[FloatArray, float] | None:
+    """The branch point between two scaled points of a branch: ``(y, width)`` or None.
+
+    Points at abscissa ``s`` of the chord ``u = (y1 - y0) / |y1 - y0|`` are corrected on
+    the hyperplane ``u . y = u . y0 + s`` (started on the segment between the current
+    bracket's corrected ends) and the determinant of ``[[dR/dy], [u^T]]`` is evaluated
+    directly: it changes sign at a simple branch point. No tangent is solved (it is
+    undefined at the branch point; the tangent-based location of
+    :mod:`rotorsim.harmonic_balance.bifurcation` stops short of it when the tangents of
+    its probes turn). The Illinois iteration shrinks the bracket to ``tol`` in scaled
+    arclength; ``width`` is the final bracket. None when the determinant has the same
+    sign at both ends or a probe fails at the start.
+    """
+    u = (y1 - y0) / np.linalg.norm(y1 - y0)
+    corrector = CorrectorOptions(options.tol, options.max_iter, options.max_backtracks,
+                                 step_tol=tol)
+    reference = [math.nan]
+
+    def probe(start: FloatArray) -> tuple[FloatArray, float] | None:
+        corr = correct(system, start, u, float(u @ start), corrector, Stats())
+        if not corr.converged or corr.evaluation is None:
+            return None
+        ev = corr.evaluation
+        jh = ev.jh.toarray() if sp.issparse(ev.jh) else np.asarray(ev.jh)
+        sign, log_det = np.linalg.slogdet(np.block([[jh, ev.jlh[:, None]], [u[None, :]]]))
+        if math.isnan(reference[0]):
+            reference[0] = float(log_det)
+        return corr.y, float(sign) * math.exp(max(-700.0, min(700.0,
+                                                              log_det - reference[0])))
+
+    first, last = probe(y0), probe(y1)
+    if first is None or last is None or first[1] * last[1] > 0.0:
+        return None
+    (lo, f_lo), (hi, f_hi) = first, last
+    s_lo, s_hi, g_lo, g_hi, side = 0.0, float(u @ (hi - y0)), f_lo, f_hi, 0
+    for _ in range(max_iter):
+        if s_hi - s_lo <= tol:
+            break
+        s = s_hi - g_hi * (s_hi - s_lo) / (g_hi - g_lo)
+        mid = 0.5 * (s_lo + s_hi)
+        s = s if s_lo < s < s_hi else mid
+        new = None
+        # the corrector fails exactly on the branch point (its Jacobian is singular
+        # there): then a point a little towards the middle, then the middle
+        for trial in (s, s + 1e-3 * (mid - s), mid):
+            new = probe(lo + (trial - s_lo) / (s_hi - s_lo) * (hi - lo))
+            if new is not None:
+                break
+        if new is None:
+            break
+        y, f = new
+        if f == 0.0:
+            return y, 0.0
+        if (f > 0.0) == (f_hi > 0.0):
+            hi, f_hi, g_hi, s_hi = y, f, f, float(u @ (y - y0))
+            g_lo = 0.5 * g_lo if side == -1 else g_lo
+            side = -1
+        else:
+            lo, f_lo, g_lo, s_lo = y, f, f, float(u @ (y - y0))
+            g_hi = 0.5 * g_hi if side == 1 else g_hi
+            side = 1
+    best = lo if abs(f_lo) <= abs(f_hi) else hi
+    return best, s_hi - s_lo
 
 
 def _perpendicular(null: FloatArray, t1: FloatArray) -> FloatArray:
@@ -211,18 +283,20 @@ def continue_from(residual: ResidualCallback, x: ArrayLike, lam: float,
     x0 = np.array(x, dtype=float).reshape(-1)
     system, fixed = scaled_system(residual, x0, float(lam), options)
     y0 = system.to_y(x0, float(lam))
+    singular = None
     if direction is None:
         if along is None:
             raise ModelError("give the known branch's tangent 'along' at a branch point, "
                              "or the direction of the new branch", WHERE)
-        d, _ = branch_point_direction(system, y0, _scaled(system, along))
+        d, singular = branch_point_direction(system, y0, _scaled(system, along))
     else:
         d = _scaled(system, direction)
     d = sign * d / np.linalg.norm(d)
     length = float(fixed.initial_step or 0.0) if step is None else float(step)
     if not (math.isfinite(length) and length > 0):
         raise ModelError(f"step must be positive, got {step!r}", WHERE)
-    start = jump(system, fixed, y0, d, length)
+    start = dataclasses.replace(jump(system, fixed, y0, d, length),
+                                singular_values=singular)
     lo, hi = min(fixed.lam_min, start.lam), max(fixed.lam_max, start.lam)
     run = dataclasses.replace(fixed, lam_min=lo, lam_max=hi)
     branch = continue_branch(residual, start.x, start.lam, run,

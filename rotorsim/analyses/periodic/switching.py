@@ -49,8 +49,8 @@ from rotorsim.harmonic_balance.residual import HBResidual, continuation_function
 from rotorsim.options import ContinuationOptions, StabilityOptions
 from rotorsim.results.periodic import PeriodicBifurcation, PeriodicResult
 from rotorsim.solvers.continuation import Branch, Continuation
-from rotorsim.solvers.continuation_core import correct
-from rotorsim.solvers.continuation_switch import scaled_system
+from rotorsim.solvers.continuation_core import ScaledSystem, correct
+from rotorsim.solvers.continuation_switch import locate_branch_point, scaled_system
 from rotorsim.solvers.stats import Stats
 
 WHERE = "switch_branch"
@@ -169,11 +169,14 @@ def switch_branch(model: Any, result: PeriodicResult,
         raise ModelError("a branch point is switched in the discretisation it was located "
                          "in: leave harmonics and samples unset", WHERE)
     options = _bounded(opts.stepping(), result, lam, to_lam(stop), to_lam, xs, 1.0)
-    branch, _ = switch_branch_point(rb.residual, x, lam, along, options, step=step,
-                                    sign=sign)
+    branch, jump = switch_branch_point(rb.residual, x, lam, along, options, step=step,
+                                       sign=sign)
     recovery = Recovery(rb.residual, rb.columns, rb.dofs)
+    assert jump.singular_values is not None
     return _result(rb, result, event, rb.rp, rb.plan, recovery, branch, to_lam(stop),
-                   float(stop), opts, {}, stats, clock)
+                   float(stop), opts, {"singular_values": jump.singular_values.tolist(),
+                                       "located_parameter": _parameter(result, lam)},
+                   stats, clock)
 
 
 def _event(result: PeriodicResult, which: PeriodicBifurcation | int) -> PeriodicBifurcation:
@@ -194,8 +197,10 @@ def _event(result: PeriodicResult, which: PeriodicBifurcation | int) -> Periodic
 
 def _located(rb: Rebuilt, result: PeriodicResult, event: PeriodicBifurcation, lam: float,
              stepping: Stepping) -> tuple[FloatArray, float, FloatArray, FloatArray]:
-    """The point at the located parameter, corrected on the hyperplane orthogonal to the
-    chord of its bracket, the chord ``(dx, dlam)`` and the unknowns' scales."""
+    """The bifurcation point re-found between the stored points of its bracket, the known
+    branch's direction ``(dx, dlam)`` there and the unknowns' scales. A branch point is
+    re-located (Illinois on the bordered determinant); a period doubling starts at the
+    located parameter on the branch (the odd block then places it)."""
     i = event.index
     x0, x1 = rb.unknowns(result, i), rb.unknowns(result, i + 1)
     l0, l1 = float(result.fundamental[i]), float(result.fundamental[i + 1])
@@ -203,24 +208,39 @@ def _located(rb: Rebuilt, result: PeriodicResult, event: PeriodicBifurcation, la
     fun = continuation_function(rb.residual, "omega", terms=True)
     options = stepping.options(l0, l1 if l1 != l0 else l0 + 1.0, xs)
     system, fixed = scaled_system(fun, x0, l0, options)
-    frac = 0.0 if l1 == l0 else min(1.0, max(0.0, (lam - l0) / (l1 - l0)))
     y0, y1 = system.to_y(x0, l0), system.to_y(x1, l1)
     chord = (y1 - y0) / np.linalg.norm(y1 - y0)
+    if event.kind == "branch_point":
+        found = locate_branch_point(system, fixed, y0, y1)
+        if found is None:
+            raise ModelError(f"no branch point between points {i} and {i + 1} of the "
+                             "rebuilt problem (a model other than the result's?)", WHERE)
+        x, lam_c = system.from_y(found[0])
+        return x, lam_c, _physical(system, chord), xs
+    e_lam = np.zeros(y0.size)
+    e_lam[-1] = 1.0
+    frac = 0.0 if l1 == l0 else min(1.0, max(0.0, (lam - l0) / (l1 - l0)))
     start = y0 + frac * (y1 - y0)
-    corr = correct(system, start, chord, float(chord @ start), fixed.corrector, stats=Stats())
-    y = corr.y if corr.converged else start
-    x, lam_c = system.from_y(y)
-    return x, lam_c, np.append(x1 - x0, l1 - l0), xs
+    corr = correct(system, start, e_lam, float(start[-1]), fixed.corrector, stats=Stats())
+    x, lam_c = system.from_y(corr.y if corr.converged else start)
+    return x, lam_c, _physical(system, chord), xs
+
+
+def _physical(system: ScaledSystem, t: FloatArray) -> FloatArray:
+    """A scaled direction ``(dx, dlam)`` in physical units."""
+    return np.append(t[:-1] * system.x_scale, t[-1] * system.lam_scale)
 
 
 def _bounded(stepping: Stepping, result: PeriodicResult, lam: float, lam_stop: float,
              to_lam: Any, x_scale: FloatArray, factor: float) -> Continuation:
     """Options of the new branch (parameter ``lam / factor``): from the bifurcation towards
-    ``stop``, its bounds widened to the original range so that it may turn back."""
+    ``stop``, which bounds it on its side; on the other side the bound is the far end of
+    the original range, so that a branch turning back from the bifurcation is followed."""
     options = stepping.options(lam / factor, lam_stop / factor, x_scale)
     ends = [to_lam(result.options["start"]) / factor, to_lam(result.options["stop"]) / factor]
-    return dataclasses.replace(options, lam_min=min(options.lam_min, *ends),
-                               lam_max=max(options.lam_max, *ends))
+    if lam_stop >= lam:
+        return dataclasses.replace(options, lam_min=min(options.lam_min, *ends))
+    return dataclasses.replace(options, lam_max=max(options.lam_max, *ends))
 
 
 def _period_two(rb: Rebuilt, result: PeriodicResult, event: PeriodicBifurcation,

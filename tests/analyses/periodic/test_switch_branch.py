@@ -11,6 +11,7 @@ the preloaded Duffing oscillator of ``tests/harmonic_balance/test_branch_switchi
 
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass
 
 import numpy as np
@@ -42,6 +43,30 @@ class CubicSpring:
         f, K = np.zeros((S, 6)), np.zeros((S, 6, 6))
         f[:, 1] = self.k3 * u[:, 1] ** 3
         K[:, 1, 1] = 3 * self.k3 * u[:, 1] ** 2
+        return ElementForce(f, K, np.zeros((S, 6, 6)))
+
+
+@dataclass(frozen=True)
+class CoupledSpring:
+    """Potential ``g (x^4 + y^4) / 4 + b x^2 y^2 / 2`` in ``(ux, uy)`` at node ``n``."""
+
+    n: int
+    g: float
+    b: float
+    contact_damping: str = "none"
+
+    @property
+    def nodes(self) -> tuple[int, ...]:
+        return (self.n,)
+
+    def force(self, u, v, phi, speed, internal=None):
+        S, x, y = u.shape[0], u[:, 0], u[:, 1]
+        f, K = np.zeros((S, 6)), np.zeros((S, 6, 6))
+        f[:, 0] = self.g * x**3 + self.b * x * y**2
+        f[:, 1] = self.g * y**3 + self.b * x**2 * y
+        K[:, 0, 0] = 3 * self.g * x**2 + self.b * y**2
+        K[:, 1, 1] = 3 * self.g * y**2 + self.b * x**2
+        K[:, 0, 1] = K[:, 1, 0] = 2 * self.b * x * y
         return ElementForce(f, K, np.zeros((S, 6, 6)))
 
 
@@ -158,8 +183,48 @@ def test_peaks_are_located_on_request_and_cost_nothing_otherwise(period_one):
     assert orbit.parameter == pytest.approx(uy.parameter, rel=1e-8)
 
 
+def symmetric_rotor() -> rs.Rotor:
+    """The rotor with bearings 2.25 times stiffer in x than in y and the coupled spring
+    (``b = 4e14``, ``g = b / 10``) at the disk: ``ux = 0`` is invariant; the vertical
+    response modulates the horizontal stiffness at twice its frequency."""
+    shaft = [rs.ShaftElement(L=0.15, idl=0.0, odl=0.04, material=STEEL) for _ in range(2)]
+    disk = rs.DiskElement.from_geometry(n=1, material=STEEL, width=0.04, i_d=0.04, o_d=0.2)
+    bearings = [rs.BearingElement(n=n, kxx=4.5e6, kyy=2e6, cxx=72, cyy=72) for n in (0, 2)]
+    return rs.Rotor(shaft, [disk], bearings,
+                    nonlinear_elements=[CoupledSpring(1, 4e13, 4e14)])
+
+
+def test_second_branch_through_a_rotor_branch_point():
+    """Not turning (speed 0: at any speed the gyroscopic coupling of x and y breaks the
+    symmetry, the pitchfork becomes imperfect and has no branch point), no gravity, the
+    housing shaken vertically: ``ux = 0`` loses stability in a symmetry-breaking
+    pitchfork near the horizontal mode (about 800 rad/s)."""
+    common = {**COMMON, "speed": 0.0, "excitation": rs.Excitation(
+        gravity=None, base=rs.HarmonicBase(2.2e-5))}
+    res = rs.periodic(symmetric_rotor(), start=790.0, stop=812.0,
+                      continuation=rs.ContinuationOptions(max_step=0.1), **common)
+    assert [b.kind for b in res.bifurcations] == ["branch_point"]
+    bp = res.bifurcations[0]
+    assert bp.located and np.abs(res.amplitude(1, "ux")).max() == 0.0
+    two = rs.switch_branch(symmetric_rotor(), res, bp, stop=806.0, stability="hsu",
+                           continuation=rs.ContinuationOptions(max_step=0.1))
+    sw = two.options["switched_from"]
+    # re-located on the bordered determinant at the recorded point (both to 1e-10 in
+    # scaled arclength); a simple branch point: one singular value at round-off
+    assert sw["located_parameter"] == pytest.approx(bp.parameter, rel=1e-9)
+    assert sw["singular_values"][1] < 1e-10 < 0.1 < sw["singular_values"][0]
+    assert two.status.name == "OK" and two.parameter[-1] == pytest.approx(806.0)
+    ux = two.amplitude(1, "ux")
+    assert ux[0] < 0.05 * ux[-1] and ux[-1] > 3e-5      # grows from the branch point
+    assert abs(two.parameter[0] - bp.parameter) < 0.05
+    assert np.all(two.stable[:3])                                # supercritical
+
+
 def test_bad_switch_requests_are_refused(period_one):
     with pytest.raises(ModelError, match="not an index"):
         rs.switch_branch(rotor(), period_one, 5, stop=1250.0)
+    fold = dataclasses.replace(period_one.bifurcations[0], kind="fold")
+    with pytest.raises(ModelError, match="no second branch"):
+        rs.switch_branch(rotor(), period_one, fold, stop=1250.0)
     with pytest.raises(ModelError, match="unknown dof"):
         rs.periodic(rotor(), start=450.0, stop=460.0, peaks=[(1, "uq")], **COMMON)
