@@ -141,6 +141,12 @@ class PeriodicResult(KeptDofs):
         Options used (JSON-able), cost counters (points, residual evaluations,
         factorisations, Newton iterations, rejected steps, Floquet time, wall time), status
         of the branch (OK when it reached its bound), why it ended, model summary.
+    unresolved : tuple of PeriodicBifurcation
+        Sign changes of a test function that did not survive confirmation
+        (:mod:`rotorsim.analyses.periodic.confirm`): not bifurcations, but listed so that
+        nothing is silently dropped. ``located`` is False, ``parameter`` the middle of the
+        interval and ``method`` says how many sign changes were merged, where, and why
+        they were rejected.
     """
 
     parameter: FloatArray
@@ -169,6 +175,7 @@ class PeriodicResult(KeptDofs):
     status: Status = Status.OK
     reason: str = ""
     summary: dict[str, Any] = field(default_factory=dict)
+    unresolved: tuple[PeriodicBifurcation, ...] = ()
     peaks: tuple[PeriodicPeak, ...] = ()
 
     def __len__(self) -> int:

@@ -79,6 +79,7 @@ class _Accepted:
     ds: float
     turn: float
     corner: bool
+    relaxed: bool = False
 
 
 @dataclass(frozen=True)
@@ -114,6 +115,16 @@ class Continuation:
         Line-search trials per corrector iteration.
     detect_loops : bool
         End the branch when it returns to its starting point (isolas, closed curves).
+    relative_step : bool
+        Let the step grow with the solution: the largest step is ``max_step`` times
+        ``max(1, max |x / x_scale|)``. Along a resonance whose amplitude grows to many
+        times the scale of the unknowns (set at the start), a fixed ``max_step`` would
+        take a number of points proportional to the amplitude; the turn of the tangent
+        and the corrector's iterations still bound the step.
+    stall_tol : float, optional
+        Accept a corrector that stalls at a scaled residual at most ``stall_tol``
+        (:func:`~.continuation_core.correct`; counted as ``relaxed_points``), for
+        residuals that are not smooth where contacts open and close.
 
     Examples
     --------
@@ -144,6 +155,8 @@ class Continuation:
     lam_scale: float | Literal["auto"] = 1.0
     max_backtracks: int = 10
     detect_loops: bool = True
+    relative_step: bool = False
+    stall_tol: float | None = None
 
     def __post_init__(self) -> None:
         where = "Continuation"
@@ -168,13 +181,17 @@ class Continuation:
                                  where)
         if not (self.tol > 0 and 0 < self.max_angle < math.pi):
             raise ModelError("need tol > 0 and 0 < max_angle < pi", where)
+        if self.stall_tol is not None and not self.stall_tol >= self.tol:
+            raise ModelError(f"stall_tol must be at least tol = {self.tol:g}, got "
+                             f"{self.stall_tol!r}", where)
         for name in ("x_scale", "r_scale", "lam_scale"):
             object.__setattr__(self, name, checked_scale(name, getattr(self, name)))
 
     @property
     def corrector(self) -> CorrectorOptions:
         """Newton options of the corrector."""
-        return CorrectorOptions(self.tol, self.max_iter, self.max_backtracks)
+        return CorrectorOptions(self.tol, self.max_iter, self.max_backtracks,
+                                stall_tol=self.stall_tol)
 
     def init(self, residual: ResidualCallback, x0: ArrayLike, lam0: float, *,
              orientation: ArrayLike | None = None) -> ContinuationState:
@@ -265,7 +282,8 @@ class Continuation:
                 corner = ds <= self.min_step or turn > CORNER_RATIO * previous_turn
                 if smooth_turn or corner or tan is None:
                     return (_Accepted(corr.y, tan, corr.iterations, corr.evaluation.residual,
-                                      ds, turn, not smooth_turn), rejected, failure)
+                                      ds, turn, not smooth_turn, corr.relaxed), rejected,
+                            failure)
                 previous_turn = turn
                 failure = (f"the tangent turned by {turn:.3g} rad > max_angle", False)
             rejected += 1
@@ -286,15 +304,19 @@ class Continuation:
             factor = min(factor, 1.0)
         t = secant if acc.tangent is None else acc.tangent.t
         x, lam = system.from_y(acc.y)
+        largest = self.max_step
+        if self.relative_step:
+            largest *= max(1.0, float(np.max(np.abs(acc.y[:-1]), initial=0.0)))
         new = dataclasses.replace(
             state, x=x, lam=lam, tangent=t, predictor=secant if use_secant else t,
-            step_size=min(self.max_step, max(self.min_step, acc.ds * factor)),
+            step_size=min(largest, max(self.min_step, acc.ds * factor)),
             point=state.point + 1, iterations=acc.iterations, last_step=acc.ds,
             smooth=not use_secant, det_sign=0 if acc.tangent is None else acc.tangent.det_sign,
             log_det=math.nan if acc.tangent is None else acc.tangent.log_det,
             residual=acc.residual,
             counters=state.counters.plus(stats, rejected=rejected, secant=int(use_secant),
-                                         point_iterations=acc.iterations))
+                                         point_iterations=acc.iterations,
+                                         relaxed=int(acc.relaxed)))
         if self.detect_loops and state.point >= 1 and _closes(state, y0, acc.y):
             return dataclasses.replace(new, finished=True, reason="closed loop")
         return new

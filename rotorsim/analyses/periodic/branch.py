@@ -35,6 +35,12 @@ from rotorsim.solvers.stats import Stats
 
 WHERE = "periodic"
 
+STALL_TOL = 1e-7
+"""Scaled residual (force imbalance relative to the typical force) at which a stalled
+corrector is accepted (:class:`~rotorsim.solvers.continuation.Continuation` ``stall_tol``):
+rolling elements with contact damping make the HB residual non-Lipschitz where a sample
+meets the contact onset; 1e-7 is far below the truncation error of any practical ``H``."""
+
 
 @dataclass(frozen=True)
 class Stepping:
@@ -66,7 +72,8 @@ class Stepping:
         return Continuation(initial_step=first, max_step=self.max_step,
                             min_step=min(1e-6, first), max_points=self.max_points,
                             tol=self.tol, x_scale=tuple(x_scale), r_scale="auto",
-                            lam_scale=span, lam_min=lo, lam_max=hi, direction=direction)
+                            lam_scale=span, lam_min=lo, lam_max=hi, direction=direction,
+                            relative_step=True, stall_tol=max(self.tol, STALL_TOL))
 
 
 def unknown_scales(system: RotorSystem, rp: RotorPeriodicProblem, residual: HBResidual,

@@ -86,7 +86,7 @@ PARAMETERS = ("speed", "frequency")
 
 
 DEFAULTS = PeriodicDefaults(
-    continuation=ContinuationOptions(max_step=0.02, max_points=500),
+    continuation=ContinuationOptions(max_step=0.05, max_points=500),
     stability=StabilityOptions(tol=DEFAULT_TOL), checkpoint=Checkpointing(every=25),
     unused={"excitation": ("forces",),
             "output": ("every", "times", "rolling_elements", "velocities", "reducers",
