@@ -125,7 +125,8 @@ def switch_branch(model: Any, result: PeriodicResult,
         A branch of :func:`~rotorsim.analyses.periodic.periodic.periodic`.
     bifurcation : PeriodicBifurcation or int
         One of ``result.bifurcations`` (or its index), of kind "period_doubling" or
-        "branch_point".
+        "branch_point"; a record of ``result.unresolved`` is accepted too (the singular
+        values in ``options["switched_from"]`` then say whether a bifurcation is there).
     stop : float
         End of the new branch in the result's parameter [rad/s] (it may also end on the
         far end of ``result``'s range, then it is not OK and says so).

@@ -90,17 +90,27 @@ def period_one():
                        **{**COMMON, "nodes": None})
 
 
+def doubling(result: rs.PeriodicResult) -> rs.PeriodicBifurcation:
+    """The period doubling of the branch: confirmed, or left unresolved by the screen of
+    spurious sign changes (on this coarse branch, 13 points over 100 rad/s, its
+    multiplier moves from -0.98 to -1.03 between two points: a genuine, smooth doubling,
+    which the switch confirms by the singular odd block)."""
+    [pd] = [b for b in (*result.bifurcations, *result.unresolved)
+            if b.kind == "period_doubling"]
+    return pd
+
+
 @pytest.fixture(scope="module")
 def period_two(period_one):
-    return rs.switch_branch(rotor(), period_one, period_one.bifurcations[0], stop=1250.0,
+    return rs.switch_branch(rotor(), period_one, doubling(period_one), stop=1250.0,
                             harmonics=8, stability="hsu",
                             continuation=rs.ContinuationOptions(max_step=0.1))
 
 
 def test_period_two_branch_from_a_rotor_period_doubling(period_one, period_two):
     res, two = period_one, period_two
-    assert [b.kind for b in res.bifurcations] == ["period_doubling"]
-    pd = res.bifurcations[0]
+    pd = doubling(res)
+    assert all(b.kind == "period_doubling" for b in (*res.bifurcations, *res.unresolved))
     assert two.status.name == "OK" and two.parameter[-1] == pytest.approx(1250.0)
     assert two.harmonics == 8 and two.samples == 2 * res.samples
     assert np.allclose(two.fundamental, two.parameter / 2)      # omega / 2
@@ -223,7 +233,7 @@ def test_second_branch_through_a_rotor_branch_point():
 def test_bad_switch_requests_are_refused(period_one):
     with pytest.raises(ModelError, match="not an index"):
         rs.switch_branch(rotor(), period_one, 5, stop=1250.0)
-    fold = dataclasses.replace(period_one.bifurcations[0], kind="fold")
+    fold = dataclasses.replace(doubling(period_one), kind="fold")
     with pytest.raises(ModelError, match="no second branch"):
         rs.switch_branch(rotor(), period_one, fold, stop=1250.0)
     with pytest.raises(ModelError, match="unknown dof"):
