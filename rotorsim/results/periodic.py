@@ -54,6 +54,37 @@ class PeriodicBifurcation:
 
 
 @dataclass(frozen=True, eq=False)
+class PeriodicPeak:
+    """An amplitude extremum located on a periodic branch (``periodic(..., peaks=...)``).
+
+    Attributes
+    ----------
+    node : int
+    dof : str
+        "ux" ... "rz" (``max |q(t)|`` of that DOF), or "orbit" (largest radius of the
+        node's ``(ux, uy)`` orbit).
+    kind : str
+        "max" (a peak) or "min".
+    parameter : float
+        Parameter at the extremum [rad/s].
+    amplitude : float
+        The amplitude there [m, rad].
+    index : int
+        It lies between branch points ``index`` and ``index + 1``.
+    located : bool
+        True when located to the tolerance (1e-10 in scaled arclength).
+    """
+
+    node: int
+    dof: str
+    kind: str
+    parameter: float
+    amplitude: float
+    index: int
+    located: bool
+
+
+@dataclass(frozen=True, eq=False)
 class PeriodicResult(KeptDofs):
     """A branch of periodic responses with their stability and bifurcations.
 
@@ -104,6 +135,8 @@ class PeriodicResult(KeptDofs):
     dof_map : DofMap
     nodes_pos : array (n_nodes,)
         Axial node positions [m].
+    peaks : tuple of PeriodicPeak
+        Amplitude extrema located on request (``peaks=`` of ``periodic``).
     options, stats, status, reason, summary
         Options used (JSON-able), cost counters (points, residual evaluations,
         factorisations, Newton iterations, rejected steps, Floquet time, wall time), status
@@ -143,6 +176,7 @@ class PeriodicResult(KeptDofs):
     reason: str = ""
     summary: dict[str, Any] = field(default_factory=dict)
     unresolved: tuple[PeriodicBifurcation, ...] = ()
+    peaks: tuple[PeriodicPeak, ...] = ()
 
     def __len__(self) -> int:
         return int(self.parameter.size)

@@ -202,8 +202,14 @@ class Continuation:
         return CorrectorOptions(self.tol, self.max_iter, self.max_backtracks,
                                 stall_tol=self.stall_tol)
 
-    def init(self, residual: ResidualCallback, x0: ArrayLike, lam0: float) -> ContinuationState:
+    def init(self, residual: ResidualCallback, x0: ArrayLike, lam0: float, *,
+             orientation: ArrayLike | None = None) -> ContinuationState:
         """Correct ``x0`` at fixed ``lam0`` and compute the first tangent.
+
+        The tangent points along ``direction`` in ``lam``; with ``orientation``, a vector
+        ``(dx (m,), dlam)`` in the units of ``(x, lam)``, it points along ``orientation``
+        instead (its scaled dot product with the tangent is positive): a branch leaving a
+        bifurcation point away from it, whichever way it turns in ``lam``.
 
         Raises
         ------
@@ -236,6 +242,8 @@ class Continuation:
                                    "Jacobian is singular", "continuation", step=0)
         flip = self.direction if abs(tan.t[-1]) < 1e-12 else \
             self.direction * (1 if tan.t[-1] > 0 else -1)
+        if orientation is not None:
+            flip = 1 if float(tan.t @ _scaled_direction(system, orientation)) >= 0 else -1
         t = flip * tan.t
         xc, lam = system.from_y(corr.y)
         return ContinuationState(
@@ -379,6 +387,16 @@ class Continuation:
         new = self._accept(system, state, y0, landed, stats, rejected)
         # exactly on the bound (the constraint holds to tol; the bound itself is exact)
         return dataclasses.replace(new, lam=float(bound), finished=True, reason=reason)
+
+
+def _scaled_direction(system: ScaledSystem, orientation: ArrayLike) -> FloatArray:
+    """``orientation`` ``(dx, dlam)`` (m + 1,) in scaled unknowns (ModelError if it is not
+    a finite vector of that size)."""
+    d = np.asarray(orientation, dtype=float).reshape(-1)
+    if d.shape != (system.m + 1,) or not np.all(np.isfinite(d)):
+        raise ModelError(f"orientation must be {system.m + 1} finite numbers (dx, dlam), got "
+                         f"shape {d.shape}", "continuation")
+    return np.concatenate([d[:-1] / system.x_scale, [d[-1] / system.lam_scale]])
 
 
 def _angle(a: FloatArray, b: FloatArray) -> float:

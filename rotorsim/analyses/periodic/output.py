@@ -206,7 +206,7 @@ def periodic_result(system: RotorSystem, rp: RotorPeriodicProblem, recovery: Rec
         parameter=lam if frequency else speed, parameter_name="frequency" if frequency
         else "speed", speed=speed, fundamental=lam, order=0.0 if frequency else plan.order,
         harmonics=residual.harmonics, samples=residual.samples, dofs=recovery.dofs,
-        **branch_arrays(recovery, branch), multipliers=multipliers,
+        **branch_arrays(recovery, branch), peaks=(), multipliers=multipliers,
         stability_method="none" if sm is None else sm.method,
         stability_tol=DEFAULT_TOL if sm is None else sm.tol,
         bifurcations=bifurcation_records(review.events, recovery, to_parameter, sm),

@@ -53,6 +53,7 @@ from rotorsim.analyses.periodic.branch import start_branch
 from rotorsim.analyses.periodic.excitation import ExcitationPlan, HarmonicBase, plan_excitation
 from rotorsim.analyses.periodic.folds import ParameterMap
 from rotorsim.analyses.periodic.output import Recovery, kept_dofs, periodic_result
+from rotorsim.analyses.periodic.peaks import peak_columns, peak_records
 from rotorsim.analyses.periodic.problem import (
     RotorPeriodicProblem,
     build_problem,
@@ -114,6 +115,7 @@ def periodic(
     checkpoint: str | os.PathLike[str] | Checkpointing | None = None,
     fold_map: bool | ParameterMap = False,
     x0: ArrayLike | None = None,
+    peaks: Sequence[tuple[int, str]] = (),
 ) -> PeriodicResult:
     """Branch of periodic responses from ``start`` to ``stop`` (module docstring).
 
@@ -186,6 +188,10 @@ def periodic(
         Default: the rolling-bearing statics of ``static`` (robust from the centred position
         inside a clearance), or the centred start for other nonlinear elements; Newton's
         method then falls back to the energy minimum when it fails.
+    peaks : sequence of (node, dof)
+        Locate the amplitude peaks along the branch of each DOF (``"ux"`` ... ``"rz"``:
+        ``max |q(t)|``) or node orbit (``"orbit"``: largest radius of ``(ux, uy)``) into
+        ``result.peaks`` (:mod:`~.peaks`); none by default (no cost).
 
     Returns
     -------
@@ -237,6 +243,7 @@ def periodic(
                        loads=list(e.loads), base=opts.base, stats=stats, x0=q0)
     residual = make_residual(rp.problem, h.count, samples=h.samples,
                              condense=h.condense and rp.problem.k > 0)
+    peak_columns(system, rp, peaks, f"{WHERE}.peaks")
     recovery = Recovery(residual, *kept_dofs(system, rp, opts.output.nodes))
     to_lam = _lam_map(plan, frequency)
     stepping = opts.stepping()
@@ -259,6 +266,10 @@ def periodic(
     if fold_map is not False and result.bifurcations:
         result = _fold_map(result, residual, rp, system, branch, plan, frequency, fold_map,
                            h.count, h.samples)
+    if peaks:
+        to_parameter = (lambda v: v) if frequency else (lambda v: v / plan.order)
+        result = dataclasses.replace(result, peaks=peak_records(
+            residual, branch, system, rp, peaks, to_parameter, f"{WHERE}.peaks"))
     return result
 
 
