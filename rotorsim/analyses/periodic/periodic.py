@@ -156,8 +156,9 @@ def periodic(
         Shaft angle ``phi0`` at ``t = 0`` [rad] (and the frozen angle).
     continuation : ContinuationOptions, optional
         First and largest scaled arclength step (the parameter range is 1, each DOF's
-        scale is its typical static displacement; default ``max_step=0.02``), points
-        (default 500), corrector tolerance on the scaled residual, or the full solver
+        scale is its typical static displacement; default ``max_step=0.05``, times the
+        size of the response where it grows beyond that scale), points (default 500),
+        corrector tolerance on the scaled residual, or the full solver
         options (their bounds and direction are replaced by ``start`` and ``stop``, their
         scales kept when not the default 1).
     stability : {"auto", "hill", "hsu", "variational"}, None or StabilityOptions
