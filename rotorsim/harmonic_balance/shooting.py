@@ -148,8 +148,8 @@ def shooting_multipliers(problem: HBProblem, y0: ArrayLike, omega: float,
 
 
 def shoot(problem: HBProblem, omega: float, y0: ArrayLike, param: float = 0.0, *,
-          tol: float = 1e-8, max_iter: int = 12, rtol: float = SHOOTING_RTOL
-          ) -> ShootingSolution:
+          tol: float = 1e-8, max_iter: int = 12, rtol: float = SHOOTING_RTOL,
+          max_steps: int = 200_000) -> ShootingSolution:
     """Periodic solution of a forced problem by shooting from ``y0``.
 
     Newton on ``R(y0) = y(T; y0) - y0`` with ``dR/dy0 = Phi(T) - I``; converged when
@@ -168,12 +168,15 @@ def shoot(problem: HBProblem, omega: float, y0: ArrayLike, param: float = 0.0, *
     tol, max_iter : float, int
     rtol : float
         DOP853 tolerance.
+    max_steps : int
+        DOP853 steps per period before giving up (a very stiff problem).
 
     Raises
     ------
     ConvergenceError
         When Newton does not converge in ``max_iter`` iterations (iteration and residual
-        in the message) or ``Phi - I`` is singular (a fold).
+        in the message), ``Phi - I`` is singular (a fold) or a period needs more than
+        ``max_steps`` steps.
 
     Examples
     --------
@@ -199,7 +202,7 @@ def shoot(problem: HBProblem, omega: float, y0: ArrayLike, param: float = 0.0, *
     totals = {"periods": 0.0, "steps": 0.0, "rhs_evaluations": 0.0}
     error = math.inf
     for iteration in range(max_iter + 1):
-        pm = flow.period(y, rtol=rtol)
+        pm = flow.period(y, rtol=rtol, max_steps=max_steps)
         for key in ("steps", "rhs_evaluations"):
             totals[key] += pm.stats[key]
         totals["periods"] += 1.0

@@ -42,7 +42,6 @@ from dataclasses import dataclass
 from functools import cached_property
 
 import numpy as np
-from scipy.integrate import DOP853
 
 from rotorsim.errors import ConvergenceError, ModelError
 from rotorsim.harmonic_balance.fourier import AFT, FloatArray
@@ -157,6 +156,8 @@ class FirstOrderFlow:
         max_steps : int
             Accepted steps before :class:`~rotorsim.errors.ConvergenceError`.
         """
+        from scipy.integrate import DOP853  # scipy.integrate only when shooting runs
+
         n, w = self.problem.n, self.omega
         T = 2.0 * math.pi / w
         y0 = np.asarray(y0, dtype=float).reshape(-1)

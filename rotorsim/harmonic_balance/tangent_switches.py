@@ -12,9 +12,11 @@ period) their results are step-quantised. This module finds those jumps:
    and ``C_t``);
 2. *jump test*: each candidate is refined :data:`TEST_LEVELS` times, keeping each time the
    eighth of the interval with the largest change. A jump keeps its full size under
-   refinement; a continuous tangent loses it: by ``8^-L`` if smooth, by ``8^(-L/2)`` for a
-   Hertzian onset ``k ~ sqrt(delta)``. A candidate whose change after ``L = 3`` levels (an
-   interval 512 times shorter) is still at least :data:`JUMP_KEEP` of the original is a jump;
+   refinement; a continuous tangent loses it: by ``8^-L`` if smooth, by ``8^(-L p)`` for a
+   contact onset ``k ~ delta^p`` (``p = 1/2`` Hertz point contact, ``p = 1/9`` a roller's
+   line contact with exponent 10/9). A candidate whose change after ``L = 6`` levels (an
+   interval 262144 times shorter; ``p = 1/9`` keeps 25 %) is still at least
+   :data:`JUMP_KEEP` of the original is a jump;
 3. *location*: the surviving intervals are refined further until shorter than
    :data:`PHASE_TOL` [rad].
 
@@ -33,10 +35,10 @@ from rotorsim.harmonic_balance.fourier import FloatArray
 CANDIDATE = 0.1
 """A grid interval whose tangent change exceeds this fraction of the tangent's range is
 tested for a jump."""
-JUMP_KEEP = 0.5
-"""Fraction of its change a jump keeps after :data:`TEST_LEVELS` refinements (a Hertzian
-onset keeps ``8^-1.5 = 4.4 %``)."""
-TEST_LEVELS = 3
+JUMP_KEEP = 0.75
+"""Least fraction of its change a jump keeps after :data:`TEST_LEVELS` refinements (a true
+jump keeps about 100 %; a line-contact onset ``delta^(1/9)`` keeps ``8^(-6/9) = 25 %``)."""
+TEST_LEVELS = 6
 """Refinements (by 8) before the jump test."""
 PHASE_TOL = 1e-12
 """Width [rad] to which a jump's phase is located."""
@@ -112,12 +114,14 @@ def find_jumps(sampler: TangentSampler, tau: FloatArray, values: FloatArray | No
         return TangentJumps(empty, empty, 0, 0)
     left = tau[idx]
     right = np.where(idx + 1 < tau.size, tau[(idx + 1) % tau.size], tau[0] + 2.0 * np.pi)
-    evaluations = 0
-    for _ in range(TEST_LEVELS):
+    evaluations, target = 0, JUMP_KEEP * change[idx]
+    for _ in range(TEST_LEVELS):      # a jump's interval never changes by less than the jump
         left, right, size, count = _refine(sampler, left, right, scale)
         evaluations += count
-    keep = size >= JUMP_KEEP * change[idx]
-    left, right = left[keep], right[keep]
+        keep = size >= target
+        left, right, target = left[keep], right[keep], target[keep]
+        if not left.size:
+            break
     while left.size and np.max(right - left) > PHASE_TOL:
         left, right, size, count = _refine(sampler, left, right, scale)
         evaluations += count

@@ -104,6 +104,13 @@ class PeriodicResult(KeptDofs):
     dof_map : DofMap
     nodes_pos : array (n_nodes,)
         Axial node positions [m].
+    stability_checks : dict of arrays (P,)
+        Per-point checks of the multipliers (``analyses.periodic.stability_checks``):
+        ``method`` (the method that gave the stored multipliers, "shooting" where a check
+        failed and shooting replaced them), ``passed`` (the first method passed the
+        Liouville and tangent-jump checks), ``liouville_error``, ``tangent_jumps``,
+        ``fallback_liouville_error``; empty without stability analysis or in files written
+        before these checks existed.
     options, stats, status, reason, summary
         Options used (JSON-able), cost counters (points, residual evaluations,
         factorisations, Newton iterations, rejected steps, Floquet time, wall time), status
@@ -136,6 +143,7 @@ class PeriodicResult(KeptDofs):
     status: Status = Status.OK
     reason: str = ""
     summary: dict[str, Any] = field(default_factory=dict)
+    stability_checks: Any = field(default_factory=dict)   # dict[str, array]
 
     def __len__(self) -> int:
         return int(self.parameter.size)
