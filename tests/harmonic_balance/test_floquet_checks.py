@@ -13,6 +13,7 @@ import math
 
 import numpy as np
 import pytest
+from multiplier_matching import matched
 from nlvib_unilateral import OMEGA, ORBIT_GUESSES, hb_orbit, problem
 
 from rotorsim.analyses.periodic.stability import stability_model
@@ -100,3 +101,28 @@ def test_the_stability_model_falls_back_to_shooting_and_records_it(method):
     assert not record.passed and record.tangent_jumps == 2
     assert record.fallback_liouville_error < 1e-9
     assert fl.critical.real == pytest.approx(-1.18332, abs=1e-4)   # test_shooting.py
+
+
+def test_shooting_on_a_complete_craig_bampton_model_equals_shooting_on_the_full_one():
+    """The reduced model carries the excitation ``T^T f`` (for shooting); with all
+    fixed-interface modes kept the basis is complete, so the orbit and its multipliers are
+    those of the full model (a change of coordinates) up to the shooting tolerance."""
+    from rotorsim.analyses.periodic.stability import craig_bampton
+    from rotorsim.harmonic_balance.shooting import hb_state
+
+    full = problem()
+    M3, K3 = np.eye(3), np.array([[1.0, -1.0, 0.0], [-1.0, 2.0, -1.0], [0.0, -1.0, 2.0]])
+    exc = np.zeros((3, 3))
+    exc[1, 1] = 0.1
+    pb = HBProblem(M3, K3, 0.03 * K3, nl_dofs=[0], force=full.force, excitation=exc)
+    res = make_residual(pb, 21, samples=1024)
+    sol = solve_point(res, 0.4)
+    assert sol.time_response()[1][:, 0].max() > 1.0                 # in contact
+    reduced, kept = craig_bampton(pb, 2, None)
+    assert kept == 2
+    red_res = make_residual(reduced, 21, samples=1024)
+    shot_full = shoot(pb, 0.4, hb_state(res, sol.x, 0.4))
+    shot_red = shoot(reduced, 0.4, hb_state(red_res, sol.x, 0.4))
+    mu = shot_full.floquet.multipliers
+    assert np.abs(matched(shot_red.floquet.multipliers, mu) - mu).max() < 1e-7
+    assert shot_red.state[0] == pytest.approx(shot_full.state[0], abs=1e-9)  # q_1 physical
