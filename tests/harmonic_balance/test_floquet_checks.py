@@ -124,5 +124,7 @@ def test_shooting_on_a_complete_craig_bampton_model_equals_shooting_on_the_full_
     shot_full = shoot(pb, 0.4, hb_state(res, sol.x, 0.4))
     shot_red = shoot(reduced, 0.4, hb_state(red_res, sol.x, 0.4))
     mu = shot_full.floquet.multipliers
-    assert np.abs(matched(shot_red.floquet.multipliers, mu) - mu).max() < 1e-7
+    # two DOP853 runs at rtol 1e-10 in other coordinates: 2e-8 of max |mu| = 4.41 measured
+    assert np.abs(matched(shot_red.floquet.multipliers, mu) - mu).max() \
+        < 1e-7 * np.abs(mu).max()
     assert shot_red.state[0] == pytest.approx(shot_full.state[0], abs=1e-9)  # q_1 physical
