@@ -30,7 +30,14 @@ formed by pairwise batched products (``log2 N`` numpy calls).
 :func:`variational` -- integrates the ``2n`` variational solutions over one period with a
 Newmark stepper of :mod:`rotorsim.time_integration` as one block-diagonal problem of size
 ``2 n^2`` (the tangents are re-evaluated at each step from the Fourier series): second
-order in the step, intended for small ``n`` as an independent check.
+order in the step, intended for small ``n`` as an independent check. Jumps of the tangent
+in time (contacts) are located first and the steps are aligned with them; before that fix
+the contact duration was rounded to whole steps, so two different contacting orbits whose
+contact lasted the same number of steps got identical multipliers (issue 16).
+
+All three use the tangents along the *harmonic-balance* orbit. For a non-smooth force
+that orbit carries the Gibbs ripple of its truncated series; the monodromy of the real
+trajectory is :mod:`~rotorsim.harmonic_balance.shooting`.
 
 References
 ----------
@@ -55,6 +62,7 @@ from rotorsim.harmonic_balance.floquet import FloquetResult, floquet_result
 from rotorsim.harmonic_balance.fourier import AFT, FloatArray, derivative
 from rotorsim.harmonic_balance.problem import HBProblem, as_dense
 from rotorsim.harmonic_balance.residual import HBResidual
+from rotorsim.harmonic_balance.tangent_switches import TangentJumps, find_jumps
 from rotorsim.solvers.linear import DENSE_THRESHOLD, factorize
 from rotorsim.time_integration.integrate import integrate
 from rotorsim.time_integration.newmark import Newmark
@@ -99,6 +107,18 @@ class PeriodicTangents:
                                     self.param)
         assert ev.dfdq is not None
         return ev.dfdq, ev.dfdv
+
+    def entries(self, tau: FloatArray) -> FloatArray:
+        """``K_t`` and ``C_t`` at the phases ``tau`` flattened to (S, k^2) or (S, 2 k^2)."""
+        Kt, Ct = self.at(np.asarray(tau, dtype=float))
+        flat = Kt.reshape(Kt.shape[0], -1)
+        return flat if Ct is None else np.hstack((flat, Ct.reshape(Ct.shape[0], -1)))
+
+    def jumps(self, samples: int) -> TangentJumps:
+        """Jumps of the tangents in time (contacts closing and opening), searched on
+        ``samples`` equal steps (:func:`~.tangent_switches.find_jumps`)."""
+        tau = 2.0 * np.pi * np.arange(samples) / samples
+        return find_jumps(self.entries, tau)
 
 
 def hsu(residual: HBResidual, x: ArrayLike, omega: float, param: float = 0.0, *,
@@ -206,13 +226,19 @@ def variational(residual: HBResidual, x: ArrayLike, omega: float, param: float =
                 autonomous: bool = False) -> FloquetResult:
     """Floquet multipliers by integrating the variational equations over one period.
 
+    Where the tangents jump in time (a contact closing or opening), the period is cut at
+    the jumps (located to 1e-12 rad by :mod:`~.tangent_switches`) and each smooth piece
+    gets its own whole number of steps (``steps`` shared in proportion to the lengths, at
+    least one each), with the tangent taken inside the piece: the contact duration is then
+    exact instead of rounded to a whole number of steps.
+
     Parameters
     ----------
     residual : HBResidual
     x : array (residual.size,)
         A solution at ``omega`` [rad/s] and ``param``.
     steps : int
-        Fixed steps per period.
+        Steps per period (fixed; about ``steps`` with jumps).
     stepper : Newmark, optional
         Default: average acceleration (second order, no numerical damping).
     autonomous : bool
@@ -233,6 +259,10 @@ def variational(residual: HBResidual, x: ArrayLike, omega: float, param: float =
     n, copies = pb.n, 2 * pb.n
     tangents = PeriodicTangents.of(residual, x, omega, param)
     dense = copies * n <= DENSE_THRESHOLD
+    T = 2.0 * math.pi / omega
+    jumps = tangents.jumps(max(int(steps), residual.samples)) if pb.force is not None \
+        else None
+    cuts = np.zeros(0) if jumps is None else jumps.phases / omega
 
     def blocks(A: object) -> Any:
         """``I_2n (x) A``: one copy of ``A`` per variational solution."""
@@ -242,25 +272,45 @@ def variational(residual: HBResidual, x: ArrayLike, omega: float, param: float =
             return out.reshape(copies * n, copies * n)
         return sp.kron(sp.identity(copies, format="csr"), sp.csr_matrix(A), format="csr")
 
-    def restoring(q: FloatArray, v: FloatArray, t: float) -> tuple[FloatArray, Any, Any]:
-        Kt, Ct = tangents.at(np.array([omega * t]))
-        Kf, Cf = _embed(Kt[0], pb), _embed(None if Ct is None else Ct[0], pb)
-        r = q.reshape(copies, n) @ Kf.T + v.reshape(copies, n) @ Cf.T
-        return r.reshape(-1), blocks(Kf), blocks(Cf)
+    def restoring_on(a: float, b: float) -> Any:
+        """Restoring force with the tangent taken inside ``[a, b]`` (one-sided at jumps)."""
+        inset = 0.0 if cuts.size == 0 else min(1e-9 * T, 0.25 * (b - a))
 
-    problem = SecondOrderProblem(
-        mass=blocks(pb.mass), stiffness=blocks(pb.stiffness),
-        damping=blocks(pb.damping_matrix(omega)),
-        restoring=restoring if pb.force is not None else None)
-    q0 = np.vstack((np.eye(n), np.zeros((n, n)))).reshape(-1)
-    v0 = np.vstack((np.zeros((n, n)), np.eye(n))).reshape(-1)
-    T = 2.0 * math.pi / omega
-    res = integrate(problem, stepper or Newmark.average_acceleration(), (0.0, T), q0, v0,
-                    dt=T / steps, output=OutputSpec(every=steps, velocities=False))
-    Phi = np.vstack((res.state.q.reshape(copies, n).T, res.state.v.reshape(copies, n).T))
-    stats = {**res.stats, "wall_time": time.perf_counter() - clock}
+        def restoring(q: FloatArray, v: FloatArray, t: float) -> tuple[FloatArray, Any, Any]:
+            t_in = min(max(t, a + inset), b - inset)
+            Kt, Ct = tangents.at(np.array([omega * t_in]))
+            Kf, Cf = _embed(Kt[0], pb), _embed(None if Ct is None else Ct[0], pb)
+            r = q.reshape(copies, n) @ Kf.T + v.reshape(copies, n) @ Cf.T
+            return r.reshape(-1), blocks(Kf), blocks(Cf)
+        return restoring
+
+    matrices = {"mass": blocks(pb.mass), "stiffness": blocks(pb.stiffness),
+                "damping": blocks(pb.damping_matrix(omega))}
+    q = np.vstack((np.eye(n), np.zeros((n, n)))).reshape(-1)
+    v = np.vstack((np.zeros((n, n)), np.eye(n))).reshape(-1)
+    stats: dict[str, float] = {}
+    for a, b, count in _pieces(T, cuts, int(steps)):
+        problem = SecondOrderProblem(**matrices, restoring=restoring_on(a, b)
+                                     if pb.force is not None else None)
+        res = integrate(problem, stepper or Newmark.average_acceleration(), (a, b), q, v,
+                        dt=(b - a) / count, output=OutputSpec(every=count, velocities=False))
+        q, v = res.state.q, res.state.v
+        for key, value in res.stats.items():
+            stats[key] = stats.get(key, 0.0) + float(value)
+    Phi = np.vstack((q.reshape(copies, n).T, v.reshape(copies, n).T))
+    stats.update(tangent_jumps=float(cuts.size), wall_time=time.perf_counter() - clock)
     return floquet_result(np.linalg.eigvals(Phi), omega, "variational", stats,
                           autonomous=autonomous)
+
+
+def _pieces(T: float, cuts: FloatArray, steps: int) -> list[tuple[float, float, int]]:
+    """``(start, end, steps)`` of the smooth pieces of ``[0, T]`` between the ``cuts`` [s]:
+    ``steps`` shared in proportion to the lengths, at least one per piece."""
+    edges = np.unique(np.concatenate(([0.0], cuts[(cuts > 0) & (cuts < T)], [T])))
+    lengths = np.diff(edges)
+    counts = np.maximum(1, np.rint(steps * lengths / T)).astype(int)
+    return [(float(a), float(b), int(c)) for a, b, c in zip(edges[:-1], edges[1:], counts,
+                                                             strict=True)]
 
 
 def _embed(T: FloatArray | None, problem: HBProblem) -> FloatArray:

@@ -137,6 +137,13 @@ class PeriodicResult(KeptDofs):
         Axial node positions [m].
     peaks : tuple of PeriodicPeak
         Amplitude extrema located on request (``peaks=`` of ``periodic``).
+    stability_checks : dict of arrays (P,)
+        Per-point checks of the multipliers (``analyses.periodic.stability_checks``):
+        ``method`` (the method that gave the stored multipliers, "shooting" where a check
+        failed and shooting replaced them), ``passed`` (the first method passed the
+        Liouville and tangent-jump checks), ``liouville_error``, ``tangent_jumps``,
+        ``fallback_liouville_error``; empty without stability analysis or in files written
+        before these checks existed.
     options, stats, status, reason, summary
         Options used (JSON-able), cost counters (points, residual evaluations,
         factorisations, Newton iterations, rejected steps, Floquet time, wall time), status
@@ -177,6 +184,7 @@ class PeriodicResult(KeptDofs):
     summary: dict[str, Any] = field(default_factory=dict)
     unresolved: tuple[PeriodicBifurcation, ...] = ()
     peaks: tuple[PeriodicPeak, ...] = ()
+    stability_checks: Any = field(default_factory=dict)   # dict[str, array]
 
     def __len__(self) -> int:
         return int(self.parameter.size)

@@ -22,6 +22,7 @@ from rotorsim.analyses.periodic.events import FloquetModel
 from rotorsim.analyses.periodic.excitation import ExcitationPlan
 from rotorsim.analyses.periodic.problem import RotorPeriodicProblem
 from rotorsim.analyses.periodic.stability import DEFAULT_TOL, StabilityModel
+from rotorsim.analyses.periodic.stability_checks import check_arrays
 from rotorsim.assembly.system import RotorSystem
 from rotorsim.elements.base import DOFS_PER_NODE, FloatArray
 from rotorsim.errors import ConvergenceError, ModelError
@@ -217,4 +218,5 @@ def periodic_result(system: RotorSystem, rp: RotorPeriodicProblem, recovery: Rec
         nodes_pos=np.asarray(system.nodes_pos, dtype=float),
         options={**options, "stability_model_modes": None if sm is None else sm.modes},
         stats=run_stats, status=branch.status, reason=branch.reason,
-        summary=dict(system.summary))
+        summary=dict(system.summary),
+        stability_checks=check_arrays(sm, branch.x, branch.lam))

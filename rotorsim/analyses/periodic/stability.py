@@ -16,6 +16,10 @@ respond quasi-statically). ``modes=None`` keeps the full system.
 ``method="auto"``: Hill on the (full or reduced) model when its Hill pencil
 ``2 (2H + 1) n_s`` has at most :data:`HILL_LIMIT` rows, else Hsu with ``N`` steps per period.
 
+Every point's multipliers are checked (Liouville's formula and jumps of the force tangent,
+:mod:`rotorsim.harmonic_balance.floquet_check`); where a check fails the point falls back to
+shooting on the stability model, and :meth:`StabilityModel.check` records what was done.
+
 A solution counts as stable when ``max |mu| < 1 + tol``: an undamped mode (a shaft mode
 with no damping, the free rotor of seed 002) has ``|mu| = 1`` up to round-off (Hill) or
 the ``O(1/N^2)`` error of Hsu's method, and counts as (neutrally) stable.
@@ -26,16 +30,20 @@ from __future__ import annotations
 import math
 from collections.abc import Callable
 from dataclasses import dataclass, field
+from functools import cached_property
 from typing import Any
 
 import numpy as np
 import scipy.linalg as sl
 import scipy.sparse as sp
 
+from rotorsim.analyses.periodic.stability_checks import projected_excitation
 from rotorsim.assembly.reduction import fixed_interface_modes
 from rotorsim.elements.base import FloatArray
 from rotorsim.errors import ConvergenceError, ModelError
 from rotorsim.harmonic_balance.floquet import FloquetResult, hill
+from rotorsim.harmonic_balance.floquet_check import FloquetCheck, checked_floquet
+from rotorsim.harmonic_balance.liouville import TraceModel
 from rotorsim.harmonic_balance.memory import check_hill_memory
 from rotorsim.harmonic_balance.monodromy import hsu, variational
 from rotorsim.harmonic_balance.problem import HBProblem, as_dense
@@ -79,6 +87,8 @@ class StabilityModel:
     tol: float
     _cache: dict[tuple[bytes, float, float], FloquetResult] = field(default_factory=dict,
                                                              init=False, repr=False)
+    _checks: dict[tuple[bytes, float, float], FloquetCheck] = field(
+        default_factory=dict, init=False, repr=False)
 
     @property
     def size(self) -> int:
@@ -92,8 +102,20 @@ class StabilityModel:
             y = self._unknowns(np.asarray(x, dtype=float), omega, param)
             methods: dict[str, Callable[..., FloquetResult]] = {
                 "hill": hill, "hsu": hsu, "variational": variational}
-            self._cache[key] = methods[self.method](self.residual, y, omega, param)
+            first = methods[self.method](self.residual, y, omega, param)
+            self._cache[key], self._checks[key] = checked_floquet(
+                self.residual, y, omega, param, first, trace=self._trace)
         return self._cache[key]
+
+    def check(self, x: FloatArray, omega: float, param: float = 0.0) -> FloquetCheck:
+        """Liouville and tangent-jump checks of a branch point, and the method kept."""
+        self.floquet(x, omega, param)
+        return self._checks[(np.asarray(x, dtype=float).tobytes(), float(omega),
+                             float(param))]
+
+    @cached_property
+    def _trace(self) -> TraceModel:
+        return TraceModel(self.residual.problem)
 
     def multipliers(self, x: FloatArray, omega: float) -> FloatArray:
         """``multipliers(x, lam)`` callback of bifurcation detection, with the neutral
@@ -176,8 +198,8 @@ def craig_bampton(problem: HBProblem, modes: int, cutoff: float | None
     """Craig-Bampton reduction keeping the nonlinear DOFs physical (first ``k`` unknowns).
 
     ``modes`` fixed-interface modes, or (``cutoff`` given) those with natural frequency up
-    to ``cutoff`` [rad/s]. Returns the reduced problem (no excitation: it serves the
-    variational equation) and the number of modes kept.
+    to ``cutoff`` [rad/s]. Returns the reduced problem (with the excitation ``T^T f``, for
+    shooting; the variational equation does not use it) and the number of modes kept.
     """
     N, L = problem.nl_dofs, problem.linear_dofs
     k = N.size
@@ -200,7 +222,8 @@ def craig_bampton(problem: HBProblem, modes: int, cutoff: float | None
 
     reduced = HBProblem(project(M), project(K), project(problem.damping),
                         project(problem.gyroscopic), nl_dofs=np.arange(k),
-                        force=problem.force, spin=problem.spin,
+                        force=problem.force, **projected_excitation(problem, T),
+                        spin=problem.spin,
                         spin_ratio=problem.spin_ratio,
                         force_uses_omega=problem.force_uses_omega,
                         param_scale=problem.param_scale)
