@@ -25,8 +25,10 @@ def response_figure(result: Any, dof: int = 0, measure: str = "fundamental",
     else:
         stable = np.asarray(result.stable)
         for flag, style, label in ((True, "-", "stable"), (False, "--", "unstable")):
-            ax.plot(w, np.where(stable == flag, a, np.nan), style, color="tab:blue",
-                    lw=1.2, label=label)
+            on = stable == flag
+            on[1:] |= on[:-1].copy()      # each segment reaches the next point: no gaps
+            ax.plot(w, np.where(on, a, np.nan), style, color="tab:blue", lw=1.2,
+                    label=label)
     seen = set()
     for b in result.bifurcations:
         marker, color = MARKERS.get(b.kind, ("x", "k"))
