@@ -44,6 +44,8 @@ from rotorsim.hb.system import System
 from rotorsim.solvers.continuation import Continuation, continue_branch
 
 STABILITY = ("auto", "hill", "hsu")
+HSU_STEPS = 128
+"""Fewest steps per period of Hsu's method (the HB grid when finer)."""
 HILL_LIMIT = 400
 """Largest ``(2H + 1) n`` for which ``stability="auto"`` uses Hill's method (dense
 eigenproblem of twice that size at every point); Hsu's method above."""
@@ -188,7 +190,14 @@ def frequency_response(system: System, start: float, stop: float, *, harmonics: 
 
 class _Multipliers:
     """Floquet results of the branch points, each computed once (the bifurcation test
-    functions ask again for the same points)."""
+    functions ask again for the same points).
+
+    Hill's exponents are picked by their eigenvectors (mean harmonic index), except at
+    ``H = 1``, where the truncation at +-1 leaves too few harmonics to tell the copies
+    apart and the smallest imaginary parts are taken (on the Duffing middle branch the
+    eigenvector rule picks a stable complex pair there, the other rule the saddle's real
+    multiplier 1.29 that ``H >= 2`` confirms). Hsu's method takes at least
+    ``HSU_STEPS`` steps per period (its error is second order in the step)."""
 
     def __init__(self, residual: HBResidual, method: str | None) -> None:
         self.residual, self.method = residual, method
@@ -197,10 +206,12 @@ class _Multipliers:
     def result(self, x: FloatArray, omega: float) -> FloquetResult:
         key = (float(omega), np.asarray(x).tobytes())
         if key not in self.cache:
+            res = self.residual
             if self.method == "hsu":
-                self.cache[key] = hsu(self.residual, x, omega)
+                self.cache[key] = hsu(res, x, omega, samples=max(res.samples, HSU_STEPS))
             else:
-                self.cache[key] = hill(self.residual, x, omega)
+                self.cache[key] = hill(res, x, omega, selection="imaginary"
+                                       if res.harmonics == 1 else "eigenvector")
         return self.cache[key]
 
     def at(self, x: FloatArray, omega: float) -> Any:

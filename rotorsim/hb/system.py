@@ -33,6 +33,7 @@ from rotorsim.harmonic_balance.problem import HBProblem
 from rotorsim.hb.elements import Element
 
 WHERE = "hb.System"
+MATRICES = ("mass", "stiffness", "damping", "gyroscopic")
 
 
 @dataclass(frozen=True)
@@ -117,7 +118,7 @@ class System:
 
     def __post_init__(self) -> None:
         n = _order(self.mass, "mass")
-        for name in ("mass", "stiffness", "damping", "gyroscopic"):
+        for name in MATRICES:
             value = getattr(self, name)
             if value is not None:
                 object.__setattr__(self, name, _matrix(value, name, n))
@@ -126,6 +127,11 @@ class System:
         for i, element in enumerate(elements):
             _check_element(element, i, n)
         object.__setattr__(self, "elements", elements)
+        if any(sp.issparse(getattr(self, name)) for name in MATRICES):
+            for name in MATRICES:      # all sparse: a dense + sparse sum is an np.matrix
+                value = getattr(self, name)
+                if value is not None:
+                    object.__setattr__(self, name, sp.csr_matrix(value))
         object.__setattr__(self, "forcing", _forcing(self.forcing, n))
         for name in ("spin", "spin_ratio"):
             if not math.isfinite(getattr(self, name)):
