@@ -52,7 +52,9 @@ eigenproblem of twice that size at every point); Hsu's method above."""
 
 
 def discretize(system: System, harmonics: int, samples: int | None = None) -> HBResidual:
-    """The HB residual of ``system``: condensed onto the nonlinear DOFs when there are any.
+    """The HB residual of ``system``: condensed onto the nonlinear DOFs when some DOFs are
+    linear (when all are nonlinear the condensation would only add its per-frequency
+    overhead).
 
     Raises
     ------
@@ -67,8 +69,9 @@ def discretize(system: System, harmonics: int, samples: int | None = None) -> HB
             and top > harmonics:
         raise ModelError(f"forcing at harmonic {top} needs harmonics >= {top}, got "
                          f"{harmonics}", "hb.harmonics")
-    return make_residual(system.problem, harmonics, samples=samples,
-                         condense=system.problem.k > 0)
+    pb = system.problem
+    return make_residual(pb, harmonics, samples=samples,
+                         condense=0 < pb.k < pb.n)
 
 
 def solve(system: System, omega: float, *, harmonics: int = 7, samples: int | None = None,
