@@ -24,7 +24,9 @@ import subprocess
 import sys
 import tempfile
 import time
+from collections.abc import Callable
 from pathlib import Path
+from typing import Any
 
 for _var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
     os.environ.setdefault(_var, "1")
@@ -36,19 +38,20 @@ if str(ROOT) not in sys.path:
 import rotorsim as rs  # noqa: E402
 from examples import nlvib_examples as ex  # noqa: E402
 
-CASES = {
+CASES: dict[str, tuple[Callable[[], rs.hb.System], dict[str, Any]]] = {
     "01 Duffing (H=7, N=29)": (
         lambda: rs.hb.System(1.0, 1.0, 0.05, forcing=[0.18],
                              elements=[rs.hb.CubicSpring(0, k3=0.1)]),
         dict(start=0.5, stop=1.6, harmonics=7, samples=29)),
     "02 2-DOF cubic (H=7, N=29)": (
-        lambda: rs.hb.System(*_chain02(), forcing=[0.11, 0.0],
-                             elements=[rs.hb.CubicSpring(0, k3=1.0),
-                                       rs.hb.CubicSpring(0, k3=0.0042, other=1)]),
+        lambda: _chain_system(ex.chain([1.0, 0.05], [0.002, 0.013, 0.0], [1.0, 0.0453, 0.0]),
+                              [0.11, 0.0], [rs.hb.CubicSpring(0, k3=1.0),
+                                            rs.hb.CubicSpring(0, k3=0.0042, other=1)]),
         dict(start=0.8, stop=1.4, harmonics=7, samples=29)),
     "03 unilateral contact (H=21, N=1024)": (
-        lambda: rs.hb.System(*_chain03(), forcing=[0.0, 0.1],
-                             elements=[rs.hb.UnilateralSpring(0, stiffness=100.0, gap=1.0)]),
+        lambda: _chain_system(ex.chain([1.0, 1.0], [0.0, 0.03, 0.03], [0.0, 1.0, 1.0]),
+                              [0.0, 0.1], [rs.hb.UnilateralSpring(0, stiffness=100.0,
+                                                                  gap=1.0)]),
         dict(start=0.8, stop=0.5, harmonics=21, samples=1024)),
 }
 
@@ -77,14 +80,10 @@ OCTAVE_RUN = (
     "t = toc(t0); printf('NLVIB %d %.6f %.6f\\n', columns(X), t, X(end,end));")
 
 
-def _chain02():
-    M, D, K = ex.chain([1.0, 0.05], [0.002, 0.013, 0.0], [1.0, 0.0453, 0.0])
-    return M, K, D
-
-
-def _chain03():
-    M, D, K = ex.chain([1.0, 1.0], [0.0, 0.03, 0.03], [0.0, 1.0, 1.0])
-    return M, K, D
+def _chain_system(mdk: tuple[Any, ...], forcing: list[float],
+                  elements: list[Any]) -> rs.hb.System:
+    M, D, K = mdk
+    return rs.hb.System(M, K, D, forcing=forcing, elements=elements)
 
 
 def rotorsim_times(repeat: int) -> dict[str, dict[str, float]]:
@@ -92,8 +91,9 @@ def rotorsim_times(repeat: int) -> dict[str, dict[str, float]]:
     out: dict[str, dict[str, float]] = {}
     for name, (make, kw) in CASES.items():
         row: dict[str, float] = {}
-        for label, extra in (("plain", dict(stability=None, bifurcations=False)),
-                             ("stability", {})):
+        options: tuple[tuple[str, dict[str, Any]], ...] = (
+            ("plain", {"stability": None, "bifurcations": False}), ("stability", {}))
+        for label, extra in options:
             if label == "stability" and kw["samples"] > 512:
                 continue        # example 03: events at the contact resonance (issue 16)
             best = float("inf")

@@ -95,10 +95,10 @@ class _Scalar:
     def _check(self, **values: float) -> None:
         """Reject a bad DOF (not an integer, or ``other == dof``) and non-finite values."""
         name = type(self).__name__
-        for key, value in (("dof", self.dof), ("other", self.other)):
-            if value is not None and (isinstance(value, bool)
-                                      or not isinstance(value, int | np.integer)):
-                raise ModelError(f"{key} must be an integer DOF index, got {value!r}", name)
+        for key, index in (("dof", self.dof), ("other", self.other)):
+            if index is not None and (isinstance(index, bool)
+                                      or not isinstance(index, int | np.integer)):
+                raise ModelError(f"{key} must be an integer DOF index, got {index!r}", name)
         if self.other is not None and self.other == self.dof:
             raise ModelError(f"other = dof = {self.dof}: an element needs two different DOFs",
                              name)
@@ -178,7 +178,8 @@ class UnilateralSpring(_Scalar):
         """``s k max(s u - g, 0)`` and ``k [s u > g]``."""
         s = self.side * u - self.gap
         on = s > 0.0
-        return self.side * self.stiffness * np.where(on, s, 0.0), self.stiffness * on, None
+        return (self.side * self.stiffness * np.where(on, s, 0.0),
+                np.where(on, self.stiffness, 0.0), None)
 
 
 @dataclass(frozen=True)
@@ -216,7 +217,7 @@ class BilateralGap(_Scalar):
         """``k (u - g sign u)`` outside the clearance and its slope ``k``."""
         on = np.abs(u) > self.gap
         return (self.stiffness * np.where(on, u - self.gap * np.sign(u), 0.0),
-                self.stiffness * on, None)
+                np.where(on, self.stiffness, 0.0), None)
 
 
 @dataclass(frozen=True)

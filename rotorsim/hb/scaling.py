@@ -29,7 +29,7 @@ def linear_guess(residual: HBResidual, omega: float) -> FloatArray:
     ev = residual.evaluate(x0, omega)
     assert ev.jacobian is not None
     try:
-        step = np.linalg.solve(ev.jacobian, -ev.r)
+        step = np.asarray(np.linalg.solve(ev.jacobian, -ev.r), dtype=np.float64)
     except np.linalg.LinAlgError:
         return x0
     return step if np.all(np.isfinite(step)) else x0

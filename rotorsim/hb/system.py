@@ -199,7 +199,7 @@ def _check_element(element: object, i: int, n: int) -> None:
     if not (hasattr(element, "dofs") and callable(getattr(element, "evaluate", None))):
         raise ModelError("is not an element: it needs `dofs` and `evaluate(q, v)`",
                          _name(element, i))
-    dofs = list(element.dofs)   # type: ignore[attr-defined]
+    dofs = list(element.dofs)
     ints = all(isinstance(d, int | np.integer) and not isinstance(d, bool) for d in dofs)
     if not dofs or not ints or len(set(dofs)) != len(dofs):
         raise ModelError(f"dofs must be distinct integers, got {dofs!r}", _name(element, i))
@@ -265,5 +265,5 @@ def _from_vector(value: ArrayLike, n: int) -> tuple[Forcing, ...]:
     if p.shape != (n,) or not np.all(np.isfinite(p)):
         raise ModelError(f"a force vector needs {n} finite entries, got shape {p.shape}",
                          f"{WHERE}.forcing")
-    return tuple(Forcing(j, float(abs(p[j])), 1, float(np.angle(p[j])))
+    return tuple(Forcing(int(j), float(abs(p[j])), 1, float(np.angle(p[j])))
                  for j in np.flatnonzero(p))

@@ -26,8 +26,9 @@ if str(ROOT) not in sys.path:
     sys.path.insert(0, str(ROOT))
 sys.path.insert(0, str(Path(__file__).parent))
 
-from examples import nlvib_examples as ex  # noqa: E402
 from shooting_reference import first_order, fundamental, periodic_orbit  # noqa: E402
+
+from examples import nlvib_examples as ex  # noqa: E402
 
 CONVERGED = 2e-5
 """How far NLvib's amplitudes may sit from the exact HB solution (its fsolve tolerance;
