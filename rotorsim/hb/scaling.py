@@ -7,8 +7,8 @@ at the start frequency (one Newton step from ``x = 0``, which is exact for the l
 part and ignores a nonlinear force that vanishes at rest): per DOF the largest of its
 harmonic coefficients, the same in every harmonic, floored at ``FLOOR`` times the largest
 over the DOFs (a DOF the forcing does not reach at the start still gets a sensible size).
-When that response is zero (no forcing), the first solved point gives the scales, and 1
-is left only when that is zero too.
+A start ``x0`` given by the user (a solved point) takes the place of the linear response;
+1 is left only when the start is zero (no forcing: the zero solution).
 """
 
 from __future__ import annotations
