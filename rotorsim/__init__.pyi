@@ -10,6 +10,7 @@ from .analyses.linear.modal import modal
 from .analyses.periodic.excitation import HarmonicBase
 from .analyses.periodic.parameter import periodic_parameter
 from .analyses.periodic.periodic import periodic
+from .analyses.periodic.switching import switch_branch
 from .analyses.statics.bearing_statics import (
     bearing_equilibrium,
     linearize_at_load,
@@ -86,7 +87,7 @@ from .results.critical_speeds import CriticalSpeedMapResult, CriticalSpeeds
 from .results.frequency_response import FrequencyResponseResult
 from .results.modal import ModalResult
 from .results.orbits import Ellipse, ellipse
-from .results.periodic import PeriodicBifurcation, PeriodicResult
+from .results.periodic import PeriodicBifurcation, PeriodicPeak, PeriodicResult
 from .results.static import StaticResult
 from .results.sweep import SweepResult
 from .results.transient import TransientResult
@@ -138,6 +139,7 @@ __all__ = [
     "Normal",
     "Output",
     "PeriodicBifurcation",
+    "PeriodicPeak",
     "PeriodicResult",
     "PointMass",
     "PulsatingTorque",
@@ -190,6 +192,7 @@ __all__ = [
     "static",
     "stiffness_over_pass",
     "sweep",
+    "switch_branch",
     "transient",
     "unbalance_response",
 ]

@@ -293,6 +293,10 @@ def periodic_summary(result: Any, units: str = "rpm") -> str:
         lines.append(table([(b.kind, f"{b.parameter * f:.6g}", "yes" if b.located else "no")
                             for b in result.bifurcations],
                            ("bifurcation", label, "located")))
+    unresolved = getattr(result, "unresolved", ())
+    if unresolved:
+        lines.append(f"not bifurcations: {len(unresolved)} sign changes of a test function "
+                     "did not survive confirmation (result.unresolved says where and why)")
     return "\n".join(lines)
 
 

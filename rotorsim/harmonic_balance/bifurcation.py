@@ -34,7 +34,7 @@ Springer 2010, chapter 5.
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
+from collections.abc import Callable, Collection
 from dataclasses import dataclass
 
 import numpy as np
@@ -50,7 +50,13 @@ from rotorsim.solvers.continuation_core import (
     ScaledSystem,
     Tangent,
 )
-from rotorsim.solvers.continuation_locate import Segment, SegmentPoint, illinois
+from rotorsim.solvers.continuation_locate import (
+    Segment,
+    SegmentPoint,
+    illinois,
+    screened,
+    steepness,
+)
 
 MultiplierCallback = Callable[[FloatArray, float], ArrayLike]
 """``multipliers(x, lam) -> complex array``: Floquet multipliers of the periodic solution."""
@@ -74,6 +80,15 @@ class BifurcationOptions:
         Newton tolerance (scaled residual) and iterations of the extended fold system.
     fd_step : float
         Difference step of the extended system's second derivatives.
+    relative_tol : float
+        Location tolerance as a fraction of the bracket's chord (the larger of the two
+        applies): 1e-6 places an event to a millionth of the step between its points.
+    screen_jumps : bool
+        Stop locating a branch point or a multiplier event whose test function jumps
+        across zero instead of passing through it
+        (:func:`~rotorsim.solvers.continuation_locate.screened`); it is returned
+        unlocated with ``steepness = inf``. Folds are always located (a corner of a
+        non-smooth branch is a fold too).
     """
 
     kinds: tuple[str, ...] = KINDS
@@ -82,6 +97,8 @@ class BifurcationOptions:
     fold_tol: float = 1e-12
     fold_max_iter: int = 20
     fd_step: float = 1e-5
+    relative_tol: float = 0.0
+    screen_jumps: bool = False
 
     def __post_init__(self) -> None:
         unknown = sorted(set(self.kinds) - set(KINDS))
@@ -118,6 +135,13 @@ class BifurcationEvent:
         Folds: null vector of ``dR/dx`` in scaled unknowns.
     multipliers : complex array or None
         Period doubling and Neimark-Sacker: the multipliers at the located point.
+    value : float
+        Test function at the located point (NaN for folds polished by the extended
+        system): a regular zero is small against ``test_values``, a jump is not.
+    steepness : float
+        Slope of the test function at the located point over its mean slope between
+        the bracket points (:func:`~rotorsim.solvers.continuation_locate.steepness`): about
+        1 at a regular zero, large at a thin non-smooth transition.
     """
 
     kind: str
@@ -130,6 +154,8 @@ class BifurcationEvent:
     method: str
     null_vector: FloatArray | None = None
     multipliers: NDArray[np.complex128] | None = None
+    value: float = math.nan
+    steepness: float = math.nan
 
 
 def branch_test_functions(branch: Branch, multipliers: MultiplierCallback | None = None,
@@ -169,6 +195,7 @@ def neimark_sacker_value(mu: ArrayLike) -> float:
 def detect_bifurcations(residual: ResidualCallback, branch: Branch, *,
                         multipliers: MultiplierCallback | None = None,
                         options: BifurcationOptions | None = None,
+                        pairs: Collection[tuple[str, int, int]] | None = None,
                         ) -> tuple[BifurcationEvent, ...]:
     """Find and locate the bifurcations between the points of ``branch``.
 
@@ -181,6 +208,8 @@ def detect_bifurcations(residual: ResidualCallback, branch: Branch, *,
         ``multipliers(x, lam) -> complex array``; needed for period doubling and
         Neimark-Sacker points.
     options : BifurcationOptions, optional
+    pairs : collection of (kind, i, j), optional
+        Locate only these sign changes (e.g. the confirmed ones); default all.
 
     Returns
     -------
@@ -205,6 +234,8 @@ def detect_bifurcations(residual: ResidualCallback, branch: Branch, *,
         if kind not in values:
             continue
         for i, j in _sign_changes(values[kind]):
+            if pairs is not None and (kind, i, j) not in pairs:
+                continue
             event = locator.locate(kind, i, j, (float(values[kind][i]), float(values[kind][j])))
             if event is not None:
                 events.append(event)
@@ -255,9 +286,18 @@ class _Locator:
         hi = segment.endpoint(self.points[j])
         if lo is None or hi is None or lo.value * hi.value >= 0.0:
             return None
-        tol, h = self.options.tol, hi.s - lo.s
+        h = hi.s - lo.s
+        tol = max(self.options.tol, self.options.relative_tol * h)
         coarse = max(tol, 1e-6 * h) if kind == "fold" else tol
-        lo, hi = illinois(segment, lo, hi, coarse, self.options.max_iter)
+        if self.options.screen_jumps and kind != "fold":
+            lo, hi, regular = screened(segment, lo, hi, coarse, self.options.max_iter)
+        else:
+            lo, hi, regular = *illinois(segment, lo, hi, coarse, self.options.max_iter), True
+        if not regular:  # a jump of the test function: returned unlocated
+            best = lo if abs(lo.value) <= abs(hi.value) else hi
+            x, lam = self.system.from_y(best.y)
+            return BifurcationEvent(kind, lam, x, i, j, ends, False, "test_function",
+                                    None, best.data, best.value, math.inf)
         if kind == "fold":
             best = lo if abs(lo.value) <= abs(hi.value) else hi
             fold = self._fold(best, h)
@@ -271,7 +311,8 @@ class _Locator:
             return None
         x, lam = self.system.from_y(best.y)
         return BifurcationEvent(kind, lam, x, i, j, ends, hi.s - lo.s <= tol, "test_function",
-                                best.t[:-1] if kind == "fold" else None, best.data)
+                                best.t[:-1] if kind == "fold" else None, best.data,
+                                best.value, steepness(lo, hi, ends, h))
 
     def _test(self, kind: str, y: FloatArray, tan: Tangent, border: FloatArray,
               reference: list[float]) -> tuple[float, NDArray[np.complex128] | None]:

@@ -15,7 +15,7 @@ from rotorsim.results.frequency_response import DeflectedShape, FrequencyRespons
 from rotorsim.results.modal import ModalResult
 from rotorsim.results.orbits import Ellipse
 from rotorsim.results.order_tracking import OrderTrack, Waterfall
-from rotorsim.results.periodic import PeriodicBifurcation, PeriodicResult
+from rotorsim.results.periodic import PeriodicBifurcation, PeriodicPeak, PeriodicResult
 from rotorsim.results.spectra import HarmonicFit, Spectrum
 from rotorsim.results.static import StaticResult
 from rotorsim.results.transient import TransientResult
@@ -89,6 +89,7 @@ register_result_type(OrderTrack, {
     "order_axis": "1", "order_spectrum": _SIGNAL})
 register_result_type(PeriodicBifurcation, {
     "parameter": _ANGULAR, "multiplier": "1", "max_abs": "m, rad", "peak_to_peak": "m, rad"})
+register_result_type(PeriodicPeak, {"parameter": _ANGULAR, "amplitude": "m, rad"})
 register_result_type(PeriodicResult, {
     "parameter": _ANGULAR, "speed": _ANGULAR, "fundamental": _ANGULAR, "order": "1",
     "dofs": "1", "coefficients": "m, rad", "max_abs": "m, rad", "peak_to_peak": "m, rad",

@@ -54,6 +54,37 @@ class PeriodicBifurcation:
 
 
 @dataclass(frozen=True, eq=False)
+class PeriodicPeak:
+    """An amplitude extremum located on a periodic branch (``periodic(..., peaks=...)``).
+
+    Attributes
+    ----------
+    node : int
+    dof : str
+        "ux" ... "rz" (``max |q(t)|`` of that DOF), or "orbit" (largest radius of the
+        node's ``(ux, uy)`` orbit).
+    kind : str
+        "max" (a peak) or "min".
+    parameter : float
+        Parameter at the extremum [rad/s].
+    amplitude : float
+        The amplitude there [m, rad].
+    index : int
+        It lies between branch points ``index`` and ``index + 1``.
+    located : bool
+        True when located to the tolerance (1e-10 in scaled arclength).
+    """
+
+    node: int
+    dof: str
+    kind: str
+    parameter: float
+    amplitude: float
+    index: int
+    located: bool
+
+
+@dataclass(frozen=True, eq=False)
 class PeriodicResult(KeptDofs):
     """A branch of periodic responses with their stability and bifurcations.
 
@@ -104,10 +135,18 @@ class PeriodicResult(KeptDofs):
     dof_map : DofMap
     nodes_pos : array (n_nodes,)
         Axial node positions [m].
+    peaks : tuple of PeriodicPeak
+        Amplitude extrema located on request (``peaks=`` of ``periodic``).
     options, stats, status, reason, summary
         Options used (JSON-able), cost counters (points, residual evaluations,
         factorisations, Newton iterations, rejected steps, Floquet time, wall time), status
         of the branch (OK when it reached its bound), why it ended, model summary.
+    unresolved : tuple of PeriodicBifurcation
+        Sign changes of a test function that did not survive confirmation
+        (:mod:`rotorsim.analyses.periodic.confirm`): not bifurcations, but listed so that
+        nothing is silently dropped. ``located`` is False, ``parameter`` the middle of the
+        interval and ``method`` says how many sign changes were merged, where, and why
+        they were rejected.
     """
 
     parameter: FloatArray
@@ -136,6 +175,8 @@ class PeriodicResult(KeptDofs):
     status: Status = Status.OK
     reason: str = ""
     summary: dict[str, Any] = field(default_factory=dict)
+    unresolved: tuple[PeriodicBifurcation, ...] = ()
+    peaks: tuple[PeriodicPeak, ...] = ()
 
     def __len__(self) -> int:
         return int(self.parameter.size)

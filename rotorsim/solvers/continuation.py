@@ -134,7 +134,8 @@ def continue_branch(residual: ResidualCallback, x0: ArrayLike, lam0: float,
                     checkpoint: str | os.PathLike[str] | None = None,
                     checkpoint_every: int = 25,
                     resume: str | os.PathLike[str] | None = None, progress: bool = False,
-                    monitor: Monitor | None = None) -> Branch:
+                    monitor: Monitor | None = None,
+                    orientation: ArrayLike | None = None) -> Branch:
     """Trace the branch of ``residual(x, lam) = 0`` through ``(x0, lam0)``.
 
     Parameters
@@ -160,6 +161,10 @@ def continue_branch(residual: ResidualCallback, x0: ArrayLike, lam0: float,
     monitor : callable, optional
         ``monitor(state)`` after each point (after its checkpoint); True ends the branch,
         an exception aborts the run (the last checkpoint stays).
+    orientation : array-like (m + 1,), optional
+        Leave the start along ``(dx, dlam)`` instead of ``options.direction`` in ``lam``
+        (:meth:`Continuation.init`; e.g. off a bifurcation point, see
+        :mod:`~rotorsim.solvers.continuation_switch`).
 
     Returns
     -------
@@ -199,7 +204,7 @@ def continue_branch(residual: ResidualCallback, x0: ArrayLike, lam0: float,
         state, saved, _ = load_continuation_checkpoint(resume, config=config)
         history = {name: list(saved[name]) for name in _FIELDS}
     else:
-        state = opts.init(residual, x_start, float(lam0))
+        state = opts.init(residual, x_start, float(lam0), orientation=orientation)
         history = {name: [] for name in _FIELDS}
         _record(history, state)
     bar = progress_bar(progress, total=opts.max_points, initial=len(history["lam"]),

@@ -119,8 +119,8 @@ def _read_state(group: Mapping[str, Any]) -> ContinuationState:
             values[field.name] = np.asarray(group[field.name], dtype=float)
         elif field.name == "counters":
             counters = group["counters"]
-            values[field.name] = ContinuationCounters(
-                **{c.name: int(counters[c.name])
+            values[field.name] = ContinuationCounters(  # counters added later read as 0
+                **{c.name: int(counters[c.name]) if c.name in counters else 0
                    for c in dataclasses.fields(ContinuationCounters)})
         else:
             values[field.name] = _KINDS.get(field.name, float)(group[field.name])

@@ -254,14 +254,16 @@ class Correction:
     converged: bool
     message: str = ""
     evaluation_failed: bool = False
+    relaxed: bool = False
 
 
 @dataclass(frozen=True)
 class CorrectorOptions:
     """Newton options of :func:`correct`: scaled residual tolerance, iterations, line
     search, optionally a tolerance on the last scaled Newton correction (needed where
-    the residual is flat, e.g. quadratic near a branch point), and the longest scaled
-    Newton step (longer ones are shortened along their direction)."""
+    the residual is flat, e.g. quadratic near a branch point), the longest scaled
+    Newton step (longer ones are shortened along their direction), and the residual below
+    which a stalled iteration is accepted as relaxed (``stall_tol``, see :func:`correct`)."""
 
     tol: float = 1e-10
     max_iter: int = 10
@@ -269,6 +271,7 @@ class CorrectorOptions:
     armijo: float = 1e-4
     step_tol: float | None = None
     max_correction: float = math.inf
+    stall_tol: float | None = None
 
 
 def correct(system: ScaledSystem, y_start: FloatArray, border: FloatArray, target: float,
@@ -282,6 +285,15 @@ def correct(system: ScaledSystem, y_start: FloatArray, border: FloatArray, targe
     satisfy the Armijo condition ``m(a) <= (1 - 2 c a) m(0)`` on the merit
     ``m = |F|^2 / 2`` (the Newton direction has slope ``-2 m(0)``). Once the residual is
     below ``tol`` the full Newton step is taken (the merit is at round-off level).
+
+    With ``options.stall_tol``, a Newton iteration that stalls (line search failure or
+    ``max_iter`` used up) at ``max |R / r_scale| <= stall_tol`` and ``|b . y - target| <=
+    stall_tol`` is accepted as ``relaxed``. Where the residual is not Lipschitz in ``y``
+    (the contact damping ``beta_c K(delta) delta'`` of a rolling element whose HB sample
+    sits at the contact onset, where ``dK/d delta ~ delta^(-1/2)``), Newton's linear model
+    holds only in a vanishing neighbourhood and the line search takes ever smaller steps;
+    ``stall_tol`` is the force imbalance, relative to the typical force, below which such a
+    point is as good as the discretisation behind it.
     """
     y = np.array(y_start, dtype=float)
     try:
@@ -319,13 +331,23 @@ def correct(system: ScaledSystem, y_start: FloatArray, border: FloatArray, targe
             trial, accepted, message = _line_search(system, y, step, merit, border, target,
                                                     options, stats)
         if accepted is None:
+            if _stalled_close(ev, g, options):
+                return Correction(y, ev, iteration + 1, True, relaxed=True)
             return Correction(y, ev, iteration + 1, False,
                               message or "line search failed to reduce the residual "
                               f"({_miss(ev, options.tol)})", evaluation_failed=bool(message))
         y, ev = trial, accepted
+    if _stalled_close(ev, float(border @ y) - target, options):
+        return Correction(y, ev, options.max_iter, True, relaxed=True)
     return Correction(y, ev, options.max_iter, False,
                       f"corrector did not converge in {options.max_iter} iterations "
                       f"({_miss(ev, options.tol)})")
+
+
+def _stalled_close(ev: Evaluation, g: float, options: CorrectorOptions) -> bool:
+    """Whether a stalled corrector ended within ``options.stall_tol`` (:func:`correct`)."""
+    limit = options.stall_tol
+    return limit is not None and ev.residual <= limit and abs(g) <= limit
 
 
 def _miss(ev: Evaluation, tol: float) -> str:

@@ -138,6 +138,45 @@ def illinois(segment: Segment, lo: SegmentPoint, hi: SegmentPoint, tol: float,
     return lo, hi
 
 
+SCREEN_ITERATIONS = 6
+"""Illinois iterations before a bracket is judged a zero or a jump (:func:`screened`)."""
+JUMP_RATIO = 0.1
+"""After the screening iterations a regular zero has shrunk ``|test|`` below this fraction
+of the smaller bracket value (Illinois converges superlinearly on it); a jump has not."""
+
+
+def screened(segment: Segment, lo: SegmentPoint, hi: SegmentPoint, tol: float,
+             max_iter: int) -> tuple[SegmentPoint, SegmentPoint, bool]:
+    """:func:`illinois`, stopped early on a jump: ``(lo, hi, regular)``.
+
+    A test function that changes sign by jumping (a non-smooth point of a sampled
+    contact law, not a bifurcation) would use up ``max_iter`` probes; after
+    :data:`SCREEN_ITERATIONS` the bracket values tell a regular zero (``|test|`` fallen
+    below :data:`JUMP_RATIO` of the ends) from a jump, which is returned unlocated.
+    """
+    size = min(abs(lo.value), abs(hi.value))
+    lo, hi = illinois(segment, lo, hi, tol, min(SCREEN_ITERATIONS, max_iter))
+    if hi.s - lo.s <= tol or lo is hi:
+        return lo, hi, True
+    if min(abs(lo.value), abs(hi.value)) > JUMP_RATIO * size:
+        return lo, hi, False
+    lo, hi = illinois(segment, lo, hi, tol, max(max_iter - SCREEN_ITERATIONS, 0))
+    return lo, hi, True
+
+
+def steepness(lo: SegmentPoint, hi: SegmentPoint, ends: tuple[float, float],
+              length: float) -> float:
+    """Slope of the test function across the final bracket ``[lo, hi]`` over its mean
+    slope across the first bracket (``ends`` over chord ``length``): about 1 at a regular
+    zero, the ratio of the bracket to the width of a thin transition (a contact onset
+    crossed by one AFT sample) there."""
+    width = hi.s - lo.s
+    mean = abs(ends[1] - ends[0]) / length if length > 0 else math.inf
+    if width <= 0.0 or not mean > 0.0:
+        return 1.0
+    return abs(hi.value - lo.value) / width / mean
+
+
 def _angle(a: FloatArray, b: FloatArray) -> float:
     """Angle between unit vectors [rad]."""
     return 2.0 * math.asin(min(1.0, 0.5 * float(np.linalg.norm(a - b))))

@@ -36,15 +36,17 @@ class ContinuationCounters:
     rejected_steps: int = 0
     secant_predictions: int = 0
     max_iterations: int = 0
+    relaxed_points: int = 0
 
     def plus(self, stats: Stats, *, rejected: int = 0, secant: int = 0,
-             point_iterations: int = 0) -> ContinuationCounters:
+             point_iterations: int = 0, relaxed: int = 0) -> ContinuationCounters:
         """Counters after a step that used ``stats`` and the given extra counts."""
         return ContinuationCounters(
             self.residual_evaluations + stats.residual_evaluations,
             self.factorizations + stats.factorizations, self.solves + stats.solves,
             self.iterations + stats.iterations, self.rejected_steps + rejected,
-            self.secant_predictions + secant, max(self.max_iterations, point_iterations))
+            self.secant_predictions + secant, max(self.max_iterations, point_iterations),
+            self.relaxed_points + relaxed)
 
 
 @dataclass(frozen=True, eq=False)

@@ -15,9 +15,13 @@ One step (seed 002 eqs 3.40-3.42):
 2. corrector: damped Newton on ``R(y) = 0, b . (y - y_p) = 0`` (eqs 3.41-3.42);
 3. the new tangent ``t`` solves ``[[dR/dy], [b^T]] t = e`` at the new point. The step is
    rejected and retried with ``ds / 2`` when the corrector fails, moves farther than
-   ``ds``, or the tangent turns by more than ``max_angle``. A turn that does not shrink
-   when the step is halved marks a corner (contact onset, clearance): the point is
-   accepted and the next predictor is the secant, as it is when the tangent solve fails;
+   ``ds``, or the tangent turns by more than ``max_angle``. After four rejections (and
+   again at ``min_step``) a step in a local parametrisation (the predictor's largest
+   component, or the parameter, held at its prediction) is tried and accepted as a
+   corner: at a non-smooth point (a contact that opens or closes) the normal plane of the
+   predictor may miss the branch. A turn that does not shrink when the step is halved
+   marks a corner (contact onset, clearance): the point is accepted and the next
+   predictor is the secant, as it is when the tangent solve fails;
 4. the next ``ds`` grows (at most x2) when the corrector needed fewer than
    ``target_iterations`` iterations and the tangent turned little, and shrinks otherwise.
 
@@ -70,6 +74,11 @@ CORNER_RATIO = 0.8
 curve halves it, a ``max(x, 0)**1.5`` contact law keeps 0.71 of it, a corner keeps all)."""
 
 
+LOCAL_AFTER = 4
+"""Rejected trials (the step cut 16-fold) after which a step in the local parametrisation
+is tried (:meth:`Continuation._local_step`); it is tried again at ``min_step``."""
+
+
 @dataclass(frozen=True, eq=False)
 class _Accepted:
     y: FloatArray
@@ -79,6 +88,7 @@ class _Accepted:
     ds: float
     turn: float
     corner: bool
+    relaxed: bool = False
 
 
 @dataclass(frozen=True)
@@ -114,6 +124,16 @@ class Continuation:
         Line-search trials per corrector iteration.
     detect_loops : bool
         End the branch when it returns to its starting point (isolas, closed curves).
+    relative_step : bool
+        Let the step grow with the solution: the largest step is ``max_step`` times
+        ``max(1, max |x / x_scale|)``. Along a resonance whose amplitude grows to many
+        times the scale of the unknowns (set at the start), a fixed ``max_step`` would
+        take a number of points proportional to the amplitude; the turn of the tangent
+        and the corrector's iterations still bound the step.
+    stall_tol : float, optional
+        Accept a corrector that stalls at a scaled residual at most ``stall_tol``
+        (:func:`~.continuation_core.correct`; counted as ``relaxed_points``), for
+        residuals that are not smooth where contacts open and close.
 
     Examples
     --------
@@ -144,6 +164,8 @@ class Continuation:
     lam_scale: float | Literal["auto"] = 1.0
     max_backtracks: int = 10
     detect_loops: bool = True
+    relative_step: bool = False
+    stall_tol: float | None = None
 
     def __post_init__(self) -> None:
         where = "Continuation"
@@ -168,16 +190,26 @@ class Continuation:
                                  where)
         if not (self.tol > 0 and 0 < self.max_angle < math.pi):
             raise ModelError("need tol > 0 and 0 < max_angle < pi", where)
+        if self.stall_tol is not None and not self.stall_tol >= self.tol:
+            raise ModelError(f"stall_tol must be at least tol = {self.tol:g}, got "
+                             f"{self.stall_tol!r}", where)
         for name in ("x_scale", "r_scale", "lam_scale"):
             object.__setattr__(self, name, checked_scale(name, getattr(self, name)))
 
     @property
     def corrector(self) -> CorrectorOptions:
         """Newton options of the corrector."""
-        return CorrectorOptions(self.tol, self.max_iter, self.max_backtracks)
+        return CorrectorOptions(self.tol, self.max_iter, self.max_backtracks,
+                                stall_tol=self.stall_tol)
 
-    def init(self, residual: ResidualCallback, x0: ArrayLike, lam0: float) -> ContinuationState:
+    def init(self, residual: ResidualCallback, x0: ArrayLike, lam0: float, *,
+             orientation: ArrayLike | None = None) -> ContinuationState:
         """Correct ``x0`` at fixed ``lam0`` and compute the first tangent.
+
+        The tangent points along ``direction`` in ``lam``; with ``orientation``, a vector
+        ``(dx (m,), dlam)`` in the units of ``(x, lam)``, it points along ``orientation``
+        instead (its scaled dot product with the tangent is positive): a branch leaving a
+        bifurcation point away from it, whichever way it turns in ``lam``.
 
         Raises
         ------
@@ -210,6 +242,8 @@ class Continuation:
                                    "Jacobian is singular", "continuation", step=0)
         flip = self.direction if abs(tan.t[-1]) < 1e-12 else \
             self.direction * (1 if tan.t[-1] > 0 else -1)
+        if orientation is not None:
+            flip = 1 if float(tan.t @ _scaled_direction(system, orientation)) >= 0 else -1
         t = flip * tan.t
         xc, lam = system.from_y(corr.y)
         return ContinuationState(
@@ -257,13 +291,41 @@ class Continuation:
                 corner = ds <= self.min_step or turn > CORNER_RATIO * previous_turn
                 if smooth_turn or corner or tan is None:
                     return (_Accepted(corr.y, tan, corr.iterations, corr.evaluation.residual,
-                                      ds, turn, not smooth_turn), rejected, failure)
+                                      ds, turn, not smooth_turn, corr.relaxed), rejected,
+                            failure)
                 previous_turn = turn
                 failure = (f"the tangent turned by {turn:.3g} rad > max_angle", False)
             rejected += 1
+            if rejected == LOCAL_AFTER or ds <= self.min_step:
+                local = self._local_step(system, y0, b, ds, stats)
+                if local is not None:
+                    return local, rejected, failure
             if ds <= self.min_step:
                 return None, rejected, failure
             ds = max(0.5 * ds, self.min_step)
+
+    def _local_step(self, system: ScaledSystem, y0: FloatArray, b: FloatArray, ds: float,
+                    stats: Stats) -> _Accepted | None:
+        """A step in a local parametrisation, for a non-smooth point where the corrector
+        on the predictor's normal plane fails: the component the predictor moves most, or
+        else the parameter, is held at its predicted value. Accepted as a corner, or
+        None."""
+        y_pred = y0 + ds * b
+        for k in dict.fromkeys((int(np.argmax(np.abs(b))), b.size - 1)):
+            border = np.zeros_like(b)
+            border[k] = 1.0
+            corr = correct(system, y_pred, border, float(y_pred[k]),
+                           dataclasses.replace(self.corrector, max_correction=ds), stats)
+            if not corr.converged or corr.evaluation is None:
+                continue
+            chord = corr.y - y0  # past a corner the branch may turn by 90 degrees or more
+            if np.linalg.norm(chord) > 2.0 * ds or float(chord @ b) <= 0.0:
+                continue
+            tan = tangent(corr.evaluation, chord / np.linalg.norm(chord), stats)
+            turn = 0.0 if tan is None else _angle(b, tan.t)
+            return _Accepted(corr.y, tan, corr.iterations, corr.evaluation.residual, ds,
+                             turn, True, corr.relaxed)
+        return None
 
     def _accept(self, system: ScaledSystem, state: ContinuationState, y0: FloatArray,
                 acc: _Accepted, stats: Stats, rejected: int) -> ContinuationState:
@@ -278,15 +340,19 @@ class Continuation:
             factor = min(factor, 1.0)
         t = secant if acc.tangent is None else acc.tangent.t
         x, lam = system.from_y(acc.y)
+        largest = self.max_step
+        if self.relative_step:
+            largest *= max(1.0, float(np.max(np.abs(acc.y[:-1]), initial=0.0)))
         new = dataclasses.replace(
             state, x=x, lam=lam, tangent=t, predictor=secant if use_secant else t,
-            step_size=min(self.max_step, max(self.min_step, acc.ds * factor)),
+            step_size=min(largest, max(self.min_step, acc.ds * factor)),
             point=state.point + 1, iterations=acc.iterations, last_step=acc.ds,
             smooth=not use_secant, det_sign=0 if acc.tangent is None else acc.tangent.det_sign,
             log_det=math.nan if acc.tangent is None else acc.tangent.log_det,
             residual=acc.residual,
             counters=state.counters.plus(stats, rejected=rejected, secant=int(use_secant),
-                                         point_iterations=acc.iterations))
+                                         point_iterations=acc.iterations,
+                                         relaxed=int(acc.relaxed)))
         if self.detect_loops and state.point >= 1 and _closes(state, y0, acc.y):
             return dataclasses.replace(new, finished=True, reason="closed loop")
         return new
@@ -321,6 +387,16 @@ class Continuation:
         new = self._accept(system, state, y0, landed, stats, rejected)
         # exactly on the bound (the constraint holds to tol; the bound itself is exact)
         return dataclasses.replace(new, lam=float(bound), finished=True, reason=reason)
+
+
+def _scaled_direction(system: ScaledSystem, orientation: ArrayLike) -> FloatArray:
+    """``orientation`` ``(dx, dlam)`` (m + 1,) in scaled unknowns (ModelError if it is not
+    a finite vector of that size)."""
+    d = np.asarray(orientation, dtype=float).reshape(-1)
+    if d.shape != (system.m + 1,) or not np.all(np.isfinite(d)):
+        raise ModelError(f"orientation must be {system.m + 1} finite numbers (dx, dlam), got "
+                         f"shape {d.shape}", "continuation")
+    return np.concatenate([d[:-1] / system.x_scale, [d[-1] / system.lam_scale]])
 
 
 def _angle(a: FloatArray, b: FloatArray) -> float:

@@ -6,6 +6,7 @@ never forms an inverse.
 
 from __future__ import annotations
 
+import functools
 import math
 import warnings
 from dataclasses import dataclass
@@ -138,14 +139,24 @@ def _reciprocal_condition(A: NDArray, lu: NDArray) -> float:
     d = np.abs(np.diag(lu))
     if not np.all(np.isfinite(d)) or d.min() == 0.0:
         return 0.0
-    largest = np.abs(A).max(axis=0)
+    magnitude = np.abs(A)
+    largest = magnitude.max(axis=0)
     ok = np.isfinite(largest) & (largest > 0)
     col = np.ldexp(1.0, np.where(ok, -np.round(np.log2(np.where(ok, largest, 1.0))), 0.0)
                    .astype(np.int64))
-    scaled = np.tril(lu, -1) + np.triu(lu) * col  # LU of A C: same L and pivots, U C
+    scaled = lu * col  # LU of A C: same L and pivots, U C (col: powers of two, exact)
+    lower = _strictly_lower(lu.shape[0])
+    scaled[lower] = lu[lower]
     (gecon,) = sl.get_lapack_funcs(("gecon",), (scaled,))
-    rcond, _ = gecon(scaled, (np.abs(A) * col).sum(axis=0).max(), norm="1")
+    rcond, _ = gecon(scaled, float((magnitude.sum(axis=0) * col).max()), norm="1")
     return float(rcond)
+
+
+@functools.lru_cache(maxsize=8)
+def _strictly_lower(n: int) -> tuple[NDArray[np.int_], NDArray[np.int_]]:
+    """Indices of the strictly lower triangle of an ``n x n`` matrix (cached: the hot loops
+    factorise many matrices of one size)."""
+    return np.tril_indices(n, -1)
 
 
 def _permutation_sign(perm: NDArray[np.int_]) -> int:

@@ -180,7 +180,7 @@ def _continuable(run: Any) -> Any:
 
 
 def _periodic_results() -> dict[str, Any]:
-    from rotorsim.results.periodic import PeriodicBifurcation, PeriodicResult
+    from rotorsim.results.periodic import PeriodicBifurcation, PeriodicPeak, PeriodicResult
 
     rng = np.random.default_rng(7)
     fold = PeriodicBifurcation("fold", 1250.0, 1, True, "extended_system",
@@ -201,7 +201,9 @@ def _periodic_results() -> dict[str, Any]:
         nodes_pos=np.array([0.0, 0.1, 0.2]), options={"unbalance": [[1, 3e-5, 0.0]],
                                                       "stability_modes": "auto"},
         stats={"points": 4.0}, reason="lam_max = 1310 reached")
-    return {"periodic": run, "periodic_bifurcation": fold,
+    peak = PeriodicPeak(1, "orbit", "max", 1276.25, 3.5e-5, 2, True)
+    return {"periodic": run, "periodic_bifurcation": fold, "periodic_peak": peak,
+            "periodic_with_peaks": dataclasses.replace(run, peaks=(peak,)),
             "periodic_without_stability": dataclasses.replace(
                 run, bifurcations=(), multipliers=np.zeros((4, 0), complex))}
 
@@ -213,7 +215,7 @@ RESULT_NAMES = ["modal", "campbell", "critical_exact", "critical_campbell", "map
                 "transient_state", "stepper_state", "counters", "spectrum", "harmonic_fit",
                 "waterfall",
                 "order_track", "periodic", "periodic_bifurcation",
-                "periodic_without_stability"]
+                "periodic_without_stability", "periodic_peak", "periodic_with_peaks"]
 
 
 @pytest.mark.parametrize("name", RESULT_NAMES)

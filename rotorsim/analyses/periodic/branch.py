@@ -35,6 +35,12 @@ from rotorsim.solvers.stats import Stats
 
 WHERE = "periodic"
 
+STALL_TOL = 1e-6
+"""Scaled residual (force imbalance relative to the typical force) at which a stalled
+corrector is accepted (:class:`~rotorsim.solvers.continuation.Continuation` ``stall_tol``):
+rolling elements with contact damping make the HB residual non-Lipschitz where a sample
+meets the contact onset; 1e-6 is far below the truncation error of any practical ``H``."""
+
 
 @dataclass(frozen=True)
 class Stepping:
@@ -66,7 +72,8 @@ class Stepping:
         return Continuation(initial_step=first, max_step=self.max_step,
                             min_step=min(1e-6, first), max_points=self.max_points,
                             tol=self.tol, x_scale=tuple(x_scale), r_scale="auto",
-                            lam_scale=span, lam_min=lo, lam_max=hi, direction=direction)
+                            lam_scale=span, lam_min=lo, lam_max=hi, direction=direction,
+                            relative_step=True, stall_tol=max(self.tol, STALL_TOL))
 
 
 def unknown_scales(system: RotorSystem, rp: RotorPeriodicProblem, residual: HBResidual,
@@ -147,8 +154,29 @@ def judged(branch: Branch, end: float, unit: Any = None) -> Branch:
     show = unit or (lambda v: f"{v:.6g}")
     status = Status.NOT_CONVERGED if branch.status == Status.OK else branch.status
     reason = (f"incomplete: the branch ended at {show(float(branch.lam[-1]))}, short of "
-              f"its end {show(end)} ({branch.reason})")
+              f"its end {show(end)} ({branch.reason}). {advice(branch)}")
     return dataclasses.replace(branch, status=status, reason=reason)
+
+
+def advice(branch: Branch) -> str:
+    """What a user can change after a branch stopped for ``branch.reason``."""
+    why = branch.reason
+    if "max_points" in why:
+        return ("Raise ContinuationOptions(max_points=...), or max_step for a smooth "
+                "branch, or continue from this result (checkpoint=...).")
+    if "closed loop" in why:
+        return "The branch is an isola: it closed on its first point."
+    if "did not converge" in why or "step size below" in why:
+        turned = int(np.sum(np.diff(np.sign(branch.tangents[:, -1])) != 0))
+        folds = f" after {turned} turns of the branch" if turned else ""
+        return (f"The corrector failed{folds}: a contact that opens or closes between "
+                "samples is the usual cause. Try more samples (Harmonics(samples=...), "
+                "e.g. 4x the harmonics), more harmonics, a smaller ContinuationOptions("
+                "max_step=...), or start a new branch just beyond this point.")
+    if "evaluation failed" in why or "not finite" in why:
+        return ("The residual could not be evaluated there (a singular linear block or "
+                "an invalid bearing state): check the model near this parameter.")
+    return ""
 
 
 def first_point(residual: HBResidual, lam0: float, x0: FloatArray, x_scale: FloatArray,

@@ -27,7 +27,8 @@ of cycles).
 
 from __future__ import annotations
 
-from collections.abc import Callable
+import math
+from collections.abc import Callable, Collection
 from typing import Any, Protocol
 
 import numpy as np
@@ -36,7 +37,7 @@ from rotorsim.elements.base import FloatArray
 from rotorsim.harmonic_balance.bifurcation import BifurcationEvent
 from rotorsim.solvers.continuation import Branch
 from rotorsim.solvers.continuation_core import CorrectorOptions, ScaledSystem
-from rotorsim.solvers.continuation_locate import Segment, illinois
+from rotorsim.solvers.continuation_locate import Segment, illinois, steepness
 
 IMAG_TOL = 1e-6
 """``|Im mu| <= IMAG_TOL max(|mu|, 1)`` counts as real."""
@@ -83,7 +84,9 @@ def kth_modulus(mu: Any, kind: str, k: int) -> float:
 
 def floquet_events(residual: Callable[..., Any], branch: Branch, model: FloquetModel,
                    multipliers: np.ndarray, *, tol: float = 1e-8,
-                   max_iter: int = 40) -> list[BifurcationEvent]:
+                   max_iter: int = 40, relative_tol: float = 0.0,
+                   pairs: Collection[tuple[str, int, int]] | None = None,
+                   ) -> list[BifurcationEvent]:
     """Located period doublings and Neimark-Sacker points between the points of ``branch``.
 
     Parameters
@@ -97,6 +100,10 @@ def floquet_events(residual: Callable[..., Any], branch: Branch, model: FloquetM
         Multipliers at the branch points (NaN rows are skipped).
     tol, max_iter
         Location tolerance on the scaled chord abscissa and Illinois iterations.
+    relative_tol : float
+        Location tolerance as a fraction of the bracket's chord (the larger applies).
+    pairs : collection of (kind, i, j), optional
+        Locate only these count changes (e.g. the confirmed ones); default all.
     """
     valid = np.flatnonzero(np.all(np.isfinite(multipliers), axis=1))
     counts = [unstable_counts(multipliers[i], model.tol) for i in valid]
@@ -108,10 +115,13 @@ def floquet_events(residual: Callable[..., Any], branch: Branch, model: FloquetM
     for a in range(valid.size - 1):
         i, j = int(valid[a]), int(valid[a + 1])
         for c, kind in enumerate(KINDS):
-            if counts[a][c] == counts[a + 1][c]:
+            if counts[a][c] == counts[a + 1][c] or (pairs is not None
+                                                     and (kind, i, j) not in pairs):
                 continue
             k = max(counts[a][c], counts[a + 1][c])
-            event = _locate(system, corrector, points, model, kind, k, i, j, tol, max_iter)
+            chord = float(np.linalg.norm(points[j] - points[i]))
+            event = _locate(system, corrector, points, model, kind, k, i, j,
+                            max(tol, relative_tol * chord), max_iter)
             if event is not None:
                 events.append(event)
     return events
@@ -129,9 +139,14 @@ def _locate(system: ScaledSystem, corrector: CorrectorOptions, points: FloatArra
     lo, hi = segment.endpoint(points[i]), segment.endpoint(points[j])
     if lo is None or hi is None or lo.value * hi.value > 0.0:
         return None
-    ends = (lo.value, hi.value)
+    ends, length = (lo.value, hi.value), hi.s - lo.s
+    # no early jump screen: the count-based test switches between multiplier sets (a
+    # complex pair becoming real), so its bracket values may differ by O(1) although the
+    # crossing multiplier moves smoothly; the steepness at the located zero is judged
     lo, hi = illinois(segment, lo, hi, tol, max_iter)
+    regular = True
     best = lo if abs(lo.value) <= abs(hi.value) else hi
     x, lam = system.from_y(best.y)
-    return BifurcationEvent(kind, lam, x, i, j, ends, hi.s - lo.s <= tol, "test_function",
-                            None, best.data)
+    return BifurcationEvent(kind, lam, x, i, j, ends, regular and hi.s - lo.s <= tol,
+                            "test_function", None, best.data, best.value,
+                            steepness(lo, hi, ends, length) if regular else math.inf)

@@ -13,24 +13,21 @@ import time
 from collections.abc import Sequence
 from dataclasses import dataclass
 from functools import cached_property
-from typing import Any
+from typing import Any, TypedDict
 
 import numpy as np
 
-from rotorsim.analyses.periodic.events import FloquetModel, floquet_events
+from rotorsim.analyses.periodic.confirm import Artefact, Review, confirmed_events
+from rotorsim.analyses.periodic.events import FloquetModel
 from rotorsim.analyses.periodic.excitation import ExcitationPlan
 from rotorsim.analyses.periodic.problem import RotorPeriodicProblem
 from rotorsim.analyses.periodic.stability import DEFAULT_TOL, StabilityModel
 from rotorsim.assembly.system import RotorSystem
 from rotorsim.elements.base import DOFS_PER_NODE, FloatArray
 from rotorsim.errors import ConvergenceError, ModelError
-from rotorsim.harmonic_balance.bifurcation import (
-    BifurcationEvent,
-    BifurcationOptions,
-    detect_bifurcations,
-)
+from rotorsim.harmonic_balance.bifurcation import BifurcationEvent
 from rotorsim.harmonic_balance.fourier import AFT
-from rotorsim.harmonic_balance.residual import HBResidual, continuation_function
+from rotorsim.harmonic_balance.residual import HBResidual
 from rotorsim.results.periodic import PeriodicBifurcation, PeriodicResult
 from rotorsim.solvers.continuation import Branch
 from rotorsim.solvers.stats import Stats
@@ -93,7 +90,15 @@ def kept_dofs(system: RotorSystem, rp: RotorPeriodicProblem,
     return columns, active_all[columns].astype(np.int64)
 
 
-def branch_arrays(recovery: Recovery, branch: Branch) -> dict[str, FloatArray]:
+class BranchArrays(TypedDict):
+    """The recovered arrays of every branch point (fields of ``PeriodicResult``)."""
+
+    coefficients: FloatArray
+    max_abs: FloatArray
+    peak_to_peak: FloatArray
+
+
+def branch_arrays(recovery: Recovery, branch: Branch) -> BranchArrays:
     """Coefficients (P, 2H + 1, m) and amplitude measures (P, m) of every point."""
     P, m = len(branch), recovery.columns.size
     rows = recovery.residual.aft.rows
@@ -145,6 +150,22 @@ def bifurcation_records(events: Sequence[BifurcationEvent], recovery: Recovery,
     return tuple(out)
 
 
+def unresolved_records(artefacts: Sequence[Artefact], branch: Branch, recovery: Recovery,
+                       to_parameter: Any) -> tuple[PeriodicBifurcation, ...]:
+    """Records of the sign changes that did not survive confirmation (amplitudes at the
+    interval's first point)."""
+    out = []
+    for a in artefacts:
+        C = recovery.coefficients(branch.x[a.i], float(branch.lam[a.i]))
+        max_abs, ptp = recovery.measures(C)
+        lo, hi = (float(to_parameter(v)) for v in a.lam)
+        out.append(PeriodicBifurcation(
+            a.kind, 0.5 * (lo + hi), a.i, False,
+            f"unresolved between {lo:.6g} and {hi:.6g}: {a.reason}",
+            complex(math.nan, math.nan), max_abs, ptp))
+    return tuple(out)
+
+
 def critical_multiplier(kind: str, mu: Any) -> complex:
     """The multiplier on the unit circle at a bifurcation of ``kind``: nearest -1 (period
     doubling), the complex one nearest the circle (Neimark-Sacker), nearest +1 (fold,
@@ -169,30 +190,27 @@ def periodic_result(system: RotorSystem, rp: RotorPeriodicProblem, recovery: Rec
     Floquet multipliers, the run's options and statistics (``clock``: its start time)."""
     residual = recovery.residual
     multipliers, floquet_time = floquet_arrays(sm, branch)
-    events: list[Any] = []
+    review = Review((), (), {})
     located = time.perf_counter()
     if bifurcations and len(branch) > 1:
-        fun = continuation_function(residual, "omega")
-        events = list(detect_bifurcations(fun, branch, options=BifurcationOptions(
-            kinds=("fold", "branch_point"))))
-        if sm is not None:
-            events += floquet_events(fun, branch, sm, multipliers)
+        review = confirmed_events(residual, branch, sm, multipliers)
     located = time.perf_counter() - located
     lam = branch.lam.astype(float)
     speed = np.full(lam.shape, float(options["speed"])) if frequency else lam / plan.order
     to_parameter = (lambda v: v) if frequency else (lambda v: v / plan.order)
     run_stats = {**branch.stats, "start_iterations": float(stats.iterations),
                  "condensation_factorizations": float(stats.factorizations),
-                 "floquet_time": floquet_time, "bifurcation_time": located,
+                 "floquet_time": floquet_time, "bifurcation_time": located, **review.stats,
                  "wall_time": time.perf_counter() - clock}
     return PeriodicResult(
         parameter=lam if frequency else speed, parameter_name="frequency" if frequency
         else "speed", speed=speed, fundamental=lam, order=0.0 if frequency else plan.order,
         harmonics=residual.harmonics, samples=residual.samples, dofs=recovery.dofs,
-        **branch_arrays(recovery, branch), multipliers=multipliers,
+        **branch_arrays(recovery, branch), peaks=(), multipliers=multipliers,
         stability_method="none" if sm is None else sm.method,
         stability_tol=DEFAULT_TOL if sm is None else sm.tol,
-        bifurcations=bifurcation_records(events, recovery, to_parameter, sm),
+        bifurcations=bifurcation_records(review.events, recovery, to_parameter, sm),
+        unresolved=unresolved_records(review.artefacts, branch, recovery, to_parameter),
         iterations=branch.iterations.astype(np.int64), residuals=branch.residuals,
         approximation=plan.approximation,
         held_dofs=system.dof_map.free[rp.held].astype(np.int64), dof_map=system.dof_map,

@@ -209,7 +209,7 @@ def periodic_parameter(
         parameter=lam, parameter_name=name, speed=np.full(lam.shape, float(speed)),
         fundamental=np.full(lam.shape, omega), order=plan.order,
         harmonics=residual.harmonics, samples=residual.samples, dofs=recovery.dofs,
-        **branch_arrays(recovery, branch), multipliers=multipliers,
+        **branch_arrays(recovery, branch), peaks=(), multipliers=multipliers,
         stability_method=floquet.method if floquet is not None else "none",
         stability_tol=DEFAULT_TOL,
         bifurcations=bifurcation_records(events, recovery, to_p, floquet),

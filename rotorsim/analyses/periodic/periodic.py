@@ -53,6 +53,7 @@ from rotorsim.analyses.periodic.branch import start_branch
 from rotorsim.analyses.periodic.excitation import ExcitationPlan, HarmonicBase, plan_excitation
 from rotorsim.analyses.periodic.folds import ParameterMap
 from rotorsim.analyses.periodic.output import Recovery, kept_dofs, periodic_result
+from rotorsim.analyses.periodic.peaks import peak_columns, peak_records
 from rotorsim.analyses.periodic.problem import (
     RotorPeriodicProblem,
     build_problem,
@@ -85,7 +86,7 @@ PARAMETERS = ("speed", "frequency")
 
 
 DEFAULTS = PeriodicDefaults(
-    continuation=ContinuationOptions(max_step=0.02, max_points=500),
+    continuation=ContinuationOptions(max_step=0.05, max_points=500),
     stability=StabilityOptions(tol=DEFAULT_TOL), checkpoint=Checkpointing(every=25),
     unused={"excitation": ("forces",),
             "output": ("every", "times", "rolling_elements", "velocities", "reducers",
@@ -114,6 +115,7 @@ def periodic(
     checkpoint: str | os.PathLike[str] | Checkpointing | None = None,
     fold_map: bool | ParameterMap = False,
     x0: ArrayLike | None = None,
+    peaks: Sequence[tuple[int, str]] = (),
 ) -> PeriodicResult:
     """Branch of periodic responses from ``start`` to ``stop`` (module docstring).
 
@@ -154,8 +156,9 @@ def periodic(
         Shaft angle ``phi0`` at ``t = 0`` [rad] (and the frozen angle).
     continuation : ContinuationOptions, optional
         First and largest scaled arclength step (the parameter range is 1, each DOF's
-        scale is its typical static displacement; default ``max_step=0.02``), points
-        (default 500), corrector tolerance on the scaled residual, or the full solver
+        scale is its typical static displacement; default ``max_step=0.05``, times the
+        size of the response where it grows beyond that scale), points (default 500),
+        corrector tolerance on the scaled residual, or the full solver
         options (their bounds and direction are replaced by ``start`` and ``stop``, their
         scales kept when not the default 1).
     stability : {"auto", "hill", "hsu", "variational"}, None or StabilityOptions
@@ -186,6 +189,10 @@ def periodic(
         Default: the rolling-bearing statics of ``static`` (robust from the centred position
         inside a clearance), or the centred start for other nonlinear elements; Newton's
         method then falls back to the energy minimum when it fails.
+    peaks : sequence of (node, dof)
+        Locate the amplitude peaks along the branch of each DOF (``"ux"`` ... ``"rz"``:
+        ``max |q(t)|``) or node orbit (``"orbit"``: largest radius of ``(ux, uy)``) into
+        ``result.peaks`` (:mod:`~.peaks`); none by default (no cost).
 
     Returns
     -------
@@ -237,6 +244,7 @@ def periodic(
                        loads=list(e.loads), base=opts.base, stats=stats, x0=q0)
     residual = make_residual(rp.problem, h.count, samples=h.samples,
                              condense=h.condense and rp.problem.k > 0)
+    peak_columns(system, rp, peaks, f"{WHERE}.peaks")
     recovery = Recovery(residual, *kept_dofs(system, rp, opts.output.nodes))
     to_lam = _lam_map(plan, frequency)
     stepping = opts.stepping()
@@ -259,6 +267,10 @@ def periodic(
     if fold_map is not False and result.bifurcations:
         result = _fold_map(result, residual, rp, system, branch, plan, frequency, fold_map,
                            h.count, h.samples)
+    if peaks:
+        to_parameter = (lambda v: v) if frequency else (lambda v: v / plan.order)
+        result = dataclasses.replace(result, peaks=peak_records(
+            residual, branch, system, rp, peaks, to_parameter, f"{WHERE}.peaks"))
     return result
 
 

@@ -407,6 +407,7 @@ def test_a_branch_short_of_its_end_is_not_ok_and_says_where_it_stopped(branch):
     assert short.reason.startswith(f"incomplete: the branch ended at speed "
                                    f"{short.parameter[-1]:.6g} rad/s, short of its end speed "
                                    "1280 rad/s (max_points reached)")
+    assert "Raise ContinuationOptions(max_points=...)" in short.reason   # what to change
 
 
 def test_a_tolerance_below_round_off_is_met_at_the_round_off_floor():

@@ -61,8 +61,12 @@ def damping_branch():
 @pytest.mark.verification
 def test_folds_in_the_damping_are_folds_of_the_speed_branch_at_that_damping(damping_branch):
     res = damping_branch
-    folds = res.events("fold")
-    assert len(folds) == 3 and all(f.located for f in folds)
+    # the S-curve's three folds come first along the branch; with steps that grow with
+    # the response (Continuation.relative_step) the 200 points reach further and may
+    # pass more turns of the branch beyond them
+    folds = sorted(res.events("fold"), key=lambda f: f.index)
+    assert len(folds) >= 3 and all(f.located for f in folds)
+    assert sorted(round(f.parameter, -1) for f in folds[:3]) == [2390.0, 4660.0, 5180.0]
     assert res.options["vary"] == "model"
     # the two folds of the main S-curve: the speed branch with dampers c_f turns at W
     for fold in sorted(folds, key=lambda f: f.index)[:2]:

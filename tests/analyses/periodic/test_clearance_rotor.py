@@ -1,0 +1,75 @@
+"""The clearance rotor of issue 16 (``models/clearance_rotor.toml``): a harmonic-balance
+branch through a sharp clearance resonance.
+
+A 0.8 m, 40 mm shaft with a 250 mm disk at mid-span on two 9-ball bearings with 5 um
+radial clearance, gravity and an unbalance of 1e-4 kg m, damped only by the contact damping
+of the balls. Before issue 16 the branch from 100 rad/s crawled through the resonance with
+steps scaled to the static sag and stalled at the first contact-onset point (the corrector
+stuck at a scaled residual of about 1e-8: ``beta_c K(delta) delta'`` is not Lipschitz where
+an AFT sample meets the contact onset), after reporting about 30 "bifurcations" in a few
+rad/s. It must now reach 400 rad/s, report only confirmed events, and list the sign changes
+it rejected.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import rotorsim as rs
+
+MODEL = Path(__file__).resolve().parents[3] / "models" / "clearance_rotor.toml"
+DISK = 10
+
+
+@pytest.fixture(scope="module")
+def branch():
+    model = rs.load_model(MODEL)
+    return rs.periodic(model, start=100.0, stop=400.0, harmonics=8,
+                       unbalance=[(DISK, 1e-4, 0.0)], nodes=[0, DISK, 20])
+
+
+def test_the_branch_passes_the_clearance_resonance(branch):
+    assert branch.status == rs.Status.OK and branch.parameter[-1] == 400.0
+    # the resonance is passed with steps that grow with the response: the whole branch
+    # takes a few hundred points, not the 500 that ended it near 353 rad/s before
+    assert len(branch) < 400
+    amp = branch.amplitude(DISK, "uy", "peak_to_peak")
+    assert amp.max() > 20 * amp[0]          # a sharp resonance, passed
+    # every point converged (within the stall tolerance at contact-onset points)
+    assert np.all(branch.residuals <= 1e-6)
+
+
+def test_the_hysteresis_folds_are_found(branch):
+    """The hardening resonance turns twice: up to about 343.6 rad/s, back to about
+    342.0 rad/s, and up again. (A fold at a contact onset is a corner of the branch: the
+    extended system may not converge there and the fold keeps its test-function estimate,
+    ``located`` False, between its two branch points.)"""
+    folds = sorted(branch.events("fold"), key=lambda f: f.index)
+    assert len(folds) == 2
+    up, down = (f.parameter for f in folds)
+    assert 340.0 < down < up < 346.0
+    i, j = (f.index for f in folds)
+    lam = branch.parameter
+    assert np.all(np.diff(lam[: i + 1]) > 0) and np.all(np.diff(lam[i + 1: j + 1]) < 0)
+
+
+def test_only_confirmed_events_are_reported_and_rejected_ones_say_why(branch):
+    """Dozens of sign changes near the resonance are artefacts of the discretisation
+    (a sample crossing a contact onset, multipliers of nearly undamped modes moved by the
+    Floquet method's error): they go to ``unresolved`` with the interval and the reason,
+    never to ``bifurcations``."""
+    stats = branch.stats
+    assert stats["confirmed"] == len(branch.bifurcations)
+    assert stats["candidates"] >= stats["confirmed"] + len(branch.unresolved)
+    assert len(branch.bifurcations) <= 8            # not the ~30 of a raw test-function scan
+    assert branch.unresolved                        # the rejected ones are listed ...
+    for u in branch.unresolved:                     # ... with where and why
+        assert not u.located and u.method.startswith("unresolved between ")
+        assert "sign change" in u.method or "jumps" in u.method or "steeply" in u.method \
+            or "window" in u.method
+    # the summary printed by the CLI counts them
+    from rotorsim.cli.summaries import periodic_summary
+    assert "did not survive confirmation" in periodic_summary(branch)
