@@ -1,6 +1,7 @@
 """Public names of rotorsim, for type checkers and for the lazy loader of
 ``rotorsim/__init__.py`` (each is imported on first use)."""
 
+from . import hb
 from .analyses.linear.campbell import campbell
 from .analyses.linear.critical_speed_map import critical_speed_map
 from .analyses.linear.critical_speeds import critical_speeds
@@ -175,6 +176,7 @@ __all__ = [
     "ellipse",
     "export_vtk",
     "frequency_response",
+    "hb",
     "linearize_at_load",
     "linearize_rolling_bearings",
     "load",

@@ -22,7 +22,8 @@ import pytest
 
 PACKAGE = Path(__file__).resolve().parents[1] / "rotorsim"
 ROLLING = "rotorsim.elements.rolling"
-NUMERICS = ("rotorsim.solvers", "rotorsim.time_integration", "rotorsim.harmonic_balance")
+NUMERICS = ("rotorsim.solvers", "rotorsim.time_integration", "rotorsim.harmonic_balance",
+            "rotorsim.hb")
 FAMILIES = tuple(f"rotorsim.analyses.{f}"
                  for f in ("linear", "statics", "transient", "periodic", "sweep"))
 ROLLING_SHARED = tuple(f"{ROLLING}.{m}"
@@ -56,9 +57,9 @@ RULES = (
          "force, tangent and linearisation at a given state; equilibria are analyses)",
          ("rotorsim.elements", "rotorsim.model", "rotorsim.assembly"), ("rotorsim.analyses",)),
     Rule("numerics-are-rotor-agnostic",
-         "solvers, time_integration and harmonic_balance work on small problem protocols "
-         "and never import model, elements, assembly or analyses",
-         ("rotorsim.solvers", "rotorsim.time_integration", "rotorsim.harmonic_balance"),
+         "solvers, time_integration, harmonic_balance and the public hb layer work on small "
+         "problem protocols and never import model, elements, assembly or analyses",
+         NUMERICS,
          ("rotorsim.model", "rotorsim.elements", "rotorsim.assembly", "rotorsim.analyses")),
     Rule("results-do-not-plot",
          "results never import analyses, plotting or matplotlib",

@@ -8,14 +8,16 @@ state, so a resumed run measures its arclength exactly as before.
 
 from __future__ import annotations
 
+import warnings
 from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Literal
 
 import numpy as np
 import scipy.sparse as sp
+import scipy.sparse.linalg as spla
 
-from rotorsim.errors import ModelError, Status
+from rotorsim.errors import ConvergenceError, ModelError, Status
 from rotorsim.solvers.continuation_core import FloatArray, ResidualCallback, ScaledSystem
 from rotorsim.solvers.stats import Stats
 
@@ -124,12 +126,18 @@ def resolve_scales(residual: ResidualCallback, x0: FloatArray, lam0: float, x_sc
                    stats: Stats) -> tuple[FloatArray, FloatArray, float]:
     """Scales of a run, resolving "auto" at the starting point.
 
-    "auto" means ``max |x0|`` (1 if zero) for ``x``, ``|lam0|`` (1 if zero) for ``lam`` and,
-    for the residual, the row norms ``max_j |dR_i/dx_j| x_scale_j`` at ``(x0, lam0)`` (one
-    extra evaluation, counted in ``stats``).
+    "auto" means ``max |x0|`` for ``x``, ``|lam0|`` (1 if zero) for ``lam`` and, for the
+    residual, the row norms ``max_j |dR_i/dx_j| x_scale_j`` at ``(x0, lam0)`` (one extra
+    evaluation, counted in ``stats``). At a zero start ``x0 = 0`` the size of the unknowns
+    is ``max |dx|`` of the Newton step ``dR/dx dx = -R`` from ``(0, lam0)``
+    (:func:`_newton_step_size`; for a harmonic-balance residual that is the response of the
+    underlying linear system), 1 only when that step is zero or cannot be computed.
     """
     m = x0.size
-    xs = _as_vector("x_scale", x_scale, m, float(np.max(np.abs(x0))))
+    x_auto = float(np.max(np.abs(x0)))
+    if isinstance(x_scale, str) and x_auto == 0.0:
+        x_auto = _newton_step_size(residual, x0, lam0, stats)
+    xs = _as_vector("x_scale", x_scale, m, x_auto)
     ls = (abs(lam0) or 1.0) if lam_scale == "auto" else float(lam_scale)
     if r_scale != "auto":
         return xs, _as_vector("r_scale", r_scale, m, 1.0), ls
@@ -139,6 +147,26 @@ def resolve_scales(residual: ResidualCallback, x0: FloatArray, lam0: float, x_sc
         else np.max(np.abs(jh), axis=1)
     fallback = float(np.max(rows)) or 1.0
     return xs, np.where(rows > 0.0, rows, fallback), ls
+
+
+def _newton_step_size(residual: ResidualCallback, x0: FloatArray, lam0: float,
+                      stats: Stats) -> float:
+    """``max |dx|`` of the Newton step ``dR/dx dx = -R`` at ``(x0, lam0)`` (one evaluation
+    and one factorisation, counted in ``stats``); 0 when the step is zero, not finite, or
+    the Jacobian is singular."""
+    m = x0.size
+    probe = ScaledSystem(residual, np.ones(m), np.ones(m), 1.0)
+    try:
+        ev = probe.evaluate(probe.to_y(x0, lam0), stats)
+        stats.factorizations += 1
+        with warnings.catch_warnings():     # a singular sparse matrix warns, returns NaN
+            warnings.simplefilter("ignore", spla.MatrixRankWarning)
+            step = (spla.spsolve(sp.csc_matrix(ev.jh), -ev.rh) if sp.issparse(ev.jh)
+                    else np.linalg.solve(ev.jh, -ev.rh))
+    except (ConvergenceError, np.linalg.LinAlgError, ValueError, RuntimeError):
+        return 0.0
+    size = float(np.max(np.abs(step), initial=0.0))
+    return size if np.isfinite(size) else 0.0
 
 
 def checked_scale(name: str, value: object) -> float | tuple[float, ...] | str:
