@@ -52,8 +52,9 @@ def clearance_branch() -> dict[str, float]:
 
 def smooth_per_point() -> dict[str, float]:
     """Per-point wall time of the smooth 102-DOF branch (item 2), in this checkout."""
-    import rotorsim as rs
     from bench_periodic import UNBALANCE, benchmark_rotor  # this folder (sys.path[0])
+
+    import rotorsim as rs
 
     rotor = benchmark_rotor()
     opts = rs.ContinuationOptions(max_points=SMOOTH_POINTS, max_step=0.05, tol=1e-8)
