@@ -73,7 +73,7 @@ def test_multi_harmonic_peak_is_confirmed_by_long_time_integration():
     # 150 periods: a disturbance decays as exp(-0.025 t), by 1e-8 over 740 s = 150 T
     sol = solve_ivp(lambda t, z: [z[1], P * np.cos(w * t) - C * z[1] - z[0] - K3 * z[0] ** 3],
                     (0.0, 150 * T), state, method="DOP853", rtol=1e-11, atol=1e-12,
-                    t_eval=149 * T + np.linspace(0.0, T, 4001))
+                    t_eval=np.linspace(149 * T, 150 * T, 4001))  # ends exactly on t_span
     assert sol.success
     q = sol.y[0]
     i = int(np.argmax(np.abs(q)))
