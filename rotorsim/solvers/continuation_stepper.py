@@ -54,10 +54,10 @@ from rotorsim.solvers.continuation_core import (
     FloatArray,
     ResidualCallback,
     ScaledSystem,
-    Tangent,
     correct,
     tangent,
 )
+from rotorsim.solvers.continuation_local import LOCAL_AFTER, Accepted, angle, local_step
 from rotorsim.solvers.continuation_state import (
     ContinuationCounters,
     ContinuationState,
@@ -72,23 +72,6 @@ __all__ = ["Continuation", "ContinuationCounters", "ContinuationState"]
 CORNER_RATIO = 0.8
 """A turn that keeps more than this fraction when the step is halved is a corner (a smooth
 curve halves it, a ``max(x, 0)**1.5`` contact law keeps 0.71 of it, a corner keeps all)."""
-
-
-LOCAL_AFTER = 4
-"""Rejected trials (the step cut 16-fold) after which a step in the local parametrisation
-is tried (:meth:`Continuation._local_step`); it is tried again at ``min_step``."""
-
-
-@dataclass(frozen=True, eq=False)
-class _Accepted:
-    y: FloatArray
-    tangent: Tangent | None
-    iterations: int
-    residual: float
-    ds: float
-    turn: float
-    corner: bool
-    relaxed: bool = False
 
 
 @dataclass(frozen=True)
@@ -272,7 +255,7 @@ class Continuation:
         return self._accept(system, state, y0, accepted, stats, rejected)
 
     def _advance(self, system: ScaledSystem, state: ContinuationState, y0: FloatArray,
-                 stats: Stats) -> tuple[_Accepted | None, int, tuple[str, bool]]:
+                 stats: Stats) -> tuple[Accepted | None, int, tuple[str, bool]]:
         """Predict and correct, halving ``ds`` on failure: ``(accepted, rejections,
         (last failure, evaluation failed))``."""
         b, ds = state.predictor, state.step_size
@@ -286,49 +269,28 @@ class Continuation:
                 failure = ("the corrector moved farther than the step", False)
             elif corr.converged and corr.evaluation is not None:
                 tan = tangent(corr.evaluation, b, stats)
-                turn = 0.0 if tan is None else _angle(b, tan.t)
+                turn = 0.0 if tan is None else angle(b, tan.t)
                 smooth_turn = tan is not None and turn <= self.max_angle
                 corner = ds <= self.min_step or turn > CORNER_RATIO * previous_turn
                 if smooth_turn or corner or tan is None:
-                    return (_Accepted(corr.y, tan, corr.iterations, corr.evaluation.residual,
+                    return (Accepted(corr.y, tan, corr.iterations, corr.evaluation.residual,
                                       ds, turn, not smooth_turn, corr.relaxed), rejected,
                             failure)
                 previous_turn = turn
                 failure = (f"the tangent turned by {turn:.3g} rad > max_angle", False)
             rejected += 1
             if rejected == LOCAL_AFTER or ds <= self.min_step:
-                local = self._local_step(system, y0, b, ds, stats)
+                local = local_step(system, dataclasses.replace(self.corrector,
+                                                               max_correction=ds), y0, b,
+                                   ds, stats)
                 if local is not None:
                     return local, rejected, failure
             if ds <= self.min_step:
                 return None, rejected, failure
             ds = max(0.5 * ds, self.min_step)
 
-    def _local_step(self, system: ScaledSystem, y0: FloatArray, b: FloatArray, ds: float,
-                    stats: Stats) -> _Accepted | None:
-        """A step in a local parametrisation, for a non-smooth point where the corrector
-        on the predictor's normal plane fails: the component the predictor moves most, or
-        else the parameter, is held at its predicted value. Accepted as a corner, or
-        None."""
-        y_pred = y0 + ds * b
-        for k in dict.fromkeys((int(np.argmax(np.abs(b))), b.size - 1)):
-            border = np.zeros_like(b)
-            border[k] = 1.0
-            corr = correct(system, y_pred, border, float(y_pred[k]),
-                           dataclasses.replace(self.corrector, max_correction=ds), stats)
-            if not corr.converged or corr.evaluation is None:
-                continue
-            chord = corr.y - y0  # past a corner the branch may turn by 90 degrees or more
-            if np.linalg.norm(chord) > 2.0 * ds or float(chord @ b) <= 0.0:
-                continue
-            tan = tangent(corr.evaluation, chord / np.linalg.norm(chord), stats)
-            turn = 0.0 if tan is None else _angle(b, tan.t)
-            return _Accepted(corr.y, tan, corr.iterations, corr.evaluation.residual, ds,
-                             turn, True, corr.relaxed)
-        return None
-
     def _accept(self, system: ScaledSystem, state: ContinuationState, y0: FloatArray,
-                acc: _Accepted, stats: Stats, rejected: int) -> ContinuationState:
+                acc: Accepted, stats: Stats, rejected: int) -> ContinuationState:
         """State at an accepted point, with the next predictor and step size."""
         chord = acc.y - y0
         secant = chord / np.linalg.norm(chord)
@@ -358,7 +320,7 @@ class Continuation:
         return new
 
     def _land_on_bound(self, system: ScaledSystem, state: ContinuationState, y0: FloatArray,
-                       acc: _Accepted, stats: Stats, rejected: int) -> ContinuationState:
+                       acc: Accepted, stats: Stats, rejected: int) -> ContinuationState:
         """Replace a point beyond a bound by the point on it and end the branch."""
         lam_new = float(acc.y[-1] * system.lam_scale)
         name, bound = ("lam_max", self.lam_max) if lam_new > self.lam_max \
@@ -381,8 +343,8 @@ class Continuation:
                 status=int(Status.NOT_CONVERGED),
                 reason=f"{name} = {bound:g} not reached: the point on the bound did not "
                        f"converge ({corr.message or 'singular'})")
-        landed = _Accepted(corr.y, tan, acc.iterations + corr.iterations, ev.residual,
-                           float(np.linalg.norm(corr.y - y0)), _angle(state.predictor, tan.t),
+        landed = Accepted(corr.y, tan, acc.iterations + corr.iterations, ev.residual,
+                           float(np.linalg.norm(corr.y - y0)), angle(state.predictor, tan.t),
                            False)
         new = self._accept(system, state, y0, landed, stats, rejected)
         # exactly on the bound (the constraint holds to tol; the bound itself is exact)
@@ -397,11 +359,6 @@ def _scaled_direction(system: ScaledSystem, orientation: ArrayLike) -> FloatArra
         raise ModelError(f"orientation must be {system.m + 1} finite numbers (dx, dlam), got "
                          f"shape {d.shape}", "continuation")
     return np.concatenate([d[:-1] / system.x_scale, [d[-1] / system.lam_scale]])
-
-
-def _angle(a: FloatArray, b: FloatArray) -> float:
-    """Angle between two unit vectors [rad], accurate for small angles."""
-    return 2.0 * math.asin(min(1.0, 0.5 * float(np.linalg.norm(a - b))))
 
 
 def _closes(state: ContinuationState, y0: FloatArray, y1: FloatArray) -> bool:
