@@ -213,8 +213,8 @@ class HBProblem:
         present = [(c, A) for c, A in terms if A is not None]
         if any(sp.issparse(A) for _, A in present):
             out = sp.csr_matrix((self.n, self.n))
-            for c, A in present:
-                out = out + c * A
+            for c, A in present:  # a dense term added to a sparse one would give np.matrix
+                out = out + c * sp.csr_matrix(A)
             return out.tocsr()
         dense = np.zeros((self.n, self.n))
         for c, A in present:

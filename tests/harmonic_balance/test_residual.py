@@ -237,3 +237,19 @@ def test_failed_solve_raises_convergence_error_with_the_iteration():
     _, q = sol.time_response(64)
     assert q.shape == (64, 1) and sol.amplitude(0) == pytest.approx(
         0.5 * (q.max() - q.min()), rel=1e-2)
+
+
+def test_sparse_damping_with_a_dense_gyroscopic_matrix():
+    """``damping_matrix(omega) = C + W G`` with a sparse ``C`` and a dense ``G`` (found by
+    the rs.hb work: the sum was an np.matrix, which has no ``tocsr``)."""
+    import scipy.sparse as sp
+
+    from rotorsim.harmonic_balance.problem import HBProblem as Problem
+
+    C = 0.1 * np.eye(2)
+    G = np.array([[0.0, 1.0], [-1.0, 0.0]])
+    mixed = Problem(np.eye(2), np.eye(2), sp.csr_matrix(C), gyroscopic=G, spin_ratio=1.0)
+    got = mixed.damping_matrix(2.0)
+    assert sp.issparse(got)
+    # exact: the entries are sums of two binary fractions
+    assert np.array_equal(got.toarray(), C + 2.0 * G)
