@@ -98,8 +98,10 @@ class Continuation:
     max_angle : float
         Largest turn of the tangent over one step [rad] before the step is halved.
     x_scale, r_scale : float, sequence of m floats, or "auto"
-        Scales of the unknowns and of the residual. "auto": ``max |x0|`` (1 if zero) for
-        ``x``; for ``R`` the row norms ``max_j |dR_i/dx_j| x_scale_j`` at the start.
+        Scales of the unknowns and of the residual. "auto": ``max |x0|`` for ``x`` (at a
+        zero start the size of the Newton step from it, see
+        :func:`~.continuation_state.resolve_scales`); for ``R`` the row norms
+        ``max_j |dR_i/dx_j| x_scale_j`` at the start.
     lam_scale : float or "auto"
         Scale of the parameter ("auto": ``|lam0|``, 1 if zero). The arclength is
         ``ds^2 = |dx / x_scale|^2 + (dlam / lam_scale)^2``.
