@@ -181,6 +181,9 @@ def switch_branch(model: Any, result: PeriodicResult,
 
 
 def _event(result: PeriodicResult, which: PeriodicBifurcation | int) -> PeriodicBifurcation:
+    if not isinstance(result, PeriodicResult):
+        raise ModelError(f"result must be a PeriodicResult of rs.periodic, got "
+                         f"{type(result).__name__}", WHERE)
     event = which if isinstance(which, PeriodicBifurcation) else None
     if event is None:
         if isinstance(which, bool) or not isinstance(which, int | np.integer) \

@@ -233,6 +233,8 @@ def test_second_branch_through_a_rotor_branch_point():
 def test_bad_switch_requests_are_refused(period_one):
     with pytest.raises(ModelError, match="not an index"):
         rs.switch_branch(rotor(), period_one, 5, stop=1250.0)
+    with pytest.raises(ModelError, match="must be a PeriodicResult"):
+        rs.switch_branch(rotor(), None, 0, stop=1250.0)
     fold = dataclasses.replace(doubling(period_one), kind="fold")
     with pytest.raises(ModelError, match="no second branch"):
         rs.switch_branch(rotor(), period_one, fold, stop=1250.0)
