@@ -36,7 +36,7 @@ FORMAT = "rotorsim-continuation-checkpoint"
 FORMAT_VERSION = 1
 _ARRAYS = ("x", "tangent", "predictor", "x_scale", "r_scale", "origin", "origin_tangent")
 _KINDS: dict[str, type] = {"point": int, "iterations": int, "det_sign": int, "status": int,
-                           "smooth": bool, "finished": bool, "reason": str}
+                           "smooth": bool, "finished": bool, "reason": str, "shrinks": int}
 
 
 def save_continuation_checkpoint(path: str | os.PathLike[str], state: ContinuationState, *,
@@ -122,8 +122,10 @@ def _read_state(group: Mapping[str, Any]) -> ContinuationState:
             values[field.name] = ContinuationCounters(  # counters added later read as 0
                 **{c.name: int(counters[c.name]) if c.name in counters else 0
                    for c in dataclasses.fields(ContinuationCounters)})
-        else:
+        elif field.name in group:
             values[field.name] = _KINDS.get(field.name, float)(group[field.name])
+        elif field.default is dataclasses.MISSING:      # fields added later keep defaults
+            raise CheckpointError(f"the state has no {field.name!r}")
     m = values["x"].size
     if values["tangent"].shape != (m + 1,) or values["x_scale"].shape != (m,):
         raise CheckpointError(f"state arrays have inconsistent shapes for m = {m}")

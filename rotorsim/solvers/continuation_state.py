@@ -92,6 +92,9 @@ class ContinuationState:
         True when the branch ended (bound, closed loop, failure).
     reason : str
         Why the branch ended ("" while running).
+    shrinks : int
+        Consecutive steps that were cut before they were accepted, each shorter than the
+        last (the branch approaches a singular point; see :mod:`.continuation_stepper`).
     """
 
     x: FloatArray
@@ -115,6 +118,7 @@ class ContinuationState:
     status: int = int(Status.OK)
     finished: bool = False
     reason: str = ""
+    shrinks: int = 0
 
     def system(self, residual: ResidualCallback) -> ScaledSystem:
         """The residual in this run's scaled unknowns."""

@@ -21,7 +21,15 @@ One step (seed 002 eqs 3.40-3.42):
    corner: at a non-smooth point (a contact that opens or closes) the normal plane of the
    predictor may miss the branch. A turn that does not shrink when the step is halved
    marks a corner (contact onset, clearance): the point is accepted and the next
-   predictor is the secant, as it is when the tangent solve fails;
+   predictor is the secant, as it is when the tangent solve fails. So does a branch
+   whose curvature grows without bound towards a point, where every step is cut and
+   accepted shorter than the last (a contact law ``max(x, 0)**1.5`` or a damping
+   ``K(x) x'`` with ``K ~ x**0.5`` met by a harmonic-balance sample: the tangent turns
+   like the square root of the distance, the steps would shrink geometrically towards
+   that point and never pass it). After :data:`SHRINKS_TO_STEP_OVER` such steps, a trial
+   that converged beyond it and was refused only for its turn is accepted as a corner.
+   Such a trial is accepted at once when the shorter trials after it do not converge:
+   they end in the non-smooth stretch the longer one stepped over;
 4. the next ``ds`` grows (at most x2) when the corrector needed fewer than
    ``target_iterations`` iterations and the tangent turned little, and shrinks otherwise.
 
@@ -68,6 +76,12 @@ from rotorsim.solvers.continuation_state import (
 from rotorsim.solvers.stats import Stats
 
 __all__ = ["Continuation", "ContinuationCounters", "ContinuationState"]
+
+SHRINKS_TO_STEP_OVER = 3
+"""Consecutive steps cut and accepted shorter than the last (``ContinuationState.shrinks``)
+after which a converged trial refused only for its turn is accepted as a corner (module
+docstring, item 3). On a smooth branch the step settles where the turn is about
+``max_angle / 2`` instead of shrinking geometrically."""
 
 CORNER_RATIO = 0.8
 """A turn that keeps more than this fraction when the step is halved is a corner (a smooth
@@ -262,6 +276,7 @@ class Continuation:
         (last failure, evaluation failed))``."""
         b, ds = state.predictor, state.step_size
         rejected, previous_turn = 0, math.inf
+        over: Accepted | None = None    # the first trial refused only for its turn
         while True:
             y_pred = y0 + ds * b
             corr = correct(system, y_pred, b, float(b @ y_pred),
@@ -280,6 +295,13 @@ class Continuation:
                             failure)
                 previous_turn = turn
                 failure = (f"the tangent turned by {turn:.3g} rad > max_angle", False)
+                if over is None:
+                    over = Accepted(corr.y, tan, corr.iterations, corr.evaluation.residual,
+                                    ds, turn, True, corr.relaxed)
+                if state.shrinks >= SHRINKS_TO_STEP_OVER:   # step over a singular point
+                    return over, rejected + 1, failure
+            elif over is not None and not corr.converged:   # a barrier the trial passed
+                return over, rejected + 1, failure
             rejected += 1
             if rejected == LOCAL_AFTER or ds <= self.min_step:
                 local = local_step(system, dataclasses.replace(self.corrector,
@@ -314,6 +336,8 @@ class Continuation:
             smooth=not use_secant, det_sign=0 if acc.tangent is None else acc.tangent.det_sign,
             log_det=math.nan if acc.tangent is None else acc.tangent.log_det,
             residual=acc.residual,
+            shrinks=state.shrinks + 1 if rejected and not acc.corner and acc.ds < state.last_step
+            else 0,
             counters=state.counters.plus(stats, rejected=rejected, secant=int(use_secant),
                                          point_iterations=acc.iterations,
                                          relaxed=int(acc.relaxed)))

@@ -73,3 +73,21 @@ def test_only_confirmed_events_are_reported_and_rejected_ones_say_why(branch):
     # the summary printed by the CLI counts them
     from rotorsim.cli.summaries import periodic_summary
     assert "did not survive confirmation" in periodic_summary(branch)
+
+
+def test_a_branch_started_near_the_resonance_steps_over_its_singular_point():
+    """Started at 330 rad/s the steps arrive at the contact-onset point near 342.56 rad/s
+    (amplitude 2.02e-4 m) in another phase than from 100 rad/s: every step was cut and
+    accepted shorter than the last (the tangent turns like the square root of the distance
+    there), and the branch crawled back and stopped at ``min_step`` after 295 points. The
+    stepper now steps over the point after three such steps (``SHRINKS_TO_STEP_OVER``)."""
+    model = rs.load_model(MODEL)
+    res = rs.periodic(model, start=330.0, stop=360.0, harmonics=8,
+                      unbalance=[(DISK, 1e-4, 0.0)], nodes=[DISK], stability=None)
+    assert res.status == rs.Status.OK and res.parameter[-1] == 360.0
+    assert len(res) < 200
+    lam = res.parameter
+    turns = np.flatnonzero(np.sign(np.diff(lam[1:])) != np.sign(np.diff(lam[:-1]))) + 1
+    # the same two hysteresis turns as from 100 rad/s, and no spurious third one
+    assert len(turns) == 2
+    assert 343.5 < lam[turns[0]] < 343.8 and 341.9 < lam[turns[1]] < 342.1
