@@ -95,3 +95,22 @@ def test_checkpoint_folder_is_created_and_a_folder_path_is_refused(tmp_path):
     (tmp_path / "file").write_text("")
     with pytest.raises(ModelError, match=r"continue_branch\.checkpoint: cannot create"):
         continue_branch(two_dof, [-1.5, 1.1], 1.5, OPTS, checkpoint=tmp_path / "file" / "b.h5")
+
+
+def test_a_checkpoint_written_before_the_shrinks_counter_still_resumes(tmp_path):
+    """``ContinuationState.shrinks`` (issue 16) came after the checkpoint format: a state
+    without it resumes with the count at 0 (a missing required field is still refused)."""
+    path = tmp_path / "branch.h5"
+    with pytest.raises(Interrupted):
+        continue_branch(two_dof, [-1.5, 1.1], 1.5, OPTS, checkpoint=path, checkpoint_every=10,
+                        monitor=stop_at(25))
+    with h5py.File(path, "r+") as f:
+        group = f["state"]
+        assert "shrinks" in group.attrs
+        del group.attrs["shrinks"]
+    state, _, _ = load_continuation_checkpoint(path)
+    assert state.point == 20 and state.shrinks == 0
+    with h5py.File(path, "r+") as f:
+        del f["state"].attrs["point"]
+    with pytest.raises(CheckpointError, match="'point'"):
+        load_continuation_checkpoint(path)
