@@ -274,7 +274,8 @@ class _Locator:
         self.options = options
         self.corrector = CorrectorOptions(branch.options.tol, branch.options.max_iter,
                                           branch.options.max_backtracks,
-                                          step_tol=options.tol)
+                                          step_tol=options.tol,
+                                          stall_tol=branch.options.stall_tol)
 
     def locate(self, kind: str, i: int, j: int,
                ends: tuple[float, float]) -> BifurcationEvent | None:

@@ -127,7 +127,8 @@ def locate_extrema(residual: ResidualCallback, branch: Branch, measure: Measure,
         raise ModelError("need tol > 0, fd_step > 0 and max_iter >= 1", "locate_extrema")
     system = ScaledSystem(residual, branch.x_scale, branch.r_scale, branch.lam_scale)
     corrector = CorrectorOptions(branch.options.tol, branch.options.max_iter,
-                                 branch.options.max_backtracks, step_tol=tol)
+                                 branch.options.max_backtracks, step_tol=tol,
+                                 stall_tol=branch.options.stall_tol)
     points = branch.scaled()
     g = np.array([slope(system, measure, y, t, fd_step)
                   for y, t in zip(points, branch.tangents, strict=True)])

@@ -109,7 +109,8 @@ def floquet_events(residual: Callable[..., Any], branch: Branch, model: FloquetM
     counts = [unstable_counts(multipliers[i], model.tol) for i in valid]
     system = ScaledSystem(residual, branch.x_scale, branch.r_scale, branch.lam_scale)
     corrector = CorrectorOptions(branch.options.tol, branch.options.max_iter,
-                                 branch.options.max_backtracks, step_tol=tol)
+                                 branch.options.max_backtracks, step_tol=tol,
+                                 stall_tol=branch.options.stall_tol)
     points = branch.scaled()
     events = []
     for a in range(valid.size - 1):
