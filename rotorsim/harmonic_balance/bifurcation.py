@@ -282,12 +282,15 @@ class _Locator:
         reference = [math.nan]
         segment = Segment.between(self.system, self.corrector, self.points[i], self.points[j],
                                   lambda y, ev, tan, border: self._test(kind, y, tan, border,
-                                                                        reference))
+                                                                        reference),
+                                  guard="drift" if kind == "branch_point" else "cone")
         lo = segment.endpoint(self.points[i])
         hi = segment.endpoint(self.points[j])
         if lo is None or hi is None or lo.value * hi.value >= 0.0:
             return None
         h = hi.s - lo.s
+        if kind == "branch_point":  # the branch stores det signs; the slope needs values
+            ends = (lo.value, hi.value)
         tol = max(self.options.tol, self.options.relative_tol * h)
         coarse = max(tol, 1e-6 * h) if kind == "fold" else tol
         if self.options.screen_jumps and kind != "fold":

@@ -38,6 +38,10 @@ from rotorsim.solvers.stats import Stats
 TestFunction = Callable[[FloatArray, Evaluation, Tangent, FloatArray], "tuple[float, Any]"]
 """``test(y, evaluation, tangent, border) -> (value, data)`` at a corrected point."""
 
+DRIFT = 0.1
+"""Largest move of a probe's corrector from its Hermite start, relative to the bracket
+chord, under the "drift" guard of :meth:`Segment.probe`."""
+
 CONE_SLACK = 0.05
 """Extra angle [rad] allowed between a probe's tangent and the bracket chord beyond twice
 the end tangents' own angles to it."""
@@ -64,13 +68,15 @@ class Segment:
     origin: FloatArray
     direction: FloatArray
     test: TestFunction
+    guard: str = "cone"
 
     @classmethod
     def between(cls, system: ScaledSystem, corrector: CorrectorOptions, y0: FloatArray,
-                y1: FloatArray, test: TestFunction) -> Segment:
-        """Segment from ``y0`` to ``y1`` (scaled)."""
+                y1: FloatArray, test: TestFunction, guard: str = "cone") -> Segment:
+        """Segment from ``y0`` to ``y1`` (scaled); ``guard`` is the probes' safeguard
+        ("cone" or "drift", see :meth:`probe`)."""
         chord = y1 - y0
-        return cls(system, corrector, y0, chord / np.linalg.norm(chord), test)
+        return cls(system, corrector, y0, chord / np.linalg.norm(chord), test, guard)
 
     def endpoint(self, y: FloatArray) -> SegmentPoint | None:
         """Re-correct a branch point (its chord hyperplane) and evaluate the test there."""
@@ -78,7 +84,11 @@ class Segment:
 
     def probe(self, lo: SegmentPoint, hi: SegmentPoint, s: float) -> SegmentPoint | None:
         """Point near abscissa ``s`` in ``(lo.s, hi.s)``; None if it cannot be corrected
-        or leaves the bracket or its tangent cone."""
+        or leaves the bracket, or fails the guard: its tangent leaves the cone of the
+        bracket ("cone"), or the corrector moved it farther than :data:`DRIFT` times the
+        bracket from the Hermite start ("drift": at a branch point the traced branch's
+        tangent is ill-determined, the bordered Jacobian being nearly singular, while the
+        start stays O(h^4) close to the branch)."""
         chord = hi.y - lo.y
         length = float(np.linalg.norm(chord))
         v = chord / length
@@ -87,8 +97,10 @@ class Segment:
         start = ((2 * s3 - 3 * s2 + 1) * lo.y + (s3 - 2 * s2 + sigma) * length * lo.t
                  + (3 * s2 - 2 * s3) * hi.y + (s3 - s2) * length * hi.t)
         cone = 2.0 * max(_angle(lo.t, v), _angle(hi.t, v)) + CONE_SLACK
-        point = self._corrected(start, v, cone)
+        point = self._corrected(start, v, cone if self.guard == "cone" else None)
         if point is None or not lo.s < point.s < hi.s:
+            return None
+        if self.guard == "drift" and np.linalg.norm(point.y - start) > DRIFT * length:
             return None
         return point
 
@@ -164,13 +176,20 @@ def screened(segment: Segment, lo: SegmentPoint, hi: SegmentPoint, tol: float,
     return lo, hi, True
 
 
+STEEP_FLOOR = 1e-4
+"""Narrowest bracket, relative to the first, over which :func:`steepness` takes a slope:
+the abscissae of corrected probes carry the corrector's error, so slopes over brackets
+narrower than this are noise (a regular zero located to 1e-7 of its bracket showed
+"slopes" 80 times its mean); a jump still shows ``1 / STEEP_FLOOR`` times the mean."""
+
+
 def steepness(lo: SegmentPoint, hi: SegmentPoint, ends: tuple[float, float],
               length: float) -> float:
     """Slope of the test function across the final bracket ``[lo, hi]`` over its mean
     slope across the first bracket (``ends`` over chord ``length``): about 1 at a regular
     zero, the ratio of the bracket to the width of a thin transition (a contact onset
     crossed by one AFT sample) there."""
-    width = hi.s - lo.s
+    width = max(hi.s - lo.s, STEEP_FLOOR * length)
     mean = abs(ends[1] - ends[0]) / length if length > 0 else math.inf
     if width <= 0.0 or not mean > 0.0:
         return 1.0

@@ -204,7 +204,8 @@ def first_point(residual: HBResidual, lam0: float, x0: FloatArray, x_scale: Floa
                            tol=tol)
     homotopy = Continuation(direction=-1, lam_min=0.0, lam_max=1.0, max_step=0.1,
                             max_points=400, tol=tol, x_scale=tuple(x_scale),
-                            r_scale=tuple(r_scale))
+                            r_scale=tuple(r_scale), relative_step=True,
+                            stall_tol=max(STALL_TOL, tol))
     fun = continuation_function(residual, "param", omega=lam0, stats=stats,
                                 terms=True)
     branch = continue_branch(fun, unforced.x, 1.0, homotopy)

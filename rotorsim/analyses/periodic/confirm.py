@@ -79,8 +79,10 @@ points is a thin non-smooth transition (:func:`~rotorsim.solvers.continuation_lo
 steepness`), not a regular zero: a smooth test function over one continuation step varies
 its slope by a small factor."""
 
-RELATIVE_TOL = 1e-6
-"""Events are located to this fraction of the step between their bracket points."""
+RELATIVE_TOL = 1e-5
+"""Events are located to this fraction of the step between their bracket points (tighter
+brackets reach the corrector's own error in the probes' abscissae: probes then fall
+outside the bracket and the event stayed "not located" at 1e-7 of its bracket)."""
 
 MAX_ITER = 6
 """Newton iterations of a fine-grid correction (from a converged coarse point)."""
