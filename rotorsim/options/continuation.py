@@ -20,7 +20,7 @@ class ContinuationOptions(OptionGroup):
 
     Steps are scaled arclengths: the parameter range counts 1 and each DOF's scale is its
     typical static displacement, so the steps are fractions of the range. Fields left at
-    None take the verb's default (``periodic``: ``max_step=0.05``, ``max_points=500``;
+    None take the verb's default (``periodic``: ``max_step=0.05``, ``max_points=1000``;
     ``periodic_parameter``: ``max_step=0.05``, ``max_points=200``).
 
     Parameters

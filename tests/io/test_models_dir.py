@@ -58,7 +58,7 @@ def test_every_named_analysis_runs(name, analysis):
     spec = model.analyses[analysis]
     result = run_analysis(model, analysis, fast=True)
     assert isinstance(result, RESULT_TYPES[spec.type])
-    # a branch's max_points: the file's, else the analysis default (500 or 200, above 10)
+    # a branch's max_points: the file's, else the analysis default (1000 or 200, above 10)
     if isinstance(result, PeriodicResult) and len(result) == min(
             spec.continuation.max_points or 10, 10):
         # fast=True caps a branch at 10 points: short of its end, it says so (issue 12)

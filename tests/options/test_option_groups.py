@@ -139,7 +139,7 @@ def test_periodic_verbs_resolve_their_groups_with_their_own_defaults():
                     continuation=None, stability=None, nodes=[1], output=None,
                     checkpoint="a.h5")
     own = periodic_options("periodic", periodic.DEFAULTS, **keywords)
-    assert (own.continuation.max_step, own.continuation.max_points) == (0.05, 500)
+    assert (own.continuation.max_step, own.continuation.max_points) == (0.05, 1000)
     assert own.checkpoint_every == 25 and own.checkpoint.path == "a.h5"
     assert own.stability.method is None and own.stability.tol == 1e-5
     assert own.output.nodes == (1,) and own.excitation.unbalance == ((1, 1e-4, 0.0),)

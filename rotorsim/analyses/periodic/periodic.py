@@ -86,7 +86,7 @@ PARAMETERS = ("speed", "frequency")
 
 
 DEFAULTS = PeriodicDefaults(
-    continuation=ContinuationOptions(max_step=0.05, max_points=500),
+    continuation=ContinuationOptions(max_step=0.05, max_points=1000),
     stability=StabilityOptions(tol=DEFAULT_TOL), checkpoint=Checkpointing(every=25),
     unused={"excitation": ("forces",),
             "output": ("every", "times", "rolling_elements", "velocities", "reducers",
@@ -157,7 +157,7 @@ def periodic(
     continuation : ContinuationOptions, optional
         First and largest scaled arclength step (the parameter range is 1, each DOF's
         scale is its typical static displacement; default ``max_step=0.05``, times the
-        size of the response where it grows beyond that scale), points (default 500),
+        size of the response where it grows beyond that scale), points (default 1000),
         corrector tolerance on the scaled residual, or the full solver
         options (their bounds and direction are replaced by ``start`` and ``stop``, their
         scales kept when not the default 1).
