@@ -46,6 +46,7 @@ from rotorsim.time_integration.local_tangent import (
     LowRankSolve,
     embed,
 )
+from rotorsim.time_integration.merged_matrices import MergedMatrices
 from rotorsim.time_integration.problem import (
     ForceEvaluation,
     Matrix,
@@ -53,7 +54,6 @@ from rotorsim.time_integration.problem import (
     combine,
     matrix_digest,
 )
-from rotorsim.time_integration.speed_node_matrix import SpeedNodeMatrix
 
 if TYPE_CHECKING:
     from rotorsim.time_integration.newmark import Newmark
@@ -82,8 +82,10 @@ class FactorCache:
     lu: Factorization | BandedLU | LowRankSolve
     base: BaseFactors | None = None
     kappa: float = math.nan
-    assembly: SpeedNodeMatrix | None = None
-    """The constant part ``S_0`` on a merged pattern (for building the next node at ``dt``)."""
+    merged: MergedMatrices | None = None
+    """``M``, ``C``, ``G``, ``K`` on one pattern (for building the next node)."""
+    problem: SecondOrderProblem | None = None
+    """The problem whose matrices ``merged`` holds."""
 
     def base_matches(self, dt: float, spin: float, dofs: IntArray | None) -> bool:
         """True when the cached constant part was built for ``dt``, ``spin`` and ``dofs``."""
@@ -295,43 +297,37 @@ class StepSolver:
                previous: FactorCache | None) -> FactorCache:
         """Factorise the iteration matrix at the speed node ``node`` (for local tangents:
         its constant part, updated by ``block`` on ``dofs`` when given); ``previous`` lends
-        its merged constant part when built for the same step size."""
+        its merged matrices when built for the same problem."""
         self.tally["factorizations"] += 1
         p, where = self.p, self._where()
-        assembly = previous.assembly if previous is not None and previous.dt == self.dt \
-            else None
-        if assembly is None:
-            assembly = self._assembly()
-        g = (1.0 - self.m.alpha_f) * self.gdt * node
+        merged = previous.merged if previous is not None and previous.problem is p \
+            else MergedMatrices.build([p.mass, p.damping, p.gyroscopic, p.stiffness], p.n)
+        constant = self._constant(node)
         lu: Factorization | BandedLU
         if dofs is None:
-            if any(T is not None for _, T in updates) or assembly is None:
-                lu = factorize(combine(self._constant(node) + updates, p.n), where=where)
+            if any(T is not None for _, T in updates) or merged is None:
+                lu = factorize(combine(constant + updates, p.n), where=where)
             else:
-                lu = assembly.factorize(g, where)
-            return FactorCache(self.dt, node, tangent, lu, assembly=assembly)
-        if assembly is None:
-            S0 = combine(self._constant(node), p.n)
+                lu = merged.factorize([c for c, _ in constant], where)
+            return FactorCache(self.dt, node, tangent, lu, merged=merged, problem=p)
+        if merged is None:
+            S0 = combine(constant, p.n)
             dense = max(DENSE_THRESHOLD, p.n) if not sp.issparse(S0) else DENSE_THRESHOLD
             lu = factorize(S0, where=where, dense_threshold=dense)
         else:
-            lu = assembly.factorize(g, where, max(DENSE_THRESHOLD, p.n)
-                                     if assembly.indices is None else DENSE_THRESHOLD)
+            dense = max(DENSE_THRESHOLD, p.n) if merged.dense else DENSE_THRESHOLD
+            lu = merged.factorize([c for c, _ in constant], where, dense)
         base = BaseFactors.build(lu, dofs)
         if block is None:
             block = np.zeros((dofs.size, dofs.size))
         return FactorCache(self.dt, node, tangent, LowRankSolve.build(base, block, where),
-                           base, assembly=assembly)
+                           base, merged=merged, problem=p)
 
     def _constant(self, node: float) -> list[tuple[float, Matrix | None]]:
         """The terms of the constant part ``S_0`` at the speed node ``node``."""
         m, p, w = self.m, self.p, 1.0 - self.m.alpha_f
         return [(1.0 - m.alpha_m, p.mass), (w * self.gdt, p.damping),
                 (w * self.gdt * node, p.gyroscopic), (w * self.bdt2, p.stiffness)]
-
-    def _assembly(self) -> SpeedNodeMatrix | None:
-        """``S_0`` merged for this step size (None for mixed dense and sparse storage)."""
-        return SpeedNodeMatrix.build(self._constant(0.0), 2, self.p.n)
 
     def _resumed_off_node(self) -> bool:
         """True right after a resume whose factors were kept at another speed node."""

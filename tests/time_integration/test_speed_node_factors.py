@@ -14,9 +14,9 @@ from rotorsim.analyses.transient.transient import transient
 from rotorsim.errors import ConvergenceError
 from rotorsim.time_integration.banded_lu import BandLayout, max_band
 from rotorsim.time_integration.integrate import integrate
+from rotorsim.time_integration.merged_matrices import MergedMatrices
 from rotorsim.time_integration.newmark import Newmark
 from rotorsim.time_integration.problem import SecondOrderProblem, combine
-from rotorsim.time_integration.speed_node_matrix import SpeedNodeMatrix
 
 STEEL = rs.Material(name="steel", E=211e9, G_s=81.2e9, rho=7810)
 
@@ -33,15 +33,14 @@ def _banded(n: int, width: int, seed: int, zeros: bool = False) -> sp.csr_matrix
 
 
 @pytest.mark.parametrize("n", [60, 500])  # dense (below DENSE_THRESHOLD) and sparse
-def test_speed_node_matrix_equals_the_term_by_term_sum_bit_for_bit(n):
+def test_merged_matrices_sum_as_the_term_by_term_sum_bit_for_bit(n):
     M, C, G, K = (_banded(n, w, s, zeros=True) for w, s in ((2, 1), (0, 2), (3, 3), (4, 4)))
-    terms = [(1.0, M), (2.5e-5, C), (0.0, G), (2.5e-9, K)]
-    merged = SpeedNodeMatrix.build(terms, 2, n)
+    merged = MergedMatrices.build([M, None, C, G, K], n)
     assert merged is not None
     for node in (0.0, 123.456, -7e3):
-        g = 2.5e-5 * node
-        expected = combine([(1.0, M), (2.5e-5, C), (g, G), (2.5e-9, K)], n)
-        got = merged.at(g)
+        coefficients = [1.0, 9.0, 2.5e-5, 2.5e-5 * node, 2.5e-9]
+        expected = combine([(1.0, M), (2.5e-5, C), (2.5e-5 * node, G), (2.5e-9, K)], n)
+        got = merged.at(coefficients)
         if sp.issparse(expected):
             expected = sp.csc_matrix(expected)
             for part in ("indptr", "indices", "data"):
