@@ -171,8 +171,8 @@ class _TransientKeys(RestartableTable):
     speed: Speed = 0.0
     speed_stop: Speed | None = None
     ramp_time: PositiveTime | None = None
-    method: Literal["auto", "average_acceleration", "newmark", "linear_acceleration", "hht",
-                    "generalized_alpha", "adams", "adaptive"] | None = None
+    method: Literal["average_acceleration", "newmark", "linear_acceleration", "hht",
+                    "generalized_alpha", "adams", "adaptive", "auto"] | None = None
     initial: Literal["static", "zero"] = "static"
     on_failure: Literal["stop", "raise"] = "stop"
     unbalance: Annotated[list[UnbalanceTable], Field(min_length=1)] | None = None
@@ -184,7 +184,7 @@ class _TransientKeys(RestartableTable):
         if self.dt is not None and self.dt > self.t_end:
             raise fail(f"{fmt(self.dt, 'time')} exceeds t_end ({fmt(self.t_end, 'time')}): "
                        "check the units", ".dt")
-        problem = accuracy_problem(self.t_end, self.dt, self.rtol, self.method)
+        problem = accuracy_problem(self.dt, self.rtol, self.method)
         if problem is not None:
             raise fail(problem[0], f".{problem[1]}")
         if self.drive is not None and (self.speed_stop, self.ramp_time) != (None, None):

@@ -104,7 +104,7 @@ AUTO_METHOD = "auto"
 """The error-controlled method that ``rtol`` sets the accuracy of."""
 
 
-def accuracy_problem(t_end: float, dt: float | None, rtol: float | None,
+def accuracy_problem(dt: float | None, rtol: float | None,
                      method: str | None) -> tuple[str, str] | None:
     """What is wrong with the step options of a transient, as ``(message, key)``, or None:
     a fixed step ``dt`` [s] or the accuracy ``rtol`` of the error-controlled method
@@ -128,8 +128,6 @@ def accuracy_problem(t_end: float, dt: float | None, rtol: float | None,
     if dt is not None and auto:
         return ("method 'auto' chooses its own steps: give rtol (default 1e-4), not dt",
                 "dt")
-    if dt is not None and dt > t_end:
-        return f"dt {dt:g} s exceeds t_end ({t_end:g} s): check the units", "dt"
     return None
 
 
@@ -169,7 +167,7 @@ class TransientSpec(RestartableSpec):
     steady: SteadyStop = SteadyStop()  # noqa: RUF009  (frozen)
 
     def __post_init__(self) -> None:
-        problem = accuracy_problem(self.t_end, self.dt, self.rtol, self.method)
+        problem = accuracy_problem(self.dt, self.rtol, self.method)
         if problem is not None:
             raise ModelError(problem[0], f"transient.{problem[1]}")
 
