@@ -15,7 +15,8 @@ Three models, each run over the same span and step at constant top speed, as a r
 
 Ratios come from one run; absolute times are noisy.
 
-Run: ``OPENBLAS_NUM_THREADS=1 .venv/bin/python benchmarks/runup_cost.py [--quick]``
+Run: ``OPENBLAS_NUM_THREADS=1 PYTHONPATH=. .venv/bin/python benchmarks/runup_cost.py [--quick]``
+(``PYTHONPATH=.`` so that a worktree runs its own ``rotorsim``, not the installed one).
 """
 
 from __future__ import annotations

@@ -31,6 +31,7 @@ def adhoc_job(model: Any, args: argparse.Namespace) -> tuple[str, Any]:
         changes["stability"] = "none"
     if kind == "transient":
         changes.update(_run_control_changes(args))
+        changes.update(_step_changes(spec, args))
     if getattr(args, "speed", None) is not None:
         changes["speed"] = to_si(args.speed, "speed", "--speed")
     ranges = () if kind == "periodic_parameter" else (("start", "start", "speed"),
@@ -55,11 +56,12 @@ def adhoc_job(model: Any, args: argparse.Namespace) -> tuple[str, Any]:
 
             raise ModelError("the model has no such analysis; give --speeds START STOP NUM",
                              args.command)
-        if kind == "transient" and not {"t_end", "dt"} <= set(changes):
+        if kind == "transient" and ("t_end" not in changes or (
+                changes.get("dt") is None and changes.get("rtol") is None)):
             from rotorsim.errors import ModelError
 
-            raise ModelError("the model has no transient analysis; give --t-end and --dt",
-                             args.command)
+            raise ModelError("the model has no transient analysis; give --t-end and --dt "
+                             "(or --rtol)", args.command)
         if kind == "periodic" and not {"start", "stop"} <= set(changes):
             from rotorsim.errors import ModelError
 
@@ -88,6 +90,25 @@ def _parameter_changes(model: Any, spec: Any, args: argparse.Namespace) -> dict[
     start, stop = parameter_range(model, vary, given.get("start", getattr(spec, "start", 0)),
                                   given.get("stop", getattr(spec, "stop", 0)))
     return {"vary": vary, "start": start, "stop": stop}
+
+
+def _step_changes(spec: Any, args: argparse.Namespace) -> dict[str, Any]:
+    """``--rtol`` runs the error-controlled method ``auto`` in place of the model's fixed
+    ``dt``; ``--dt`` runs a fixed step in place of the model's ``rtol`` (its method then
+    reverts to the default when it was ``auto``). Both at once are refused."""
+    from rotorsim.errors import ModelError
+
+    if args.rtol is not None and args.dt is not None:
+        raise ModelError("give --dt (a fixed step) or --rtol (error-controlled), not both",
+                         args.command)
+    method = getattr(spec, "method", None)
+    if args.rtol is not None:
+        return {"rtol": args.rtol, "dt": None,
+                **({"method": None} if method not in (None, "auto") else {})}
+    if args.dt is not None and spec is not None and (spec.rtol is not None or
+                                                     method == "auto"):
+        return {"rtol": None, **({"method": None} if method == "auto" else {})}
+    return {}
 
 
 def _run_control_changes(args: argparse.Namespace) -> dict[str, Any]:

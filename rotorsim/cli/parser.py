@@ -94,6 +94,9 @@ def build_parser() -> argparse.ArgumentParser:
         if kind == "transient":
             p.add_argument("--t-end", help='duration, e.g. "0.5 s"')
             p.add_argument("--dt", help='time step, e.g. "20 us"')
+            p.add_argument("--rtol", type=float,
+                           help="accuracy relative to the motion, e.g. 1e-5: runs the "
+                                "error-controlled method 'auto' instead of a fixed dt")
             p.add_argument("--speed", help='spin speed (start of a ramp), e.g. "3000 rpm"')
             p.add_argument("--speed-stop", help="end speed of a linear run-up/coast-down")
             _add_run_control_options(p)

@@ -126,7 +126,8 @@ def _transient(rotor: Rotor, model: Model, spec: Any, fast: bool, progress: bool
         steady = spec.steady if spec.steady.nodes or spec.nodes is None else \
             dataclasses.replace(spec.steady, nodes=spec.nodes)
     return transient(rotor, t_end, spec.dt, speed=speed, unbalance=list(unbalance),
-                     excitation=_excitation(model), method=spec.method, initial=spec.initial,
+                     excitation=_excitation(model), method=spec.method, rtol=spec.rtol,
+                     initial=spec.initial,
                      nodes=spec.nodes,
                      output=dataclasses.replace(spec.output, progress=progress),
                      on_failure=spec.on_failure, checkpoint=restart, steady=steady)

@@ -15,7 +15,12 @@ from pydantic import Field, PlainValidator, create_model, model_validator
 from rotorsim.errors import ModelError
 from rotorsim.io.analysis_spec import AnalysisSpec, Grid
 from rotorsim.io.drive_schema import DriveTable
-from rotorsim.io.long_specs import PeriodicParameterSpec, PeriodicSpec, TransientSpec
+from rotorsim.io.long_specs import (
+    PeriodicParameterSpec,
+    PeriodicSpec,
+    TransientSpec,
+    accuracy_problem,
+)
 from rotorsim.io.model_schema import UnbalanceTable
 from rotorsim.io.schema_types import (
     Dof,
@@ -161,12 +166,13 @@ def _option_annotation(meta: Any, default: Any) -> tuple[Any, Any]:
 class _TransientKeys(RestartableTable):
     type: Literal["transient"]
     t_end: PositiveTime
-    dt: PositiveTime
+    dt: PositiveTime | None = None
+    rtol: PositiveRatio | None = None  # the accuracy relative to the motion
     speed: Speed = 0.0
     speed_stop: Speed | None = None
     ramp_time: PositiveTime | None = None
     method: Literal["average_acceleration", "newmark", "linear_acceleration", "hht",
-                    "generalized_alpha", "adams", "adaptive"] = "average_acceleration"
+                    "generalized_alpha", "adams", "adaptive", "auto"] | None = None
     initial: Literal["static", "zero"] = "static"
     on_failure: Literal["stop", "raise"] = "stop"
     unbalance: Annotated[list[UnbalanceTable], Field(min_length=1)] | None = None
@@ -175,9 +181,12 @@ class _TransientKeys(RestartableTable):
 
     @model_validator(mode="after")
     def _step_within_run(self) -> "_TransientKeys":
-        if self.dt > self.t_end:
+        if self.dt is not None and self.dt > self.t_end:
             raise fail(f"{fmt(self.dt, 'time')} exceeds t_end ({fmt(self.t_end, 'time')}): "
                        "check the units", ".dt")
+        problem = accuracy_problem(self.dt, self.rtol, self.method)
+        if problem is not None:
+            raise fail(problem[0], f".{problem[1]}")
         if self.drive is not None and (self.speed_stop, self.ramp_time) != (None, None):
             raise fail("a drive sets the speed from torques: give no speed_stop or "
                        "ramp_time (speed is the initial speed)", ".drive")

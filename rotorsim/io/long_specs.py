@@ -12,6 +12,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Any, ClassVar
 
+from rotorsim.errors import ModelError
 from rotorsim.io.analysis_spec import AnalysisSpec, Grid, Unbalance
 from rotorsim.options import (
     Checkpointing,
@@ -97,10 +98,45 @@ class DriveSpec:
         return out
 
 
+RTOL_RANGE = (1e-10, 0.1)
+"""Accuracies ``rtol`` that ``rs.transient`` accepts (checked there again)."""
+AUTO_METHOD = "auto"
+"""The error-controlled method that ``rtol`` sets the accuracy of."""
+
+
+def accuracy_problem(dt: float | None, rtol: float | None,
+                     method: str | None) -> tuple[str, str] | None:
+    """What is wrong with the step options of a transient, as ``(message, key)``, or None:
+    a fixed step ``dt`` [s] or the accuracy ``rtol`` of the error-controlled method
+    ``"auto"``, one of them (``method = "auto"`` alone runs at ``rs.transient``'s default
+    accuracy)."""
+    auto = method == AUTO_METHOD
+    if rtol is not None:
+        if not (isinstance(rtol, int | float) and not isinstance(rtol, bool)
+                and RTOL_RANGE[0] <= rtol <= RTOL_RANGE[1]):
+            return (f"rtol must be a number in [{RTOL_RANGE[0]:g}, {RTOL_RANGE[1]:g}] (the "
+                    f"accuracy relative to the motion, e.g. 1e-4), got {rtol!r}", "rtol")
+        if dt is not None:
+            return ("give dt (a fixed step) or rtol (the accuracy of the error-controlled "
+                    "method 'auto', which chooses its own steps), not both", "rtol")
+        if method is not None and not auto:
+            return (f"rtol is the accuracy of method 'auto'; method {method!r} takes a fixed "
+                    "dt instead", "rtol")
+    if dt is None and rtol is None and not auto:
+        return ("give dt (a fixed step) or rtol (the accuracy of the error-controlled method "
+                "'auto')", "dt")
+    if dt is not None and auto:
+        return ("method 'auto' chooses its own steps: give rtol (default 1e-4), not dt",
+                "dt")
+    return None
+
+
 @dataclass(frozen=True, kw_only=True)
 class TransientSpec(RestartableSpec):
-    """Time integration: :func:`rotorsim.transient` over ``t_end`` [s] with step ``dt`` [s]
-    at constant ``speed`` [rad/s], or a linear ramp to ``speed_stop`` over ``ramp_time``
+    """Time integration: :func:`rotorsim.transient` over ``t_end`` [s] with step ``dt`` [s],
+    or error-controlled at the accuracy ``rtol`` (relative to the motion; method
+    ``"auto"``, :func:`accuracy_problem` says which combinations are valid), at constant
+    ``speed`` [rad/s], or a linear ramp to ``speed_stop`` over ``ramp_time``
     [s] (default ``t_end``); ``unbalance=None`` uses the model's ``[[loads.unbalance]]``;
     rolling bearings act with their full nonlinear force. ``on_failure="stop"`` (default)
     keeps the run up to a failed step with status ``NOT_CONVERGED``; ``"raise"`` raises.
@@ -116,11 +152,12 @@ class TransientSpec(RestartableSpec):
         **RestartableSpec.FILE_OPTIONS, "output": ("every", "velocities", "reducers", "after"),
         "steady": ("rtol", "atol", "revolutions")}
     t_end: float
-    dt: float
+    dt: float | None = None
+    rtol: float | None = None
     speed: float = 0.0
     speed_stop: float | None = None
     ramp_time: float | None = None
-    method: str = "average_acceleration"
+    method: str | None = None
     initial: str = "static"
     on_failure: str = "stop"
     unbalance: Unbalance | None = None
@@ -128,6 +165,11 @@ class TransientSpec(RestartableSpec):
     drive: DriveSpec | None = None
     stop_when_steady: bool = False
     steady: SteadyStop = SteadyStop()  # noqa: RUF009  (frozen)
+
+    def __post_init__(self) -> None:
+        problem = accuracy_problem(self.dt, self.rtol, self.method)
+        if problem is not None:
+            raise ModelError(problem[0], f"transient.{problem[1]}")
 
 
 _BRANCH_OPTIONS: dict[str, tuple[str, ...]] = {

@@ -27,6 +27,7 @@ from numpy.typing import NDArray
 
 from rotorsim.errors import ConvergenceError, ModelError
 from rotorsim.solvers.linear import Factorization
+from rotorsim.time_integration.banded_lu import BandedLU
 
 FloatArray = NDArray[np.float64]
 IntArray = NDArray[np.int64]
@@ -122,12 +123,12 @@ def embed(terms: list[tuple[float, LocalMatrix | None]]) -> tuple[IntArray, Floa
 class BaseFactors:
     """``S0`` factorised, with ``Z = S0^-1 P`` for the DOFs ``dofs``."""
 
-    lu: Factorization
+    lu: Factorization | BandedLU
     dofs: IntArray
     Z: FloatArray
 
     @classmethod
-    def build(cls, lu: Factorization, dofs: IntArray) -> BaseFactors:
+    def build(cls, lu: Factorization | BandedLU, dofs: IntArray) -> BaseFactors:
         P = np.zeros((lu.n, dofs.size))
         P[dofs, np.arange(dofs.size)] = 1.0
         return cls(lu, dofs, np.asarray(lu.solve(P)).reshape(lu.n, dofs.size))

@@ -37,6 +37,7 @@ import scipy.sparse as sp
 
 from rotorsim.errors import ConvergenceError, ModelError
 from rotorsim.solvers.linear import DENSE_THRESHOLD, Factorization, factorize
+from rotorsim.time_integration.banded_lu import BandedLU
 from rotorsim.time_integration.base import Counters, FloatArray, IntArray, State
 from rotorsim.time_integration.finite_checks import check_finite, first_nonfinite_row
 from rotorsim.time_integration.local_tangent import (
@@ -45,6 +46,7 @@ from rotorsim.time_integration.local_tangent import (
     LowRankSolve,
     embed,
 )
+from rotorsim.time_integration.merged_matrices import MergedMatrices
 from rotorsim.time_integration.problem import (
     ForceEvaluation,
     Matrix,
@@ -77,9 +79,13 @@ class FactorCache:
     dt: float
     spin: float
     tangent: int
-    lu: Factorization | LowRankSolve
+    lu: Factorization | BandedLU | LowRankSolve
     base: BaseFactors | None = None
     kappa: float = math.nan
+    merged: MergedMatrices | None = None
+    """``M``, ``C``, ``G``, ``K`` on one pattern (for building the next node)."""
+    problem: SecondOrderProblem | None = None
+    """The problem whose matrices ``merged`` holds."""
 
     def base_matches(self, dt: float, spin: float, dofs: IntArray | None) -> bool:
         """True when the cached constant part was built for ``dt``, ``spin`` and ``dofs``."""
@@ -87,7 +93,8 @@ class FactorCache:
                 and (self.dt, self.spin) == (dt, spin) and np.array_equal(self.base.dofs, dofs))
 
 
-def gyroscopic_sensitivity(lu: Factorization | LowRankSolve, G: Matrix, n: int) -> float:
+def gyroscopic_sensitivity(lu: Factorization | BandedLU | LowRankSolve, G: Matrix,
+                           n: int) -> float:
     """Estimate of the spectral radius ``rho(S_0^-1 G)`` [1], from above.
 
     ``POWER_ITERATIONS`` power iterations from a fixed pseudo-random start; the largest of
@@ -131,6 +138,8 @@ class StepSolver:
         self.node = self.spin
         """Speed node of the iteration matrix in use [rad/s]."""
 
+        self.old_scale: float | None = None
+        """``max |q_n|`` [m, rad], computed on first use by :meth:`_tolerance`."""
         self.tally = {"factorizations": 0, "solves": 0, "residual_evaluations": 0,
                       "iterations": 0}
 
@@ -139,33 +148,67 @@ class StepSolver:
         q, v = self.q_base + self.bdt2 * a, self.v_base + self.gdt * a
         ev = self._forces(q, v)
         res = self._residual(a, ev)
-        affine = self.p.is_linear
-        lu: Factorization | LowRankSolve | None = None
+        if self.p.is_linear:
+            return self._solve_affine(a, res, ev)
         for k in range(self.m.max_iter):
             check_finite(res, "residual", self.m.name, self.t1, self.s.step + 1, k)
-            if lu is None or not affine:  # an affine step keeps its matrix
-                lu = self._lu(ev)
-            da = -lu.solve(res)
-            self.tally["solves"] += 1
-            self.tally["iterations"] += 1
-            check_finite(da, "Newton correction", self.m.name, self.t1, self.s.step + 1, k)
+            da = -self._lu(ev).solve(res)
+            self._count_solve(da, k)
             dq = self.bdt2 * np.abs(da)
-            if not affine and float(np.max(dq)) <= self._tolerance(q):
+            if float(np.max(dq)) <= self._tolerance(q):
                 return self._accepted(q, v, a, ev, k + 1)
             a = a + da
             q, v = self.q_base + self.bdt2 * a, self.v_base + self.gdt * a
-            if not affine:
-                ev = self._forces(q, v)
-                res = self._residual(a, ev)
-                continue
-            # one Newton step solves an affine step equation exactly; with a matrix frozen
-            # at the speed node the next correction is about theta times this one
-            if self.theta == 0.0 or self.theta / (1.0 - self.theta) * float(np.max(dq)) \
-                    <= self._tolerance(q):
-                return self._accepted(q, v, a, self._forces(q, v), k + 1)
-            res = self._frozen_part(da)
+            ev = self._forces(q, v)
+            res = self._residual(a, ev)
+        raise self._not_converged(dq, q, res)
+
+    def _solve_affine(self, a: FloatArray, res: FloatArray, ev: ForceEvaluation) -> State:
+        """Iterations on an affine step equation with one matrix: the first solve is exact
+        at the matrix's own speed; with a matrix frozen at a speed node each further
+        correction is about ``theta`` times the last, and only the left-out part
+        ``dS da`` (:meth:`_frozen_part`) is needed as the next residual. The step is
+        accepted once the predicted remaining correction ``theta / (1 - theta) h^2 beta
+        |da|`` is within the Newton tolerance, compared first with its floor at ``max |q_n|``
+        (which spares a reduction over ``q``); after the first solve with that floor only
+        (stricter when the motion grows: the test rarely passes there)."""
+        check_finite(res, "residual", self.m.name, self.t1, self.s.step + 1, 0)
+        lu = self._lu(ev)
+        for k in range(self.m.max_iter):
+            da = -lu.solve(res)
+            self.tally["solves"] += 1
+            self.tally["iterations"] += 1
+            a = a + da
+            q = self.q_base + self.bdt2 * a
+            if self.theta == 0.0:
+                check_finite(da, "Newton correction", self.m.name, self.t1,
+                             self.s.step + 1, k)
+                return self._accepted_affine(q, a, k + 1)
+            size = float(np.abs(da).max())
+            if not math.isfinite(size):
+                check_finite(da, "Newton correction", self.m.name, self.t1,
+                             self.s.step + 1, k)
+            remaining = self.theta / (1.0 - self.theta) * self.bdt2 * size
+            if remaining <= self._tolerance(None) or (k and remaining <= self._tolerance(q)):
+                return self._accepted_affine(q, a, k + 1)
+            res = self._frozen_part(da)  # finite: da is
+        raise self._not_converged(self.bdt2 * np.abs(da), q, res)
+
+    def _accepted_affine(self, q: FloatArray, a: FloatArray, iterations: int) -> State:
+        v = self.v_base + self.gdt * a
+        return self._accepted(q, v, a, self._forces(q, v), iterations)
+
+    def _count_solve(self, da: FloatArray, iteration: int) -> None:
+        """Tally one Newton iteration and check its correction."""
+        self.tally["solves"] += 1
+        self.tally["iterations"] += 1
+        check_finite(da, "Newton correction", self.m.name, self.t1, self.s.step + 1,
+                     iteration)
+
+    def _not_converged(self, dq: FloatArray, q: FloatArray,
+                       res: FloatArray) -> ConvergenceError:
         worst, tol = int(np.argmax(dq)), self._tolerance(q)
-        raise ConvergenceError(
+        return ConvergenceError(
             f"Newton did not converge at t = {self.t1:.9g} s (h = {self.dt:.3g} s): "
             f"|dq| = {dq[worst]:.3e} > {tol:.3e} at DOF {worst}", self.m.name,
             step=self.s.step + 1, iteration=self.m.max_iter,
@@ -175,10 +218,10 @@ class StepSolver:
         """The residual of a linear step equation after the correction ``da``: the part of
         the matrix left out at the speed node times it, ``(1 - alpha_f) gamma h (s - s_node)
         G da`` [N]."""
-        if self.p.gyroscopic is None:
+        G = self.p.gyroscopic_compact
+        if G is None:
             return np.zeros(self.p.n)
-        return ((1.0 - self.m.alpha_f) * self.gdt * (self.spin - self.node)) \
-            * (self.p.gyroscopic @ da)
+        return ((1.0 - self.m.alpha_f) * self.gdt * (self.spin - self.node)) * (G @ da)
 
     def _residual(self, a: FloatArray, ev: ForceEvaluation) -> FloatArray:
         """Step equation ``(1 - alpha_m) M a + alpha_m M a_n + alpha_f g_n + (1 - alpha_f)
@@ -186,10 +229,13 @@ class StepSolver:
         return (1.0 - self.m.alpha_m) * (self.p.mass @ a) + self.history \
             + (1.0 - self.m.alpha_f) * ev.net
 
-    def _tolerance(self, q: FloatArray) -> float:
-        """Newton tolerance on the displacement correction [m, rad]."""
-        return self.m.newton_atol + self.m.newton_rtol * max(
-            float(np.max(np.abs(q))), float(np.max(np.abs(self.s.q))))
+    def _tolerance(self, q: FloatArray | None) -> float:
+        """Newton tolerance on the displacement correction [m, rad]; with ``q = None``, its
+        floor at the old displacements alone."""
+        if self.old_scale is None:
+            self.old_scale = float(np.abs(self.s.q).max())
+        scale = self.old_scale if q is None else max(float(np.abs(q).max()), self.old_scale)
+        return self.m.newton_atol + self.m.newton_rtol * scale
 
     def charged(self, state: State) -> State:
         """``state`` with the cost of this attempt and its factorisation cache."""
@@ -201,7 +247,7 @@ class StepSolver:
             self.tally["residual_evaluations"] += 1
         return self.p.forces(q, v, self.t1, spin=self.spin, external=self.f1)
 
-    def _lu(self, ev: ForceEvaluation) -> Factorization | LowRankSolve:
+    def _lu(self, ev: ForceEvaluation) -> Factorization | BandedLU | LowRankSolve:
         kt, ct = ev.stiffness_tangent, ev.damping_tangent
         Ks, Cs = self.p.speed_matrices(self.spin)  # exact at this step's speed
         parts = (kt, ct, Ks, Cs)
@@ -223,7 +269,7 @@ class StepSolver:
         c = self.cache
         if c is None and self._resumed_off_node():
             # after a resume: rebuild the factors at the stored node, as the run did
-            c = self._build(self.s.factor_spin, tangent, updates, dofs, None)
+            c = self._build(self.s.factor_spin, tangent, updates, dofs, None, None)
             c.kappa = self.s.factor_kappa
         node = self._node(c)
         if c is not None and (c.dt, c.spin) == (self.dt, node) and \
@@ -237,7 +283,7 @@ class StepSolver:
             self.cache = dataclasses.replace(c, tangent=tangent, lu=lu)
             return lu
         self.node = node
-        new = self._build(node, tangent, updates, dofs, block)
+        new = self._build(node, tangent, updates, dofs, block, c)
         if c is not None and c.dt == self.dt:
             new.kappa = c.kappa  # rho(S_0^-1 G) barely moves between nearby speed nodes
         self.cache = new
@@ -247,24 +293,41 @@ class StepSolver:
         return f"{self.m.name}: iteration matrix at t = {self.t1:.9g} s"
 
     def _build(self, node: float, tangent: int, updates: list[tuple[float, Matrix | None]],
-               dofs: IntArray | None, block: FloatArray | None) -> FactorCache:
+               dofs: IntArray | None, block: FloatArray | None,
+               previous: FactorCache | None) -> FactorCache:
         """Factorise the iteration matrix at the speed node ``node`` (for local tangents:
-        its constant part, updated by ``block`` on ``dofs`` when given)."""
-        m, p, w = self.m, self.p, 1.0 - self.m.alpha_f
-        constant = [(1.0 - m.alpha_m, p.mass), (w * self.gdt, p.damping),
-                    (w * self.gdt * node, p.gyroscopic), (w * self.bdt2, p.stiffness)]
+        its constant part, updated by ``block`` on ``dofs`` when given); ``previous`` lends
+        its merged matrices when built for the same problem."""
         self.tally["factorizations"] += 1
+        p, where = self.p, self._where()
+        merged = previous.merged if previous is not None and previous.problem is p \
+            else MergedMatrices.build([p.mass, p.damping, p.gyroscopic, p.stiffness], p.n)
+        constant = self._constant(node)
+        lu: Factorization | BandedLU
         if dofs is None:
-            lu = factorize(combine(constant + updates, p.n), where=self._where())
-            return FactorCache(self.dt, node, tangent, lu)
-        S0 = combine(constant, p.n)
-        dense = max(DENSE_THRESHOLD, p.n) if not sp.issparse(S0) else DENSE_THRESHOLD
-        base = BaseFactors.build(factorize(S0, where=self._where(), dense_threshold=dense),
-                                 dofs)
+            if any(T is not None for _, T in updates) or merged is None:
+                lu = factorize(combine(constant + updates, p.n), where=where)
+            else:
+                lu = merged.factorize([c for c, _ in constant], where)
+            return FactorCache(self.dt, node, tangent, lu, merged=merged, problem=p)
+        if merged is None:
+            S0 = combine(constant, p.n)
+            dense = max(DENSE_THRESHOLD, p.n) if not sp.issparse(S0) else DENSE_THRESHOLD
+            lu = factorize(S0, where=where, dense_threshold=dense)
+        else:
+            dense = max(DENSE_THRESHOLD, p.n) if merged.dense else DENSE_THRESHOLD
+            lu = merged.factorize([c for c, _ in constant], where, dense)
+        base = BaseFactors.build(lu, dofs)
         if block is None:
             block = np.zeros((dofs.size, dofs.size))
-        return FactorCache(self.dt, node, tangent,
-                           LowRankSolve.build(base, block, self._where()), base)
+        return FactorCache(self.dt, node, tangent, LowRankSolve.build(base, block, where),
+                           base, merged=merged, problem=p)
+
+    def _constant(self, node: float) -> list[tuple[float, Matrix | None]]:
+        """The terms of the constant part ``S_0`` at the speed node ``node``."""
+        m, p, w = self.m, self.p, 1.0 - self.m.alpha_f
+        return [(1.0 - m.alpha_m, p.mass), (w * self.gdt, p.damping),
+                (w * self.gdt * node, p.gyroscopic), (w * self.bdt2, p.stiffness)]
 
     def _resumed_off_node(self) -> bool:
         """True right after a resume whose factors were kept at another speed node."""
@@ -275,7 +338,8 @@ class StepSolver:
 
     def _node(self, c: FactorCache | None) -> float:
         """Speed node of this step's iteration matrix: the cached one while its predicted
-        contraction ``theta`` stays within ``max_contraction``, else this step's speed."""
+        contraction ``theta`` stays within ``max_contraction`` and the speed still moves,
+        else a new one (:meth:`_new_node`)."""
         self.theta = 0.0
         p = self.p
         if c is None or c.dt != self.dt or c.spin == self.spin or p.gyroscopic is None \
@@ -286,11 +350,29 @@ class StepSolver:
             c.kappa = (1.0 - self.m.alpha_f) * self.gdt * gyroscopic_sensitivity(
                 lu, p.gyroscopic, p.n)
             self.tally["solves"] += POWER_ITERATIONS
+        previous = p.spin(self.s.t)
         theta = c.kappa * abs(self.spin - c.spin)
-        if theta > self.m.max_contraction:
+        if theta <= self.m.max_contraction and previous != self.spin:
+            self.theta = theta
+            return c.spin
+        return self._new_node(c.kappa, previous)
+
+    def _new_node(self, kappa: float, previous: float) -> float:
+        """A new speed node. While the speed moves by less than ``reach = max_contraction /
+        kappa`` per step, it lies ``reach`` ahead of this step's speed in the direction the
+        speed moves, so that it serves the steps on both sides of it (about twice as many
+        as a node at this step's speed). Otherwise (fast changes, or a speed that has
+        stopped moving, where the steps that follow need no correction) it is this step's
+        speed."""
+        if not (math.isfinite(kappa) and kappa > 0.0):
             return self.spin
-        self.theta = theta
-        return c.spin
+        reach = self.m.max_contraction / kappa
+        change = self.spin - previous
+        if change == 0.0 or abs(change) > reach:
+            return self.spin
+        node = self.spin + math.copysign(reach, change)
+        self.theta = kappa * abs(self.spin - node)
+        return node
 
     def _accepted(self, q: FloatArray, v: FloatArray, a: FloatArray, ev: ForceEvaluation,
                   iterations: int) -> State:

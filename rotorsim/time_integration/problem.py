@@ -163,6 +163,16 @@ class SecondOrderProblem:
             h.update(f"{name}:{getattr(self, name) is not None}".encode())
         return h.hexdigest()
 
+    @cached_property
+    def gyroscopic_compact(self) -> Matrix | None:
+        """``G`` without stored zeros (sparse; the same products, computed faster), or
+        ``G`` itself when dense or absent."""
+        if self.gyroscopic is None or not sp.issparse(self.gyroscopic):
+            return self.gyroscopic
+        G = self.gyroscopic.copy()
+        G.eliminate_zeros()
+        return G
+
     def spin(self, t: float) -> float:
         """``s(t)`` (0 without a schedule); rejects a non-finite value."""
         if self.speed is None:

@@ -47,6 +47,12 @@ CASES = [
     pytest.param(["transient", BALL, "--t-end", "10 ms", "--dt", "1 s"],
                  r"transient\.dt: dt 1\.0 s exceeds the duration 0\.01 s",
                  id="transient-dt-above-t-end"),
+    pytest.param(["transient", BALL, "--t-end", "10 ms", "--rtol", "0"],
+                 r"transient\.rtol: rtol must be a number in \[1e-10, 0\.1\]",
+                 id="transient-rtol-zero"),
+    pytest.param(["transient", BALL, "--t-end", "10 ms", "--dt", "5 us", "--rtol", "1e-4"],
+                 r"transient: give --dt \(a fixed step\) or --rtol \(error-controlled\), "
+                 r"not both", id="transient-dt-and-rtol"),
     pytest.param(["periodic", BALL, "--start", "1000 rpm", "--stop", "nan rpm"],
                  r"--stop: must be finite, got \"nan rpm\"", id="periodic-stop-nan"),
     pytest.param(["unbalance", FRISWELL, "--speeds", "0", "100", "0"],
