@@ -261,6 +261,13 @@ def _signed_mean(factors: NDArray[np.complex128]) -> float:
     return sign * math.exp(float(np.mean(np.log(size))))
 
 
+PROBE_MAX_ITER = 6
+"""Newton iterations of a probe's corrector: it starts from the cubic Hermite interpolant
+of its bracket, O(h^4) from the branch, and converges in 2-3 where the residual is smooth;
+where a contact-onset sample makes it stall (accepted within ``stall_tol``), more
+iterations only cost evaluations."""
+
+
 class _Locator:
     """Locates each kind of sign change with :mod:`~rotorsim.solvers.continuation_locate`."""
 
@@ -272,7 +279,8 @@ class _Locator:
         self.points = branch.scaled()
         self.multipliers = multipliers
         self.options = options
-        self.corrector = CorrectorOptions(branch.options.tol, branch.options.max_iter,
+        self.corrector = CorrectorOptions(branch.options.tol,
+                                          min(PROBE_MAX_ITER, branch.options.max_iter),
                                           branch.options.max_backtracks,
                                           step_tol=options.tol,
                                           stall_tol=branch.options.stall_tol)

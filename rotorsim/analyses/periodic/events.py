@@ -34,7 +34,7 @@ from typing import Any, Protocol
 import numpy as np
 
 from rotorsim.elements.base import FloatArray
-from rotorsim.harmonic_balance.bifurcation import BifurcationEvent
+from rotorsim.harmonic_balance.bifurcation import PROBE_MAX_ITER, BifurcationEvent
 from rotorsim.solvers.continuation import Branch
 from rotorsim.solvers.continuation_core import CorrectorOptions, ScaledSystem
 from rotorsim.solvers.continuation_locate import Segment, illinois, steepness
@@ -108,7 +108,7 @@ def floquet_events(residual: Callable[..., Any], branch: Branch, model: FloquetM
     valid = np.flatnonzero(np.all(np.isfinite(multipliers), axis=1))
     counts = [unstable_counts(multipliers[i], model.tol) for i in valid]
     system = ScaledSystem(residual, branch.x_scale, branch.r_scale, branch.lam_scale)
-    corrector = CorrectorOptions(branch.options.tol, branch.options.max_iter,
+    corrector = CorrectorOptions(branch.options.tol, min(PROBE_MAX_ITER, branch.options.max_iter),
                                  branch.options.max_backtracks, step_tol=tol,
                                  stall_tol=branch.options.stall_tol)
     points = branch.scaled()
