@@ -261,6 +261,13 @@ def _signed_mean(factors: NDArray[np.complex128]) -> float:
     return sign * math.exp(float(np.mean(np.log(size))))
 
 
+CORNER_STEEPNESS = 100.0
+"""A fold whose test function (the tangent's parameter component) crosses zero more than
+this many times as steeply as across its first bracket turns at a corner of the branch (a
+contact onset met by a sample): the extended system, which needs a smooth fold, is not
+tried there (on the clearance rotor it failed at both folds, 0.9 s each), and the fold is
+located on its test function."""
+
 PROBE_MAX_ITER = 6
 """Newton iterations of a probe's corrector: it starts from the cubic Hermite interpolant
 of its bracket, O(h^4) from the branch, and converges in 2-3 where the residual is smooth;
@@ -310,7 +317,7 @@ class _Locator:
             x, lam = self.system.from_y(best.y)
             return BifurcationEvent(kind, lam, x, i, j, ends, False, "test_function",
                                     None, best.data, best.value, math.inf)
-        if kind == "fold":
+        if kind == "fold" and steepness(lo, hi, ends, h) <= CORNER_STEEPNESS:
             best = lo if abs(lo.value) <= abs(hi.value) else hi
             fold = self._fold(best, h)
             if fold is not None:
