@@ -317,9 +317,10 @@ class _Locator:
             x, lam = self.system.from_y(best.y)
             return BifurcationEvent(kind, lam, x, i, j, ends, False, "test_function",
                                     None, best.data, best.value, math.inf)
-        if kind == "fold" and steepness(lo, hi, ends, h) <= CORNER_STEEPNESS:
+        if kind == "fold":
             best = lo if abs(lo.value) <= abs(hi.value) else hi
-            fold = self._fold(best, h)
+            smooth = steepness(lo, hi, ends, h) <= CORNER_STEEPNESS
+            fold = self._fold(best, h) if smooth else None
             if fold is not None:
                 x, lam, phi = fold
                 return BifurcationEvent("fold", lam, x, i, j, ends, True, "extended_system",
