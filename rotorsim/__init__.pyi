@@ -83,8 +83,8 @@ from .options import (
 from .plotting import plot
 from .results.bearing import BearingEquilibriumResult, StiffnessVariation
 from .results.campbell import CampbellResult
-from .results.event_verification import EventCheck, EventVerification, SideCheck
 from .results.critical_speeds import CriticalSpeedMapResult, CriticalSpeeds
+from .results.event_verification import EventCheck, EventVerification, SideCheck
 from .results.frequency_response import FrequencyResponseResult
 from .results.modal import ModalResult
 from .results.orbits import Ellipse, ellipse

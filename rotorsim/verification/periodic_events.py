@@ -211,10 +211,11 @@ def _check_options(steps: int, iterations: int, periods: int, perturbation: floa
                 and value >= low):
             raise ModelError(f"must be an integer >= {low}, got {value!r}",
                              f"{WHERE}.{name}")
-    for name, value, high in (("perturbation", perturbation, 0.1), ("margin", margin, 1.0),
-                              ("tolerance", tolerance, 10.0)):
-        if not (isinstance(value, int | float) and 0 < value <= high):
-            raise ModelError(f"must be in (0, {high}], got {value!r}", f"{WHERE}.{name}")
+    bounds = {"perturbation": (perturbation, 0.1), "margin": (margin, 1.0),
+              "tolerance": (tolerance, 10.0)}
+    for name, (number, high) in bounds.items():
+        if not (isinstance(number, int | float) and 0 < number <= high):
+            raise ModelError(f"must be in (0, {high}], got {number!r}", f"{WHERE}.{name}")
 
 
 def _excitation(result: PeriodicResult) -> Excitation:
@@ -272,39 +273,50 @@ def _perturbation(result: PeriodicResult, point: int, size: float
 def _measure(result: PeriodicResult, point: int, column: int, run: dict[str, Any],
              periods_run: list[int]) -> SideCheck:
     """Time integration at one branch point (module docstring)."""
-    W = float(result.speed[point])
-    pm = PeriodMap(run["system"], W, 2.0 * np.pi / float(result.fundamental[point]),
-                   run["excitation"], float(result.options.get("shaft_angle", 0.0)),
-                   run["steps_per_period"])
     q0, v0 = result.state(point, 0.0)
     ptp = float(result.peak_to_peak[point, np.searchsorted(result.dofs, column)])
     direction = _perturbation(result, point, run["perturbation"])
     floquet = float(result.max_multiplier[point])
     unstable = int(np.sum(np.abs(result.multipliers[point]) > 1.0 + run["margin"]))
     nan, empty = float("nan"), np.zeros(0)
-    try:
-        local = linearised_growth(pm, q0, v0, direction, run["iterations"])
-        if run["periods"]:
-            traj, qb = trajectory_growth(pm, q0, v0, direction, run["periods"])
-            rho_t, factors_t = traj.rho, traj.factors
-        else:
-            qb, _ = pm.flow(q0, v0, 1)
-            rho_t, factors_t = nan, empty
-    except ConvergenceError as exc:
-        periods_run.extend(pm.periods_run)
-        return SideCheck(point, float(result.parameter[point]), floquet, unstable, nan, nan,
-                         empty, empty, nan, nan, False, f"the transient failed: {exc}")
-    periods_run.extend(pm.periods_run)
-    deviation = np.abs(qb[:, column] - q0[column]) / ptp
-    drift = float(deviation.max()) if run["periods"] else nan
-    ok = _agrees(local.rho, floquet, run["margin"], run["tolerance"])
-    if run["periods"]:
-        ok = ok and _agrees(rho_t, floquet, run["margin"], run["tolerance"])
-    message = "" if ok else (f"measured max|mu| {local.rho:.4g} (linearised period map), "
-                             f"{rho_t:.4g} (free transient) against Floquet {floquet:.4g}")
-    return SideCheck(point, float(result.parameter[point]), floquet, unstable, local.rho,
-                     rho_t, local.factors, factors_t, float(deviation[1]), drift, ok,
-                     message)
+    failures: list[str] = []
+    local = _retried(lambda pm: linearised_growth(pm, q0, v0, direction, run["iterations"]),
+                     result, point, run, periods_run, failures)
+    rho_l, factors_l = (nan, empty) if local is None else (local.rho, local.factors)
+    free = None if not run["periods"] else _retried(
+        lambda pm: trajectory_growth(pm, q0, v0, direction, run["periods"]),
+        result, point, run, periods_run, failures)
+    rho_t, factors_t, defect, drift = nan, empty, nan, nan
+    if free is not None:
+        deviation = np.abs(free[1][:, column] - q0[column]) / ptp
+        rho_t, factors_t = free[0].rho, free[0].factors
+        defect, drift = float(deviation[1]), float(deviation.max())
+    ok = not failures and _agrees(rho_l, floquet, run["margin"], run["tolerance"]) and (
+        not run["periods"] or _agrees(rho_t, floquet, run["margin"], run["tolerance"]))
+    message = "; ".join(failures) if failures else "" if ok else (
+        f"measured max|mu| {rho_l:.4g} (linearised period map), {rho_t:.4g} (free "
+        f"transient) against Floquet {floquet:.4g}")
+    return SideCheck(point, float(result.parameter[point]), floquet, unstable, rho_l, rho_t,
+                     factors_l, factors_t, defect, drift, ok, message)
+
+
+def _retried(measure: Any, result: PeriodicResult, point: int, run: dict[str, Any],
+             periods_run: list[int], failures: list[str]) -> Any:
+    """``measure(period_map)``, again with half the time step when Newton fails in a step
+    (a contact that closes within a step); None and the error in ``failures`` when it
+    fails twice."""
+    for steps in (run["steps_per_period"], 2 * run["steps_per_period"]):
+        pm = PeriodMap(run["system"], float(result.speed[point]),
+                       2.0 * np.pi / float(result.fundamental[point]), run["excitation"],
+                       float(result.options.get("shaft_angle", 0.0)), steps)
+        try:
+            return measure(pm)
+        except ConvergenceError as exc:
+            error = exc
+        finally:
+            periods_run.extend(pm.periods_run)
+    failures.append(f"the transient failed at T/{2 * run['steps_per_period']}: {error}")
+    return None
 
 
 def _agrees(measured: float, floquet: float, margin: float, tolerance: float) -> bool:
@@ -342,9 +354,8 @@ def _verdict(result: PeriodicResult, number: int, before: SideCheck | None,
         ptp = float(np.max(result.peak_to_peak[[before.point, after.point],
                                                np.searchsorted(result.dofs, column)]))
         separation = abs(float(qa[column] - qb[column])) / ptp
-        spread = (before.drift + after.drift) if math.isfinite(before.drift) \
-            else (before.defect + after.defect)
-        if not spread < separation:
+        spread = before.drift + after.drift
+        if math.isfinite(spread) and not spread < separation:
             problems.append(f"the transients move {spread:.3g} (relative) from their "
                             f"orbits, not less than the {separation:.3g} between the two "
                             "orbits of the fold")

@@ -164,16 +164,16 @@ def test_bad_input_raises_model_errors(linear_branches):
     fake = dataclasses.replace(branch, bifurcations=(_fake_event(branch, 3),))
     with pytest.raises(rs.ModelError, match=r"verify_events.events\[1\]"):
         rs.verify_events(rotor, fake, events=[0, 1])
-    with pytest.raises(rs.ModelError, match="verify_events.steps_per_period"):
+    with pytest.raises(rs.ModelError, match=r"verify_events\.steps_per_period"):
         rs.verify_events(rotor, fake, steps_per_period=10)
-    with pytest.raises(rs.ModelError, match="verify_events.perturbation"):
+    with pytest.raises(rs.ModelError, match=r"verify_events\.perturbation"):
         rs.verify_events(rotor, fake, perturbation=0.5)
     other = rs.Rotor([rs.ShaftElement(L=0.5, idl=0.0, odl=0.05, material=STEEL)] * 2,
                      bearing_elements=[rs.BearingElement(n=0, kxx=1e7),
                                        rs.BearingElement(n=2, kxx=1e7)])
-    with pytest.raises(rs.ModelError, match="verify_events.model: .*not the model"):
+    with pytest.raises(rs.ModelError, match=r"verify_events\.model: .*not the model"):
         rs.verify_events(other, fake)
-    with pytest.raises(rs.ModelError, match="verify_events.model: expected a Rotor"):
+    with pytest.raises(rs.ModelError, match=r"verify_events\.model: expected a Rotor"):
         rs.verify_events("rotor", fake)
 
 
