@@ -84,6 +84,7 @@ from .plotting import plot
 from .results.bearing import BearingEquilibriumResult, StiffnessVariation
 from .results.campbell import CampbellResult
 from .results.critical_speeds import CriticalSpeedMapResult, CriticalSpeeds
+from .results.event_verification import EventCheck, EventVerification, SideCheck
 from .results.frequency_response import FrequencyResponseResult
 from .results.modal import ModalResult
 from .results.orbits import Ellipse, ellipse
@@ -94,6 +95,7 @@ from .results.transient import TransientResult
 from .time_integration.adams import Adams
 from .time_integration.adaptive import Adaptive
 from .time_integration.newmark import Newmark
+from .verification.periodic_events import verify_events
 
 __version__: str
 
@@ -118,6 +120,8 @@ __all__ = [
     "DofMap",
     "ElementMatrices",
     "Ellipse",
+    "EventCheck",
+    "EventVerification",
     "Excitation",
     "FlexibleRingBearingElement",
     "FlexibleRingRollerBearing",
@@ -153,6 +157,7 @@ __all__ = [
     "RotorsimError",
     "Sample",
     "ShaftElement",
+    "SideCheck",
     "SpeedFunction",
     "StabilityOptions",
     "StaticResult",
@@ -195,4 +200,5 @@ __all__ = [
     "switch_branch",
     "transient",
     "unbalance_response",
+    "verify_events",
 ]

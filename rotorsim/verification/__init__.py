@@ -12,4 +12,10 @@ modules themselves (they need scikit-fem, and meshio to write files):
 
 ``examples/seed001_ring_fe.py`` runs the seed 001 bearing with it (roller loads, mesh study,
 sensitivities).
+
+* :mod:`rotorsim.verification.periodic_events` -- :func:`~.periodic_events.verify_events`
+  (``rs.verify_events``): the bifurcations of a periodic branch checked by time integration
+  of the full model next to them, with :mod:`rotorsim.verification.period_map` (the period
+  map measured by ``rs.transient``). Needs numpy and scipy only; it may import the analyses
+  (transient and periodic results), which no analysis family may import from each other.
 """

@@ -1,0 +1,368 @@
+"""Bifurcations of a periodic branch checked by time integration next to them.
+
+:func:`verify_events` takes each event a :func:`rotorsim.periodic` branch reports and, on a
+branch point on each side of it, measures the largest Floquet multiplier with
+:func:`rotorsim.transient` on the full finite-element model (module
+:mod:`rotorsim.verification.period_map`): a code path that shares nothing with harmonic
+balance and its Floquet methods (Hill, Hsu, shooting on a reduced stability model) but the
+element forces.
+
+The sides. An event lies between branch points ``index`` and ``index + 1``. Its sides are
+searched among the points between the neighbouring events (never past another event), at
+most ``reach`` points away, nearest first, for a pair whose Floquet multipliers differ in
+the number ``n`` of ``|mu| > 1 + margin``: a crossing large enough to measure in a few
+periods. Without such a pair the event is not confirmed (the branch's own multipliers show
+no measurable crossing next to it) and the nearest pair is still measured and reported.
+
+The measurements at each side (from the harmonic-balance state ``(q0, v0)`` at phase 0,
+the shaft angle ``options["shaft_angle"]``, the branch's unbalance, gravity and loads):
+
+* ``local``: power iteration on the period map linearised at ``(q0, v0)`` by finite
+  differences (``iterations`` one-period transients), the counterpart of Floquet's
+  monodromy at the same state;
+* ``trajectory``: growth of the difference of two free transients over ``periods``
+  periods, from ``(q0, v0)`` and from ``(q0, v0)`` plus the perturbation;
+* ``defect``: how far the transient is from the harmonic-balance state after one period
+  (the truncation error of harmonic balance), and ``drift``: the farthest over the free run.
+
+The perturbation: the orbit's state a quarter period ahead, less its mean, weighted by
+``1 + (z - z_mid) / L`` along the shaft (so that it has mirror-symmetric and antisymmetric
+parts: symmetry-breaking branch points grow from the latter), scaled to ``perturbation``
+times the largest peak-to-peak of the orbit.
+
+A side agrees with Floquet when, for ``max |mu|_F > 1 + margin`` (unstable),
+the measurement exceeds ``1 + margin / 2`` and ``|ln rho - ln max |mu|_F| <=
+tolerance * ln max |mu|_F``; for a stable side (``<= 1 + margin``), when it stays below
+``1 + margin``. An event is confirmed when its sides show a Floquet crossing and both
+measurements agree on both sides; a fold also needs its two orbits to stay apart: the sum
+of the two drifts (defects without a free run) below their separation.
+
+References
+----------
+Seydel (2010), *Practical Bifurcation and Stability Analysis*, sections 7.1-7.2 (monodromy
+and multipliers of the period map); seed 002 section 3.5.3 (Floquet stability of rotor
+orbits).
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from collections.abc import Sequence
+from typing import Any
+
+import numpy as np
+
+from rotorsim.assembly.system import RotorSystem, assemble
+from rotorsim.errors import ConvergenceError, ModelError
+from rotorsim.model.rotor import Rotor
+from rotorsim.options import Excitation
+from rotorsim.results.event_verification import EventCheck, EventVerification, SideCheck
+from rotorsim.results.periodic import PeriodicResult
+from rotorsim.verification.period_map import (
+    FloatArray,
+    PeriodMap,
+    linearised_growth,
+    trajectory_growth,
+)
+
+WHERE = "verify_events"
+
+
+def verify_events(model: Rotor | RotorSystem | Any, result: PeriodicResult, *,
+                  events: Sequence[int] | None = None, steps_per_period: int = 200,
+                  iterations: int = 12, periods: int = 12, perturbation: float = 1e-3,
+                  margin: float = 0.02, tolerance: float = 0.5, reach: int = 8
+                  ) -> EventVerification:
+    """Check the bifurcations of a periodic branch by time integration next to them.
+
+    Parameters
+    ----------
+    model : Rotor, RotorSystem or Model
+        The model the branch was traced on (with its rolling bearings).
+    result : PeriodicResult
+        A speed branch of :func:`rotorsim.periodic` with stability, all nodes kept
+        (``nodes=None``).
+    events : sequence of int, optional
+        Indices into ``result.bifurcations`` (default all).
+    steps_per_period : int
+        Constant time steps per period of the non-dissipative average-acceleration scheme.
+    iterations : int
+        Periods of power iteration on the linearised period map, per side.
+    periods : int
+        Periods of the two free transients per side (0: no free transient).
+    perturbation : float
+        Size of the perturbation relative to the orbit's largest peak-to-peak (small: the
+        measurement is of the linearised map).
+    margin : float
+        Smallest ``max |mu| - 1`` counted as measurably unstable.
+    tolerance : float
+        Largest relative difference of ``ln max |mu|`` between measurement and Floquet on
+        an unstable side.
+    reach : int
+        Branch points searched on each side of an event.
+
+    Returns
+    -------
+    EventVerification
+        One :class:`~rotorsim.results.event_verification.EventCheck` per event, confirmed
+        or not, with the reason and the numbers.
+
+    Raises
+    ------
+    ModelError
+        A result that is not a speed branch with stability and all nodes, a housing
+        excitation or an approximation, a model with other DOFs, an event index out of
+        range, bad options.
+
+    Examples
+    --------
+    >>> import rotorsim as rs
+    >>> rotor = rs.Rotor([rs.ShaftElement(L=0.25, idl=0.0, odl=0.05, material=rs.Material(
+    ...     name="steel", E=211e9, G_s=81.2e9, rho=7810))] * 2, bearing_elements=[
+    ...     rs.BearingElement(n=0, kxx=1e7, cxx=1e3), rs.BearingElement(n=2, kxx=1e7, cxx=1e3)])
+    >>> branch = rs.periodic(rotor, start=100.0, stop=120.0, harmonics=1,
+    ...                      unbalance=[(1, 1e-4, 0.0)], nodes=None)
+    >>> len(rs.verify_events(rotor, branch))     # a linear rotor has no events
+    0
+    """
+    clock = time.perf_counter()
+    system = _system(model)
+    numbers = _check_input(system, result, events)
+    _check_options(steps_per_period, iterations, periods, perturbation, margin, tolerance,
+                   reach)
+    excitation = _excitation(result)
+    options = {"steps_per_period": int(steps_per_period), "iterations": int(iterations),
+               "periods": int(periods), "perturbation": float(perturbation),
+               "margin": float(margin), "tolerance": float(tolerance), "reach": int(reach)}
+    run = {"system": system, "excitation": excitation, **options}
+    measured: dict[tuple[int, int], SideCheck] = {}
+    periods_run: list[int] = []
+    checks = []
+    for number in numbers:
+        before, after, crossing = _sides(result, number, margin, reach)
+        column = _column(result, number)
+        sides = []
+        for point in (before, after):
+            if point is not None and (point, column) not in measured:
+                measured[point, column] = _measure(result, point, column, run, periods_run)
+            sides.append(None if point is None else measured[point, column])
+        checks.append(_verdict(result, number, sides[0], sides[1], crossing, margin))
+    stats = {"periods": float(sum(periods_run)), "points": float(len(measured)),
+             "wall_time": time.perf_counter() - clock}
+    return EventVerification(tuple(checks), options, stats)
+
+
+# ------------------------------------------------------------------------------ input
+def _system(model: Any) -> RotorSystem:
+    if isinstance(model, RotorSystem):
+        return model
+    if not isinstance(model, Rotor) and hasattr(model, "rotor"):
+        model = model.rotor.with_nonlinear(tuple(getattr(model, "rolling_bearings", ())))
+    if not isinstance(model, Rotor):
+        raise ModelError(f"expected a Rotor, RotorSystem or Model, got "
+                         f"{type(model).__name__}", f"{WHERE}.model")
+    return assemble(model)
+
+
+def _check_input(system: RotorSystem, result: Any, events: Sequence[int] | None
+                 ) -> list[int]:
+    """The event numbers to check; ModelError naming what is wrong with the input."""
+    if not isinstance(result, PeriodicResult):
+        raise ModelError(f"expected a PeriodicResult, got {type(result).__name__}",
+                         f"{WHERE}.result")
+    if not result.has_stability:
+        raise ModelError("the branch has no Floquet multipliers: run rs.periodic with "
+                         "stability (the default 'auto'), not stability=None",
+                         f"{WHERE}.result")
+    if result.parameter_name != "speed" or result.options.get("base") is not None:
+        raise ModelError("only speed branches forced by unbalance, gravity and constant "
+                         "loads can be integrated at constant speed (not a frequency branch "
+                         "or a housing excitation)", f"{WHERE}.result")
+    if result.approximation:
+        raise ModelError(f"the branch neglects something the transient keeps "
+                         f"({result.approximation})", f"{WHERE}.result")
+    if system.dof_map.ndof != result.dof_map.ndof:
+        raise ModelError(f"the model has {system.dof_map.ndof} DOFs, the branch "
+                         f"{result.dof_map.ndof}: not the model of this branch",
+                         f"{WHERE}.model")
+    lateral = [6 * n + k for n in range(system.dof_map.n_nodes) for k in (0, 1, 3, 4)]
+    if not np.all(np.isin(np.setdiff1d(lateral, result.held_dofs), result.dofs)):
+        raise ModelError("the branch kept only some nodes: the transient needs the state "
+                         "on all DOFs (run rs.periodic with nodes=None)", f"{WHERE}.result")
+    count = len(result.bifurcations)
+    if events is None:
+        return list(range(count))
+    numbers = []
+    for i, e in enumerate(events):
+        if not (isinstance(e, int | np.integer) and not isinstance(e, bool)
+                and 0 <= int(e) < count):
+            raise ModelError(f"{e!r} is not an index of the branch's {count} "
+                             "bifurcations", f"{WHERE}.events[{i}]")
+        numbers.append(int(e))
+    return numbers
+
+
+def _check_options(steps: int, iterations: int, periods: int, perturbation: float,
+                   margin: float, tolerance: float, reach: int) -> None:
+    for name, value, low in (("steps_per_period", steps, 20), ("iterations", iterations, 2),
+                             ("periods", periods, 0), ("reach", reach, 1)):
+        if not (isinstance(value, int | np.integer) and not isinstance(value, bool)
+                and value >= low):
+            raise ModelError(f"must be an integer >= {low}, got {value!r}",
+                             f"{WHERE}.{name}")
+    bounds = {"perturbation": (perturbation, 0.1), "margin": (margin, 1.0),
+              "tolerance": (tolerance, 10.0)}
+    for name, (number, high) in bounds.items():
+        if not (isinstance(number, int | float) and 0 < number <= high):
+            raise ModelError(f"must be in (0, {high}], got {number!r}", f"{WHERE}.{name}")
+
+
+def _excitation(result: PeriodicResult) -> Excitation:
+    """The branch's unbalance, gravity and loads, for the transient."""
+    o = result.options
+    return Excitation(unbalance=[(int(n), float(me), float(a)) for n, me, a in o["unbalance"]],
+                      gravity=o["gravity"], direction=tuple(o["direction"]),
+                      loads=[(int(n), str(d), float(v)) for n, d, v in o["loads"]])
+
+
+# ------------------------------------------------------------------------------ sides
+def _sides(result: PeriodicResult, number: int, margin: float, reach: int
+           ) -> tuple[int | None, int | None, bool]:
+    """Branch points before and after event ``number``, and whether their Floquet
+    multipliers cross ``1 + margin`` (module docstring)."""
+    ev = result.bifurcations[number]
+    others = [b.index for k, b in enumerate(result.bifurcations) if k != number]
+    lo = max([i + 1 for i in others if i < ev.index], default=0)
+    hi = min([i for i in others if i > ev.index], default=len(result) - 1)
+    before = list(range(ev.index, max(lo, ev.index - reach + 1) - 1, -1))
+    after = list(range(ev.index + 1, min(hi, ev.index + reach) + 1))
+    counts = np.sum(np.abs(result.multipliers) > 1.0 + margin, axis=1)
+    pairs = sorted(((a, b) for a in before for b in after),
+                   key=lambda p: (ev.index - p[0]) + (p[1] - ev.index - 1))
+    for a, b in pairs:
+        if counts[a] != counts[b]:
+            return a, b, True
+    return (before[0] if before else None), (after[0] if after else None), False
+
+
+def _column(result: PeriodicResult, number: int) -> int:
+    """ALL-DOF index of the translation that moves most at the event."""
+    ev = result.bifurcations[number]
+    translation = np.isin(result.dofs % 6, (0, 1))
+    j = int(np.argmax(np.where(translation, ev.peak_to_peak, -np.inf)))
+    return int(result.dofs[j])
+
+
+# ------------------------------------------------------------------------------ measuring
+def _perturbation(result: PeriodicResult, point: int, size: float
+                  ) -> tuple[FloatArray, FloatArray]:
+    q0, _ = result.state(point, 0.0)
+    q1, v1 = result.state(point, 0.5 * np.pi)
+    mean = np.zeros_like(q0)
+    mean[result.dofs] = result.coefficients[point, 0]
+    z = np.repeat(result.nodes_pos, 6)
+    weight = 1.0 + (z - 0.5 * (z.max() + z.min())) / max(float(np.ptp(z)), 1e-12)
+    dq, dv = weight * (q1 - mean), weight * v1
+    translation = np.isin(np.arange(q0.size) % 6, (0, 1))
+    ptp = float(np.max(result.peak_to_peak[point][np.isin(result.dofs % 6, (0, 1))]))
+    scale = size * ptp / max(float(np.max(np.abs(dq[translation]))), 1e-300)
+    return scale * dq, scale * dv
+
+
+def _measure(result: PeriodicResult, point: int, column: int, run: dict[str, Any],
+             periods_run: list[int]) -> SideCheck:
+    """Time integration at one branch point (module docstring)."""
+    q0, v0 = result.state(point, 0.0)
+    ptp = float(result.peak_to_peak[point, np.searchsorted(result.dofs, column)])
+    direction = _perturbation(result, point, run["perturbation"])
+    floquet = float(result.max_multiplier[point])
+    unstable = int(np.sum(np.abs(result.multipliers[point]) > 1.0 + run["margin"]))
+    nan, empty = float("nan"), np.zeros(0)
+    failures: list[str] = []
+    local = _retried(lambda pm: linearised_growth(pm, q0, v0, direction, run["iterations"]),
+                     result, point, run, periods_run, failures)
+    rho_l, factors_l = (nan, empty) if local is None else (local.rho, local.factors)
+    free = None if not run["periods"] else _retried(
+        lambda pm: trajectory_growth(pm, q0, v0, direction, run["periods"]),
+        result, point, run, periods_run, failures)
+    rho_t, factors_t, defect, drift = nan, empty, nan, nan
+    if free is not None:
+        deviation = np.abs(free[1][:, column] - q0[column]) / ptp
+        rho_t, factors_t = free[0].rho, free[0].factors
+        defect, drift = float(deviation[1]), float(deviation.max())
+    ok = not failures and _agrees(rho_l, floquet, run["margin"], run["tolerance"]) and (
+        not run["periods"] or _agrees(rho_t, floquet, run["margin"], run["tolerance"]))
+    message = "; ".join(failures) if failures else "" if ok else (
+        f"measured max|mu| {rho_l:.4g} (linearised period map), {rho_t:.4g} (free "
+        f"transient) against Floquet {floquet:.4g}")
+    return SideCheck(point, float(result.parameter[point]), floquet, unstable, rho_l, rho_t,
+                     factors_l, factors_t, defect, drift, ok, message)
+
+
+def _retried(measure: Any, result: PeriodicResult, point: int, run: dict[str, Any],
+             periods_run: list[int], failures: list[str]) -> Any:
+    """``measure(period_map)``, again with half the time step when Newton fails in a step
+    (a contact that closes within a step); None and the error in ``failures`` when it
+    fails twice."""
+    for steps in (run["steps_per_period"], 2 * run["steps_per_period"]):
+        pm = PeriodMap(run["system"], float(result.speed[point]),
+                       2.0 * np.pi / float(result.fundamental[point]), run["excitation"],
+                       float(result.options.get("shaft_angle", 0.0)), steps)
+        try:
+            return measure(pm)
+        except ConvergenceError as exc:
+            error = exc
+        finally:
+            periods_run.extend(pm.periods_run)
+    failures.append(f"the transient failed at T/{2 * run['steps_per_period']}: {error}")
+    return None
+
+
+def _agrees(measured: float, floquet: float, margin: float, tolerance: float) -> bool:
+    """Measured growth per period against Floquet's ``max |mu|`` (module docstring)."""
+    if not math.isfinite(measured):
+        return False
+    if floquet > 1.0 + margin:
+        return measured > 1.0 + 0.5 * margin and abs(
+            math.log(measured) - math.log(floquet)) <= tolerance * math.log(floquet)
+    return measured <= 1.0 + margin
+
+
+# ------------------------------------------------------------------------------ verdict
+def _verdict(result: PeriodicResult, number: int, before: SideCheck | None,
+             after: SideCheck | None, crossing: bool, margin: float) -> EventCheck:
+    ev = result.bifurcations[number]
+    if before is None or after is None:
+        return EventCheck(ev, number, before, after, False,
+                          "no branch point on one side of the event (end of the branch)")
+    separation = float("nan")
+    problems = []
+    if not crossing:
+        problems.append(f"the branch's Floquet multipliers show no crossing of "
+                        f"|mu| = 1 + {margin:g} next to it (max|mu| {before.floquet:.4g} at "
+                        f"point {before.point}, {after.floquet:.4g} at point {after.point}, "
+                        f"no other event in between)")
+    for name, side in (("before", before), ("after", after)):
+        if not side.agrees:
+            problems.append(f"{name} (point {side.point}, {side.parameter:.6g} rad/s): "
+                            f"{side.message}")
+    if ev.kind == "fold":
+        column = _column(result, number)
+        qa, _ = result.state(before.point, 0.0)
+        qb, _ = result.state(after.point, 0.0)
+        ptp = float(np.max(result.peak_to_peak[[before.point, after.point],
+                                               np.searchsorted(result.dofs, column)]))
+        separation = abs(float(qa[column] - qb[column])) / ptp
+        spread = before.drift + after.drift
+        if math.isfinite(spread) and not spread < separation:
+            problems.append(f"the transients move {spread:.3g} (relative) from their "
+                            f"orbits, not less than the {separation:.3g} between the two "
+                            "orbits of the fold")
+    if problems:
+        return EventCheck(ev, number, before, after, False, "; ".join(problems), separation)
+    text = (f"Floquet max|mu| {before.floquet:.4g} -> {after.floquet:.4g}; measured "
+            f"{before.local:.4g} -> {after.local:.4g} (linearised period map)")
+    if math.isfinite(before.trajectory):
+        text += f", {before.trajectory:.4g} -> {after.trajectory:.4g} (free transient)"
+    return EventCheck(ev, number, before, after, True, text, separation)
