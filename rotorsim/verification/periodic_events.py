@@ -115,6 +115,16 @@ def verify_events(model: Rotor | RotorSystem | Any, result: PeriodicResult, *,
         excitation or an approximation, a model with other DOFs, an event index out of
         range, bad options.
 
+    Notes
+    -----
+    "Not confirmed" is not proof that an event is spurious. The perturbation follows the
+    orbit's own lateral shape and the norm takes the lateral translations, so a mode the
+    orbit does not contain, such as the rigid axial translation that grows past the
+    clearance rotor's axial pitchforks near 353 rad/s (docs/validation.md case 26), is
+    not seen; neither is a mode that dominates only after more than ``iterations``
+    periods. Next to folds on a contact onset the period map is not linear on the scale
+    of the harmonic-balance truncation error.
+
     Examples
     --------
     >>> import rotorsim as rs
