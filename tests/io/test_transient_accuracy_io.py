@@ -7,11 +7,11 @@ does the same for one run."""
 from __future__ import annotations
 
 import re
-import tomllib
 from pathlib import Path
 
 import numpy as np
 import pytest
+from transient_tables import rolling_ball_with_transient
 
 import rotorsim as rs
 from rotorsim.cli.main import main
@@ -24,11 +24,7 @@ EXIT_BAD_INPUT = 2
 
 
 def _raw(**transient):
-    with open(MODELS / "rolling_ball.toml", "rb") as stream:
-        raw = tomllib.load(stream)
-    raw["analyses"] = {"run": {"type": "transient", "t_end": "3 ms", "speed": "6000 rpm",
-                               "nodes": [5], **transient}}
-    return raw
+    return rolling_ball_with_transient(**{"t_end": "3 ms", **transient})
 
 
 def test_rtol_in_a_model_file_runs_the_automatic_path_as_the_api(tmp_path):

@@ -4,12 +4,12 @@ store the reductions as datasets and the final state, from which a run continues
 
 from __future__ import annotations
 
-import tomllib
 from pathlib import Path
 
 import h5py
 import numpy as np
 import pytest
+from transient_tables import rolling_ball_with_transient
 
 import rotorsim as rs
 from rotorsim.cli.main import main
@@ -21,11 +21,7 @@ EXIT_BAD_INPUT = 2
 
 
 def _raw(**transient):
-    with open(MODELS / "rolling_ball.toml", "rb") as stream:
-        raw = tomllib.load(stream)
-    raw["analyses"] = {"run": {"type": "transient", "t_end": "8 ms", "dt": "20 us",
-                               "speed": "6000 rpm", "nodes": [5], **transient}}
-    return raw
+    return rolling_ball_with_transient(**{"t_end": "8 ms", "dt": "20 us", **transient})
 
 
 def test_model_file_keys_fill_output_and_steady(tmp_path):
