@@ -69,6 +69,7 @@ from .io.hdf5 import ResultsFileError, load, save
 from .io.model_file import Model, load_model, run_analysis, save_model
 from .io.sweep_store import load_sweep
 from .io.vtk import export_vtk
+from .model.lines import ShaftLine
 from .model.material import Material
 from .model.rotor import Rotor
 from .options import (
@@ -157,6 +158,7 @@ __all__ = [
     "RotorsimError",
     "Sample",
     "ShaftElement",
+    "ShaftLine",
     "SideCheck",
     "SpeedFunction",
     "StabilityOptions",

@@ -211,6 +211,35 @@ def unbalance_amplitudes(
     return out
 
 
+def spool_groups(system: RotorSystem, unbalance: Sequence[tuple[int, float, float]]
+                 ) -> dict[float, list[tuple[int, float, float]]]:
+    """The unbalances grouped by the speed ratio of their line, in order of appearance.
+
+    An unbalance on a line that does not turn (ratio 0: a casing) is refused: it would
+    excite nothing, and is almost always a node number on the wrong line.
+    """
+    out: dict[float, list[tuple[int, float, float]]] = {}
+    for i, item in enumerate(unbalance):
+        ratio = system.speed_ratio_of(int(item[0]))
+        if ratio == 0.0:
+            raise ModelError(f"node {item[0]} does not rotate (speed ratio 0: a casing or "
+                             "housing node); an unbalance must sit on a turning line",
+                             f"unbalance[{i}]")
+        out.setdefault(ratio, []).append(tuple(item))  # type: ignore[arg-type]
+    return out
+
+
+def unbalance_speed_ratios(system: RotorSystem,
+                           unbalance: Sequence[tuple[int, float, float]]) -> FloatArray | None:
+    """Speed ratio of the line under every free DOF, for unbalances on spools that turn at
+    different speeds; ``None`` when every unbalance turns at the reference speed."""
+    if list(spool_groups(system, unbalance)) == [1.0]:
+        return None
+    ratios = system.node_speed_ratio
+    assert ratios is not None  # a ratio other than 1 needs lines
+    return np.repeat(ratios, DOFS_PER_NODE)[system.dof_map.free]
+
+
 def unbalance_load(
     system: RotorSystem,
     unbalance: Sequence[tuple[int, float, float]],

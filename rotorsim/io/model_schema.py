@@ -31,11 +31,11 @@ from rotorsim.io.schema_types import (
     FrequencyGrid,
     Inertia,
     Length,
+    Linked,
     Located,
     Mass,
     Modulus,
     Name,
-    NodeIndex,
     NonNegLength,
     NonNegMass,
     PositiveRatio,
@@ -191,8 +191,7 @@ class DiskTable(Located):
         return self
 
 
-class BearingTable(Located):
-    n_link: NodeIndex | None = None
+class BearingTable(Linked):
     kxx: DirectStiffness = 0.0
     kyy: DirectStiffness = None
     kxy: Stiffness = 0.0
@@ -225,8 +224,6 @@ class BearingTable(Located):
                 if len(value) != n_freq:
                     raise fail(f"has {len(value)} values but frequency has {n_freq}",
                                f".{key}")
-        if self.n_link is not None and self.n_link == self.node:
-            raise fail(f"must differ from node ({self.node})", ".n_link")
         return self
 
     @staticmethod
@@ -286,12 +283,22 @@ class LoadsTable(Table):
         return self
 
 
+class LineTable(Table):
+    """One shaft line of a machine: ``[lines.NAME]`` with its ``[[lines.NAME.shaft]]``."""
+
+    speed_ratio: Ratio = 1.0
+    z0: NonNegLength = 0.0
+    shaft: list[ShaftSegment] = Field(default_factory=list)  # none: a single node
+
+
 class ModelTable(Table):
     """The whole model file (analyses are validated separately)."""
 
     model: ModelInfo = ModelInfo()
     materials: list[MaterialTable] = Field(default_factory=list)
     shaft: list[ShaftSegment] = Field(default_factory=list)  # none: a rigid rotor at node 0
+    lines: dict[Annotated[str, Field(min_length=1, pattern=r"^[^:]+$")], LineTable] = Field(
+        default_factory=dict)
     disks: list[DiskTable] = Field(default_factory=list)
     bearings: list[BearingTable] = Field(default_factory=list)
     rolling_bearings: list[Any] = Field(default_factory=list)
@@ -305,4 +312,8 @@ def validate_model(data: Any) -> ModelTable:
     """Validate a whole parsed model file (a dict) except its analyses."""
     if not isinstance(data, dict):
         raise ModelError(f"expected a table of model sections, got {show(data)}", "top level")
-    return validate_table(ModelTable, data)
+    table = validate_table(ModelTable, data)
+    if table.lines and table.shaft:
+        raise ModelError("give [[shaft]] (one line) or [lines.NAME] tables, not both",
+                         "shaft")
+    return table
