@@ -57,7 +57,8 @@ def machine(ratio: float, damping: float = 0.0) -> rs.Rotor:
              rs.DiskElement(n=1, m=M2, Id=ID2, Ip=IP2, tag=f"{_second(ratio)} body")]
     bearings = [
         rs.BearingElement(n=0, kxx=K1, krr=KR1, kzz=KZ, cxx=damping, tag="LP support"),
-        rs.BearingElement(n=1, kxx=K2, krr=KR2, kzz=KZ, cxx=damping, tag="HP support"),
+        rs.BearingElement(n=1, kxx=K2, krr=KR2, kzz=KZ, cxx=damping,
+                          tag=f"{_second(ratio)} support"),
         rs.BearingElement(n=1, n_link=0, kxx=KC, krr=KRC, cxx=damping, tag="inter-shaft"),
     ]
     return rs.Rotor([], disks, bearings, lines=lines)
