@@ -88,3 +88,15 @@ def test_sweeps_and_critical_speed_maps_run_on_a_machine(machine) -> None:
                                   bearings=[inter])
     assert table.critical_speeds.shape == (6, 3)
     assert np.all(np.diff(table.critical_speeds[:, 0]) >= 0)  # stiffer: not lower
+
+
+def test_a_saved_machine_reloads_to_the_same_matrices(machine, tmp_path: Path) -> None:
+    path = rs.save_model(machine, tmp_path / "saved.toml")
+    again = rs.load_model(path)
+    assert [line.name for line in again.rotor.layout.lines] == ["LP", "HP", "casing"]
+    before, after = (rs.assemble(m.rotor).matrices(500.0) for m in (machine, again))
+    for key in "MCGK":  # the same elements: the same sums, entry by entry
+        np.testing.assert_array_equal(getattr(after, key).toarray(),
+                                      getattr(before, key).toarray())
+    assert again.loads.unbalance == machine.loads.unbalance
+    assert again.rotor.damping == machine.rotor.damping
