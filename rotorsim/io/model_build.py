@@ -79,8 +79,8 @@ class Nodes:
             return self._at(item.z, f"{where}.z", first, count)
         assert item.node is not None
         if item.node >= count:
-            on = f"line {item.line!r}" if item.line else "the shaft"
-            raise ModelError(f"node {item.node} is not a node of {on} (0..{count - 1})",
+            what = f"a node of line {item.line!r}" if item.line else "a shaft node"
+            raise ModelError(f"node {item.node} is not {what} (0..{count - 1})",
                              f"{where}.node")
         return first + item.node
 
