@@ -141,7 +141,7 @@ def history_life(ref: ReferenceRating, damage: RingDamage) -> ReferenceLife:
     >>> round(float(history_life(ref, d).L10r[0]), 1)   # 2^(-9/10) / 1e-3
     535.9
     """
-    p, e = ref.exponents
+    e = ref.exponents[1]
     if damage.revolutions <= 0.0:
         raise ModelError("the history has no relative rotation of the rings: no life",
                          "history_life")
