@@ -277,7 +277,7 @@ class BearingRating:
                       effective_length: float | None = None, bm: float | None = None,
                       C: float | None = None, C0: float | None = None) -> BearingRating:
         """Ratings from the internal geometry; a given ``C`` or ``C0`` (catalogue) wins."""
-        geo = {"n_elements": n_elements, "element_diameter": element_diameter,
+        geo: dict[str, Any] = {"n_elements": n_elements, "element_diameter": element_diameter,
                "pitch_diameter": pitch_diameter, "contact_angle": contact_angle,
                "effective_length": effective_length}
         where = "BearingRating.from_geometry"
