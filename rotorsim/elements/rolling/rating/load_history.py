@@ -102,15 +102,42 @@ def ring_damage(ref: ReferenceRating, u: ArrayLike, psi: ArrayLike, ring_angles:
     per_rev = (ref.n_elements * (1.0 - kappa), ref.n_elements * kappa)
     for ring in range(2):
         rel = p_arr - rings[:, ring, None]  # (T, N) element angle on the ring
-        sweep = np.abs(np.diff(rel, axis=0))  # (T-1, N)
-        centre = np.mod(0.5 * (rel[1:] + rel[:-1]), 2.0 * math.pi)
-        cell = np.minimum((centre / width).astype(np.int64), n_cells - 1)
-        weight = mid[..., ring] * sweep[..., None]  # (T-1, N, K)
-        index = cell[..., None] + n_cells * np.arange(n_k)
-        sums = np.bincount(index.ravel(), weight.ravel(), minlength=n_k * n_cells)
-        out[..., ring] = sums.reshape(n_k, n_cells) / (width * per_rev[ring])
+        start = np.minimum(rel[1:], rel[:-1]) / width  # arcs swept, in cells (T-1, N)
+        stop = np.maximum(rel[1:], rel[:-1]) / width
+        out[..., ring] = _swept_cells(start, stop, mid[..., ring], n_cells) / per_rev[ring]
     relative = np.abs(np.diff(rings[:, 0] - rings[:, 1])).sum() / (2.0 * math.pi)
     return RingDamage(out, float(relative))
+
+
+def _swept_cells(start: FloatArray, stop: FloatArray, density: FloatArray, n_cells: int
+                 ) -> FloatArray:
+    """``sum density x (overlap of the arc [start, stop] with each cell)`` (K, M): arcs
+    (T, N) in cell units on a periodic ring of ``n_cells``, ``density`` (T, N, K) uniform
+    along each arc (the midpoint rule of each step)."""
+    n_k = density.shape[-1]
+    shift = np.floor(start / n_cells) * n_cells
+    lo, hi = start - shift, stop - shift  # lo in [0, M)
+    i_lo, i_hi = np.floor(lo).astype(np.int64), np.floor(hi).astype(np.int64)
+    span = int(i_hi.max(initial=0)) + 2
+    extended = span + (-span) % n_cells  # a multiple of M, folded back at the end
+    lamina = extended * np.arange(n_k)
+    d = density
+    same = (i_lo == i_hi)[..., None]
+    # partial first and last cells; full cells in between by a difference array
+    first = np.where(same, (hi - lo)[..., None], (i_lo + 1 - lo)[..., None]) * d
+    last = np.where(same, 0.0, (hi - i_hi)[..., None] * d)
+    total = np.bincount((i_lo[..., None] + lamina).ravel(), first.ravel(),
+                        minlength=n_k * extended)
+    total += np.bincount((i_hi[..., None] + lamina).ravel(), last.ravel(),
+                         minlength=n_k * extended)
+    full = np.where(same, 0.0, d)
+    steps = np.bincount((i_lo[..., None] + 1 + lamina).ravel(), full.ravel(),
+                        minlength=n_k * extended + 1)[:n_k * extended]
+    steps -= np.bincount((i_hi[..., None] + lamina).ravel(), full.ravel(),
+                         minlength=n_k * extended + 1)[:n_k * extended]
+    runs = np.cumsum(steps.reshape(n_k, extended), axis=1)
+    cells = total.reshape(n_k, extended) + runs
+    return np.asarray(cells.reshape(n_k, extended // n_cells, n_cells).sum(axis=1))
 
 
 def combine_histories(parts: list[RingDamage], shares: ArrayLike) -> RingDamage:
