@@ -113,15 +113,7 @@ def life_result(rated: RatedBearing, life: ReferenceLife, pressures: Any, *, sou
     l10 = float(rating.basic_life(P)) if math.isfinite(P) and P > 0 else math.nan
     a_iso_r = a_iso = 1.0
     if o.life_factor:
-        assert o.viscosity_ratio is not None and o.contamination is not None
-        assert o.fatigue_load_limit is not None
-
-        def factor(p: float) -> float:
-            if not (math.isfinite(p) and p > 0):
-                return math.nan
-            return float(life_modification_factor(rating.kind, o.viscosity_ratio,
-                                                  o.contamination, o.fatigue_load_limit, p))
-        a_iso_r, a_iso = factor(p_ref), factor(P)
+        a_iso_r, a_iso = _a_iso(rated, p_ref), _a_iso(rated, P)
     n = rated.base.n_elements
     nan2 = np.full((n, 2), np.nan)
     if isinstance(pressures, BallContactPressure):
@@ -145,6 +137,16 @@ def life_result(rated: RatedBearing, life: ReferenceLife, pressures: Any, *, sou
         options={**_options_record(o), **(options or {})}, stats=stats,
         summary={"bearing": type(rated.base).__name__, "n_elements": n,
                  "tag": getattr(rated.base, "tag", "") or ""}, **fields)
+
+
+def _a_iso(rated: RatedBearing, load: float) -> float:
+    """ISO 281 ``a_ISO`` at the equivalent load ``load`` [N] (NaN without a load)."""
+    o = rated.options
+    if not (math.isfinite(load) and load > 0):
+        return math.nan
+    return float(life_modification_factor(rated.kind, float(o.viscosity_ratio or 0.0),
+                                          float(o.contamination or 0.0),
+                                          float(o.fatigue_load_limit or 0.0), load))
 
 
 def _options_record(o: RatingOptions) -> dict[str, Any]:

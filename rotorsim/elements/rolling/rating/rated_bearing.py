@@ -21,6 +21,7 @@ from rotorsim.elements.rolling.rating.hertz_pressure import (
     RollerContactPressure,
     contact_pressures,
 )
+from rotorsim.elements.rolling.rating.iso281 import BearingRating
 from rotorsim.elements.rolling.rating.iso16281 import (
     ReferenceLife,
     ReferenceRating,
@@ -28,7 +29,6 @@ from rotorsim.elements.rolling.rating.iso16281 import (
     rating_for,
     reference_rating,
 )
-from rotorsim.elements.rolling.rating.iso281 import BearingRating
 from rotorsim.elements.rolling.rating.options import RatingOptions
 from rotorsim.elements.rolling.reversed import ReversedBearing
 from rotorsim.errors import ModelError
