@@ -78,6 +78,7 @@ def bearing_life(bearing: Any, load: ArrayLike | None = None, *,
     if (load is None) == (equilibrium is None):
         raise ModelError("give exactly one of load and equilibrium", "bearing_life")
     if equilibrium is None:
+        assert load is not None
         equilibrium = bearing_equilibrium(bearing.bearing if hasattr(bearing, "relative")
                                           else bearing, load, phi=phi)
     delta = equilibrium.displacement[None]
