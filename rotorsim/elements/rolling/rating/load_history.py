@@ -137,7 +137,8 @@ def _swept_cells(start: FloatArray, stop: FloatArray, density: FloatArray, n_cel
                          minlength=n_k * extended + 1)[:n_k * extended]
     runs = np.cumsum(steps.reshape(n_k, extended), axis=1)
     cells = total.reshape(n_k, extended) + runs
-    return np.asarray(cells.reshape(n_k, extended // n_cells, n_cells).sum(axis=1))
+    folded = cells.reshape(n_k, extended // n_cells, n_cells).sum(axis=1)
+    return np.asarray(np.maximum(folded, 0.0))  # round-off of the running sums
 
 
 def combine_histories(parts: list[RingDamage], shares: ArrayLike) -> RingDamage:

@@ -114,12 +114,28 @@ class RatedBearing:
 
     def normalized(self, delta: ArrayLike, psi: ArrayLike) -> FloatArray:
         """``Q / Q_c`` of every contact (S, N, 2) or lamina (S, Z, K, 2)."""
+        return self.loads(delta, psi)[1]
+
+    def loads(self, delta: ArrayLike, psi: ArrayLike) -> tuple[FloatArray, FloatArray]:
+        """Element loads ``Q`` (S, N) [N] (rollers: summed over the laminae) and
+        ``Q / Q_c`` (:meth:`normalized`)."""
         d = self._delta(delta)
         if self.kind == "roller":
-            return self.reference.normalized(lamina_loads(self.base, d, psi))
+            laminae = lamina_loads(self.base, d, psi)
+            return laminae.sum(axis=-1), self.reference.normalized(laminae)
         st = self.base.state(d, psi)
-        return self.reference.normalized(st.element_load, st.contact_angle, st.outer_load,
-                                         st.outer_contact_angle)
+        return st.element_load, self.reference.normalized(
+            st.element_load, st.contact_angle, st.outer_load, st.outer_contact_angle)
+
+    def element_angles(self, phi: ArrayLike) -> FloatArray:
+        """Element angles (S, N) [rad] at shaft angles ``phi`` (S,): the model's cage law,
+        or the geometric cage ratio for a model built with ``cage="fixed"`` (a life needs
+        orbiting elements)."""
+        phi_arr = np.asarray(phi, dtype=float)
+        if float(getattr(self.base, "kappa", 0.0)) > 0.0:
+            return np.asarray(self.base.element_angles(phi_arr))
+        return np.asarray(self.base.element_angles(0.0)[0]
+                          + self.geometric_cage_ratio * phi_arr[:, None])
 
     def life(self, delta: ArrayLike, psi: ArrayLike, rotating_ring: str | None = None
              ) -> ReferenceLife:
