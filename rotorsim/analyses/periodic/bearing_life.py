@@ -48,7 +48,7 @@ def periodic_life(result: PeriodicResult, element: Any, point: int, *,
     if not hasattr(element, "relative"):
         raise ModelError(f"expected a RollingBearing element, got {type(element).__name__}",
                          where)
-    t, q = result.time_response(point, samples)
+    q = result.time_response(point, samples)[1]
     period = 2.0 * math.pi / float(result.fundamental[point])
     speed = float(result.speed[point])
     if speed <= 0:
