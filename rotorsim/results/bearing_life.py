@@ -43,7 +43,8 @@ class BearingLifeResult:
         ISO/TS 16281 modified reference rating life from the internal load distribution
         (without ``a_ISO``).
     P_ref : float
-        Dynamic equivalent reference load ``C L10r^(-1/p)`` [N].
+        Dynamic equivalent reference load ``C L10r^(-1/p)`` [N], ``p`` the raceway
+        exponent (3 balls, 4 rollers): ``P`` of ISO 281 in its reference case.
     ring_life : array (2,)
         Life of the inner and outer raceway.
     equivalent_load, reference_load : arrays (2,)

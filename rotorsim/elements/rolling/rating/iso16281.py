@@ -29,10 +29,12 @@ Palmgren; the method of ISO/TS 16281:2008 clauses 5-7):
   are ``Q_e = Q_c0 L^(-1/p)`` with the capacity ``Q_c0`` at the nominal angle (for equal
   angles: the cubic and 10/3-power means of the classical method).
 * **Combination**: ``L10r = (L_i^(-e) + L_e^(-e))^(-1/e)`` [million revolutions].
-* **Reference load**: ``P_ref = C L10r^(-1/p_ISO)`` with ISO 281's ``p_ISO`` (3 balls,
-  10/3 rollers), i.e. the ISO 281 equivalent load giving the same life. For rollers the
-  raceway exponent is 4 (Lundberg-Palmgren), so ``L10r = (C/P)^4`` in the reference case:
-  equal to ISO 281's ``(C/P)^(10/3)`` at ``P = C`` only (stated, not hidden).
+* **Reference load**: ``P_ref = C L10r^(-1/p)`` with the raceway exponent ``p`` (3 balls,
+  4 rollers): the load of the reference case that gives ``L10r``, so ``P_ref = P`` there.
+  For rollers ISO 281 uses ``L10 = (C/P)^(10/3)`` while the raceway exponent is 4
+  (Lundberg-Palmgren line contact, the lamina method), so in the reference case
+  ``L10r = (C/P)^4``: equal to ISO 281's ``L10`` at ``P = C`` only. This is stated, not
+  hidden: results carry both ``L10`` and ``L10r``.
 
 References
 ----------
@@ -261,11 +263,10 @@ class ReferenceRating:
         with np.errstate(divide="ignore"):
             ring_life = 1.0 / ring_damage
             l10r = np.sum(ring_damage**e, axis=-1) ** (-1.0 / e)
-        p_iso = self.rating.exponent
         return ReferenceLife(
             L10r=l10r, ring_life=ring_life,
             equivalent_load=self.nominal_capacities * ring_damage ** (1.0 / p),
-            P_ref=self.rating.C * l10r ** (-1.0 / p_iso),
+            P_ref=self.rating.C * l10r ** (-1.0 / p),
             reference_load=self.nominal_capacities)
 
 
@@ -283,7 +284,7 @@ class ReferenceLife:
     equivalent_load : array (S, 2)
         ``Q_ei, Q_ee`` [N] (module docstring).
     P_ref : array (S,)
-        Dynamic equivalent reference load [N].
+        Dynamic equivalent reference load ``C L10r^(-1/p)`` [N].
     reference_load : array (2,)
         ``Q_ci, Q_ce`` [N] at the nominal angle (whole element).
     """
