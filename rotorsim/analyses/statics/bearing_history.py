@@ -17,7 +17,7 @@ from numpy.typing import ArrayLike
 from rotorsim.analyses.statics.bearing_life import life_result
 from rotorsim.elements.rolling.rating.load_history import history_life, ring_damage
 from rotorsim.elements.rolling.rating.options import RatingOptions
-from rotorsim.elements.rolling.rating.rated_bearing import RatedBearing
+from rotorsim.elements.rolling.rating.rated_bearing import rated as cached_rating
 from rotorsim.errors import ModelError
 from rotorsim.results.bearing_life import BearingLifeResult
 
@@ -32,7 +32,7 @@ def history_life_result(element: Any, delta: ArrayLike, phi: ArrayLike, *, sourc
     Pressures are those of each element at the sample of its largest load.
     """
     t0 = time.perf_counter()
-    rated = RatedBearing(element, RatingOptions() if options is None else options)
+    rated = cached_rating(element, RatingOptions() if options is None else options)
     d = np.asarray(delta, dtype=float)
     angle = np.asarray(phi, dtype=float)
     if d.ndim != 2 or d.shape[1] != 5 or angle.shape != (d.shape[0],):

@@ -33,7 +33,7 @@ from rotorsim.elements.rolling.rating.load_history import (
     ring_damage,
 )
 from rotorsim.elements.rolling.rating.options import RatingOptions
-from rotorsim.elements.rolling.rating.rated_bearing import RatedBearing
+from rotorsim.elements.rolling.rating.rated_bearing import RatedBearing, rated
 from rotorsim.errors import ModelError
 from rotorsim.results.bearing import BearingEquilibriumResult
 from rotorsim.results.bearing_life import BearingLifeResult
@@ -74,20 +74,20 @@ def bearing_life(bearing: Any, load: ArrayLike | None = None, *,
     """
     t0 = time.perf_counter()
     opts = RatingOptions() if options is None else options
-    rated = RatedBearing(bearing, opts)
+    rating = rated(bearing, opts)
     if (load is None) == (equilibrium is None):
         raise ModelError("give exactly one of load and equilibrium", "bearing_life")
     if equilibrium is None:
         assert load is not None
         equilibrium = bearing_equilibrium(bearing.bearing if hasattr(bearing, "relative")
                                           else bearing, load, phi=phi)
-    delta = equilibrium.displacement[None]
-    psi = equilibrium.element_angles[None]
-    life = rated.life(delta, psi)
-    pressures = rated.pressures(delta, psi)
+    # the equilibrium's element loads and angles are the base model's (also reversed)
+    life, pressures = rating.steady(
+        equilibrium.displacement[None], equilibrium.element_angles[None],
+        equilibrium.element_load[None], equilibrium.contact_angle[None])
     applied = np.asarray(equilibrium.load, dtype=float)
-    P = _iso281_load(rated, applied)
-    return life_result(rated, life, pressures, source="equilibrium", load=applied, P=P,
+    P = _iso281_load(rating, applied)
+    return life_result(rating, life, pressures, source="equilibrium", load=applied, P=P,
                        angles=equilibrium.element_angles,
                        loads=np.asarray(equilibrium.element_load, dtype=float),
                        stats={"wall_time": time.perf_counter() - t0})
@@ -96,11 +96,13 @@ def bearing_life(bearing: Any, load: ArrayLike | None = None, *,
 def _iso281_load(rated: RatedBearing, load: FloatArray) -> float:
     """``P`` of ISO 281 from the radial and axial components of ``load`` (moments are not
     part of ISO 281's ``P``; NaN where no ``X, Y`` table applies)."""
-    radial, axial = math.hypot(load[0], load[1]), abs(load[2])
+    radial, axial = math.hypot(load[0], load[1]), abs(float(load[2]))
     try:
-        return float(rated.rating.equivalent_load(radial, axial))
+        x, y, e = rated.rating._factors(np.asarray(axial), "bearing_life")
     except ModelError:
         return math.nan
+    above = axial > float(e) * radial
+    return float(x) * radial + float(y) * axial if above else radial
 
 
 def life_result(rated: RatedBearing, life: ReferenceLife, pressures: Any, *, source: str,
@@ -204,7 +206,7 @@ def duty_cycle_life(bearing: Any, cases: Sequence[tuple[float, ArrayLike, float 
     if not cases:
         raise ModelError("no load cases", where)
     opts = RatingOptions() if options is None else options
-    rated = RatedBearing(bearing, opts)
+    rating = rated(bearing, opts)
     model = bearing.bearing if hasattr(bearing, "relative") else bearing
     shares, parts, p_values = [], [], []
     for i, case in enumerate(cases):
@@ -220,16 +222,16 @@ def duty_cycle_life(bearing: Any, cases: Sequence[tuple[float, ArrayLike, float 
                                  where)
             share = share * speed
         eq = bearing_equilibrium(model, load)
-        parts.append(steady_damage(rated, eq.displacement))
+        parts.append(steady_damage(rating, eq.displacement))
         shares.append(share)
-        p_values.append(_iso281_load(rated, np.asarray(eq.load, dtype=float)))
+        p_values.append(_iso281_load(rating, np.asarray(eq.load, dtype=float)))
     damage = combine_histories(parts, shares)
-    life = history_life(rated.reference, damage)
+    life = history_life(rating.reference, damage)
     w = np.asarray(shares) / np.sum(shares)
-    p_exp = rated.rating.exponent
+    p_exp = rating.rating.exponent
     P = float(np.sum(w * np.asarray(p_values) ** p_exp) ** (1 / p_exp))
-    return life_result(rated, life, rated.pressures(eq.displacement[None],
-                                                    eq.element_angles[None]),
+    return life_result(rating, life, rating.pressures(eq.displacement[None],
+                                                      eq.element_angles[None]),
                        source="duty_cycle", load=np.full(5, np.nan), P=P,
                        angles=eq.element_angles, loads=np.asarray(eq.element_load),
                        stats={"wall_time": time.perf_counter() - t0},

@@ -175,19 +175,25 @@ class ReferenceRating:
         return np.asarray(self.element_diameter * np.cos(angle) / self.pitch_diameter)
 
     @cached_property
-    def nominal_capacities(self) -> FloatArray:
-        """``(Q_ci, Q_ce)`` [N] of one whole rolling element at the nominal angle (2,)."""
+    def _scale(self) -> float:
+        """Common factor ``A`` of the capacities, calibrated on ``C`` (module docstring)."""
         p, e = self.exponents
         j_r, j_1, j_2 = sjovall_integrals(LOAD_EXPONENTS[self.kind], p, e)
         shape = raceway_factors(self.kind, self._gamma(self.contact_angle), *self.grooves)
         # Q_max at L = 1 of unit-scale capacities; F_r = Z cos(a) J_r Q_max (reference case)
         q_max = (j_1 / shape[0]) ** (p * e) + (j_2 / shape[1]) ** (p * e)
         c_unit = self.n_elements * math.cos(self.contact_angle) * j_r * q_max ** (-1 / (p * e))
-        if c_unit <= 0.0:
+        if c_unit <= 1e-12 * self.n_elements:
             raise ModelError("the reference case needs a radial component (contact angle "
                              "below 90 deg); thrust bearings are not rated here",
                              "ReferenceRating")
-        return np.asarray(shape * (self.rating.C / c_unit))
+        return float(self.rating.C / c_unit)
+
+    @cached_property
+    def nominal_capacities(self) -> FloatArray:
+        """``(Q_ci, Q_ce)`` [N] of one whole rolling element at the nominal angle (2,)."""
+        shape = raceway_factors(self.kind, self._gamma(self.contact_angle), *self.grooves)
+        return np.asarray(shape * self._scale)
 
     def capacities(self, contact_angle: ArrayLike | None = None) -> FloatArray:
         """Raceway capacities (..., 2) [N]: balls at their loaded ``contact_angle``
@@ -196,9 +202,8 @@ class ReferenceRating:
             return np.asarray(self.nominal_capacities * self.n_laminae ** (-7.0 / 9.0))
         if contact_angle is None:
             return self.nominal_capacities
-        ratio = raceway_factors("ball", self._gamma(contact_angle), *self.grooves) / \
-            raceway_factors("ball", self._gamma(self.contact_angle), *self.grooves)
-        return np.asarray(ratio * self.nominal_capacities)
+        shape = raceway_factors("ball", self._gamma(contact_angle), *self.grooves)
+        return np.asarray(shape * self._scale)
 
     def normalized(self, inner_load: ArrayLike, contact_angle: ArrayLike | None = None,
                    outer_load: ArrayLike | None = None,
@@ -217,9 +222,11 @@ class ReferenceRating:
             cap = self.capacities()
             return np.stack([qi / cap[0], qo / cap[1]], axis=-1)
         a_in = np.zeros(qi.shape) if contact_angle is None else np.asarray(contact_angle)
-        a_out = a_in if outer_contact_angle is None else np.asarray(outer_contact_angle)
-        return np.stack([qi / self.capacities(a_in)[..., 0],
-                         qo / self.capacities(a_out)[..., 1]], axis=-1)
+        cap = self.capacities(a_in)
+        if outer_contact_angle is not None:
+            cap = np.stack([cap[..., 0],
+                            self.capacities(np.asarray(outer_contact_angle))[..., 1]], axis=-1)
+        return np.stack([qi, qo], axis=-1) / cap
 
     def life(self, inner_load: ArrayLike, contact_angle: ArrayLike | None = None, *,
              outer_load: ArrayLike | None = None,
@@ -244,17 +251,17 @@ class ReferenceRating:
         if contact_angle is None and self.kind == "ball":
             contact_angle = np.full(np.shape(inner_load), self.contact_angle)
         u = self.normalized(inner_load, contact_angle, outer_load, outer_contact_angle)
-        if self.kind == "roller":
-            u = np.moveaxis(u, -3, -2)  # (S, K, Z, 2): elements next to the race axis
-        else:
-            u = u[..., None, :, :]  # (S, 1, N, 2): one "lamina"
+        # balls (S, N, 2): one "lamina"; rollers (S, Z, K, 2): the elements on axis -3
+        axis = -3 if self.kind == "roller" else -2
         p, e = self.exponents
-        rotating = np.mean(u**p, axis=-2)  # (S, K, 2)
-        stationary = np.mean(u ** (p * e), axis=-2) ** (1.0 / e)
-        inner_first = rotating_ring == "inner"
-        damage = np.stack([rotating[..., 0] if inner_first else stationary[..., 0],
-                           stationary[..., 1] if inner_first else rotating[..., 1]], axis=-1)
-        return self._combine(damage)
+        turning = 0 if rotating_ring == "inner" else 1
+        rot, fixed = u[..., turning], u[..., 1 - turning]
+        rot_p = rot * rot * rot if p == 3.0 else np.square(rot * rot)
+        rotating = np.mean(rot_p, axis=axis + 1)  # per lamina
+        stationary = np.mean(fixed ** (p * e), axis=axis + 1) ** (1.0 / e)
+        pair = (rotating, stationary) if turning == 0 else (stationary, rotating)
+        damage = np.stack(pair, axis=-1)
+        return self._combine(damage if self.kind == "roller" else damage[..., None, :])
 
     def _combine(self, damage: FloatArray) -> ReferenceLife:
         """Life from the per-lamina, per-ring damage ``1/L`` (S, K, 2)."""

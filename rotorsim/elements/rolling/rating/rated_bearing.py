@@ -8,6 +8,7 @@ evaluated at displacements an analysis found; nothing here solves an equilibrium
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass, field
 from typing import Any
@@ -19,7 +20,9 @@ from rotorsim.elements.rolling.geometry import cage_ratio
 from rotorsim.elements.rolling.rating.hertz_pressure import (
     BallContactPressure,
     RollerContactPressure,
+    ball_pressures,
     contact_pressures,
+    roller_pressures,
 )
 from rotorsim.elements.rolling.rating.iso281 import BearingRating
 from rotorsim.elements.rolling.rating.iso16281 import (
@@ -156,3 +159,37 @@ class RatedBearing:
         return contact_pressures(self.base, self._delta(delta), psi,
                                  shoulder_heights=self.options.shoulder_heights,
                                  **self.options.materials)
+
+    def steady(self, delta: ArrayLike, psi: ArrayLike, element_load: ArrayLike | None = None,
+               contact_angle: ArrayLike | None = None
+               ) -> tuple[ReferenceLife, BallContactPressure | RollerContactPressure]:
+        """Life (:meth:`life`) and pressures (:meth:`pressures`) of steady states from one
+        evaluation of the contacts; balls may pass their known loads and angles (S, N)
+        (an equilibrium result has them) to skip it."""
+        o = self.options
+        if self.kind == "roller":
+            laminae = lamina_loads(self.base, self._delta(delta), psi)
+            line = laminae * (self.base.n_slices / self.base.effective_length)
+            return (self.reference.life(laminae, rotating_ring=o.rotating_ring),
+                    roller_pressures(self.base.roller_diameter, self.base.pitch_diameter,
+                                     self.base.contact_angle, line, self.base._line.xi,
+                                     **o.materials))
+        if element_load is None or contact_angle is None:
+            st = self.base.state(self._delta(delta), psi)
+            element_load, contact_angle = st.element_load, st.contact_angle
+        q = np.atleast_2d(np.asarray(element_load, dtype=float))
+        a = np.atleast_2d(np.asarray(contact_angle, dtype=float))
+        if self.base.f_i is None or self.base.f_o is None:
+            raise ModelError("contact pressures need the groove curvature factors f_i and "
+                             "f_o (the bearing has only A0)", self.base.label)
+        return (self.reference.life(q, a, rotating_ring=o.rotating_ring),
+                ball_pressures(self.base.ball_diameter, self.base.pitch_diameter,
+                               self.base.f_i, self.base.f_o, q, a,
+                               shoulder_heights=o.shoulder_heights, **o.materials))
+
+
+@functools.lru_cache(maxsize=64)
+def rated(model: Any, options: RatingOptions) -> RatedBearing:
+    """:class:`RatedBearing` of ``model`` (compared by identity: models are immutable)
+    and ``options``, built once (the ratings, reference loads and tables of a bearing)."""
+    return RatedBearing(model, options)

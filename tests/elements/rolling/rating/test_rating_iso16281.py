@@ -9,8 +9,8 @@ import numpy as np
 import pytest
 
 from rotorsim.elements.rolling.ball.bearing import BallBearing
-from rotorsim.elements.rolling.rating.iso16281 import ReferenceRating, sjovall_integrals
 from rotorsim.elements.rolling.rating.iso281 import BearingRating
+from rotorsim.elements.rolling.rating.iso16281 import ReferenceRating, sjovall_integrals
 from rotorsim.elements.rolling.rating.load_history import (
     RingDamage,
     combine_histories,
