@@ -152,7 +152,7 @@ class BallTable(RollingTable):
     f_i: PositiveRatio | None = None
     f_o: PositiveRatio | None = None
     A0: Length | None = None
-    groove_center_radius: Length | None = None
+    groove_center_radius: Length | Literal["pitch"] | None = None
 
     @model_validator(mode="after")
     def _kn_source(self) -> "BallTable":
