@@ -15,11 +15,18 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from rotorsim.analyses.statics.bearing_life import life_result
-from rotorsim.elements.rolling.rating.load_history import history_life, ring_damage
+from rotorsim.elements.rolling.rating.load_history import (
+    RingDamage,
+    history_life,
+    ring_damage_density,
+)
 from rotorsim.elements.rolling.rating.options import RatingOptions
 from rotorsim.elements.rolling.rating.rated_bearing import rated as cached_rating
 from rotorsim.errors import ModelError
 from rotorsim.results.bearing_life import BearingLifeResult
+
+_BLOCK_VALUES = 1 << 18
+"""Contact values (elements x laminae or races) per block of samples: about 2 MB arrays."""
 
 
 def history_life_result(element: Any, delta: ArrayLike, phi: ArrayLike, *, source: str,
@@ -29,7 +36,9 @@ def history_life_result(element: Any, delta: ArrayLike, phi: ArrayLike, *, sourc
     shaft angles ``phi`` (T,) [rad], unwrapped; the inner ring turns with the shaft, the
     outer ring is fixed.
 
-    Pressures are those of each element at the sample of its largest load.
+    Pressures and loads are those of each element at the sample of its largest load
+    (balls) or largest damage density ``sum_k q_k^4`` (rollers: the most damaging
+    instant, which a tilt may move away from the largest total load).
     """
     t0 = time.perf_counter()
     rated = cached_rating(element, RatingOptions() if options is None else options)
@@ -39,18 +48,31 @@ def history_life_result(element: Any, delta: ArrayLike, phi: ArrayLike, *, sourc
         raise ModelError(f"delta must be (T, 5) and phi (T,), got {d.shape} and {angle.shape}",
                          source)
     psi = rated.element_angles(angle)
-    loads, u = rated.loads(d, psi)
     rings = np.stack([angle, np.zeros_like(angle)], axis=1)
-    damage = ring_damage(rated.reference, u, psi, rings, rated.geometric_cage_ratio,
-                         rated.options.n_cells)
+    n = rated.base.n_elements
+    per_sample = n * (rated.reference.n_laminae if rated.kind == "roller" else 2)
+    block = max(64, _BLOCK_VALUES // per_sample)  # samples per block: temporaries in cache
+    damage: RingDamage | None = None
+    peak_score, peak = np.full(n, -1.0), np.zeros(n, dtype=np.int64)
+    for first in range(0, d.shape[0] - 1, block):
+        part = slice(first, min(first + block + 1, d.shape[0]))  # blocks share one sample
+        score, density, scale = rated.damage_density(d[part], psi[part])
+        cells = ring_damage_density(rated.reference, density, psi[part], rings[part],
+                                    rated.geometric_cage_ratio, rated.options.n_cells, scale)
+        damage = cells if damage is None else damage.plus(cells)
+        at = np.argmax(score, axis=0)
+        better = score[at, np.arange(n)] > peak_score
+        peak = np.where(better, at + first, peak)
+        peak_score = np.where(better, score[at, np.arange(n)], peak_score)
+    assert damage is not None
     life = history_life(rated.reference, damage)
     t_life = time.perf_counter() - t0
-    peak = np.argmax(loads, axis=0)  # (N,) sample of each element's largest load
     pressures = rated.pressures(d[peak], psi[peak])
-    diagonal = np.arange(loads.shape[1])
+    peak_load = rated.loads(d[peak], psi[peak])[0][np.arange(n), np.arange(n)]
+    diagonal = np.arange(n)
     pressures = _take_diagonal(pressures, diagonal)
     return life_result(rated, life, pressures, source=source, load=np.full(5, np.nan),
-                       P=np.nan, angles=psi[peak, diagonal], loads=loads[peak, diagonal],
+                       P=np.nan, angles=psi[peak, diagonal], loads=peak_load,
                        stats={"wall_time": time.perf_counter() - t0, "life_time": t_life,
                               "samples": float(d.shape[0]),
                               "revolutions": damage.revolutions},

@@ -61,6 +61,10 @@ class RingDamage:
     def scaled(self, factor: float) -> RingDamage:
         return RingDamage(self.damage * factor, self.revolutions * factor)
 
+    def plus(self, other: RingDamage) -> RingDamage:
+        """The damage of this history followed by ``other``."""
+        return RingDamage(self.damage + other.damage, self.revolutions + other.revolutions)
+
 
 def ring_damage(ref: ReferenceRating, u: ArrayLike, psi: ArrayLike, ring_angles: ArrayLike,
                 kappa: float, n_cells: int = 360) -> RingDamage:
@@ -80,12 +84,23 @@ def ring_damage(ref: ReferenceRating, u: ArrayLike, psi: ArrayLike, ring_angles:
     n_cells : int
         Cells ``M`` per ring.
     """
-    where = "ring_damage"
     uu = np.asarray(u, dtype=float)
     uu = uu[:, :, None, :] if uu.ndim == 3 else uu  # (T, N, K, 2)
+    p = ref.exponents[0]
+    return ring_damage_density(ref, uu**p, psi, ring_angles, kappa, n_cells)
+
+
+def ring_damage_density(ref: ReferenceRating, density: ArrayLike, psi: ArrayLike,
+                        ring_angles: ArrayLike, kappa: float, n_cells: int = 360,
+                        ring_scale: tuple[float, float] = (1.0, 1.0)) -> RingDamage:
+    """:func:`ring_damage` from the damage density ``u^p``: (T, N, K, 2) per ring, or
+    (T, N, K) shared by both rings times ``ring_scale`` (rollers: the same lamina loads
+    on both races, whose ``u^p`` differ by ``(q_ci / q_ce)^p`` only)."""
+    where = "ring_damage"
+    dens = np.asarray(density, dtype=float)
     p_arr = np.asarray(psi, dtype=float)
     rings = np.asarray(ring_angles, dtype=float)
-    n_t, n_el, n_k = uu.shape[0], uu.shape[1], uu.shape[2]
+    n_t, n_el, n_k = dens.shape[0], dens.shape[1], dens.shape[2]
     if p_arr.shape != (n_t, n_el) or rings.shape != (n_t, 2):
         raise ModelError(f"psi must be (T, N) = ({n_t}, {n_el}) and ring_angles (T, 2), got "
                          f"{p_arr.shape} and {rings.shape}", where)
@@ -94,9 +109,7 @@ def ring_damage(ref: ReferenceRating, u: ArrayLike, psi: ArrayLike, ring_angles:
     if not 0.0 < kappa < 1.0:
         raise ModelError(f"cage ratio {kappa!r} must be in (0, 1): the history life needs "
                          "rolling elements that orbit", where)
-    p = ref.exponents[0]
-    power = uu**p
-    mid = 0.5 * (power[1:] + power[:-1])  # (T-1, N, K, 2) trapezoid in time
+    mid = dens[1:] + dens[:-1]  # twice the trapezoid mean in time (T-1, N, K[, 2])
     out = np.empty((n_k, n_cells, 2))
     width = 2.0 * math.pi / n_cells
     per_rev = (ref.n_elements * (1.0 - kappa), ref.n_elements * kappa)
@@ -104,7 +117,9 @@ def ring_damage(ref: ReferenceRating, u: ArrayLike, psi: ArrayLike, ring_angles:
         rel = p_arr - rings[:, ring, None]  # (T, N) element angle on the ring
         start = np.minimum(rel[1:], rel[:-1]) / width  # arcs swept, in cells (T-1, N)
         stop = np.maximum(rel[1:], rel[:-1]) / width
-        out[..., ring] = _swept_cells(start, stop, mid[..., ring], n_cells) / per_rev[ring]
+        ring_mid = mid if mid.ndim == 3 else mid[..., ring]
+        out[..., ring] = (_swept_cells(start, stop, ring_mid, n_cells)
+                          * (0.5 * ring_scale[ring] / per_rev[ring]))
     relative = np.abs(np.diff(rings[:, 0] - rings[:, 1])).sum() / (2.0 * math.pi)
     return RingDamage(out, float(relative))
 
@@ -113,32 +128,27 @@ def _swept_cells(start: FloatArray, stop: FloatArray, density: FloatArray, n_cel
                  ) -> FloatArray:
     """``sum density x (overlap of the arc [start, stop] with each cell)`` (K, M): arcs
     (T, N) in cell units on a periodic ring of ``n_cells``, ``density`` (T, N, K) uniform
-    along each arc (the midpoint rule of each step)."""
-    n_k = density.shape[-1]
-    shift = np.floor(start / n_cells) * n_cells
-    lo, hi = start - shift, stop - shift  # lo in [0, M)
+    along each arc (the midpoint rule of each step).
+
+    The overlaps form a sparse (M, T N) matrix, one entry per cell an arc touches (two or
+    one for a step shorter than a cell), applied to the (T N, K) densities at once.
+    """
+    from scipy.sparse import csr_matrix
+
+    lo, hi = start.ravel(), stop.ravel()
     i_lo, i_hi = np.floor(lo).astype(np.int64), np.floor(hi).astype(np.int64)
-    span = int(i_hi.max(initial=0)) + 2
-    extended = span + (-span) % n_cells  # a multiple of M, folded back at the end
-    lamina = extended * np.arange(n_k)
-    d = density
-    same = (i_lo == i_hi)[..., None]
-    # partial first and last cells; full cells in between by a difference array
-    first = np.where(same, (hi - lo)[..., None], (i_lo + 1 - lo)[..., None]) * d
-    last = np.where(same, 0.0, (hi - i_hi)[..., None] * d)
-    total = np.bincount((i_lo[..., None] + lamina).ravel(), first.ravel(),
-                        minlength=n_k * extended)
-    total += np.bincount((i_hi[..., None] + lamina).ravel(), last.ravel(),
-                         minlength=n_k * extended)
-    full = np.where(same, 0.0, d)
-    steps = np.bincount((i_lo[..., None] + 1 + lamina).ravel(), full.ravel(),
-                        minlength=n_k * extended + 1)[:n_k * extended]
-    steps -= np.bincount((i_hi[..., None] + lamina).ravel(), full.ravel(),
-                         minlength=n_k * extended + 1)[:n_k * extended]
-    runs = np.cumsum(steps.reshape(n_k, extended), axis=1)
-    cells = total.reshape(n_k, extended) + runs
-    folded = cells.reshape(n_k, extended // n_cells, n_cells).sum(axis=1)
-    return np.asarray(np.maximum(folded, 0.0))  # round-off of the running sums
+    count = i_hi - i_lo + 1  # cells each arc touches
+    arc = np.repeat(np.arange(lo.size), count)
+    first = np.cumsum(count) - count
+    offset = np.arange(arc.size) - np.repeat(first, count)
+    cell = np.repeat(i_lo, count) + offset
+    # overlap of [lo, hi] with [cell, cell + 1]
+    overlap = np.minimum(np.repeat(hi, count), cell + 1.0) - np.maximum(np.repeat(lo, count),
+                                                                        cell)
+    matrix = csr_matrix((np.maximum(overlap, 0.0), (np.mod(cell, n_cells), arc)),
+                        shape=(n_cells, lo.size))
+    cells = matrix @ density.reshape(lo.size, -1)  # (M, K)
+    return np.asarray(cells.T)
 
 
 def combine_histories(parts: list[RingDamage], shares: ArrayLike) -> RingDamage:

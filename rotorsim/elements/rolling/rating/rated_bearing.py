@@ -130,6 +130,24 @@ class RatedBearing:
         return st.element_load, self.reference.normalized(
             st.element_load, st.contact_angle, st.outer_load, st.outer_contact_angle)
 
+    def damage_density(self, delta: ArrayLike, psi: ArrayLike
+                       ) -> tuple[FloatArray, FloatArray, tuple[float, float]]:
+        """A load score (S, N) of each element and the damage density ``u^p`` of
+        :func:`~.load_history.ring_damage_density`: balls (S, N, 1, 2) with their loads as
+        the score; rollers the laminae of the inner race (S, Z, K),
+        ``(Kn / (K q_ci))^p max(delta_k, 0)^(n p)`` (one power per lamina), with the ring
+        factors ``(1, (q_ci/q_ce)^p)`` and the summed density as the score."""
+        p = self.reference.exponents[0]
+        if self.kind == "roller":
+            b = self.base
+            cap = self.reference.capacities()
+            deflection = np.maximum(b.slice_deflections(self._delta(delta), psi), 0.0)
+            density = np.power(deflection, b.exponent * p, out=deflection)
+            density *= (b.kn / (b.n_slices * cap[0])) ** p
+            return density.sum(axis=-1), density, (1.0, float((cap[0] / cap[1]) ** p))
+        loads, u = self.loads(delta, psi)
+        return loads, (u * u * u)[:, :, None, :], (1.0, 1.0)
+
     def element_angles(self, phi: ArrayLike) -> FloatArray:
         """Element angles (S, N) [rad] at shaft angles ``phi`` (S,): the model's cage law,
         or the geometric cage ratio for a model built with ``cage="fixed"`` (a life needs
