@@ -141,9 +141,14 @@ class RatedBearing:
         if self.kind == "roller":
             b = self.base
             cap = self.reference.capacities()
-            deflection = np.maximum(b.slice_deflections(self._delta(delta), psi), 0.0)
-            density = np.power(deflection, b.exponent * p, out=deflection)
-            density *= (b.kn / (b.n_slices * cap[0])) ** p
+            deflection = b.slice_deflections(self._delta(delta), psi)
+            loaded = deflection > 0.0
+            values = deflection[loaded]  # the power only where loaded: the costly step
+            values *= 1e6  # micrometres: no subnormal powers near the load-zone edge
+            np.power(values, b.exponent * p, out=values)
+            values *= (b.kn / (b.n_slices * cap[0]) * 1e-6 ** b.exponent) ** p
+            density = np.zeros(deflection.shape)
+            density[loaded] = values
             return density.sum(axis=-1), density, (1.0, float((cap[0] / cap[1]) ** p))
         loads, u = self.loads(delta, psi)
         return loads, (u * u * u)[:, :, None, :], (1.0, 1.0)
