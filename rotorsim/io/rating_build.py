@@ -3,7 +3,8 @@
 from __future__ import annotations
 
 from rotorsim.elements.rolling.rating.options import RatingOptions
-from rotorsim.io.rolling_schema import RatingTable, RollingTable
+from rotorsim.io.rating_schema import RatingTable
+from rotorsim.io.rolling_schema import RollingTable
 
 
 def rating_options(tables: list[RollingTable]) -> tuple[RatingOptions | None, ...]:
