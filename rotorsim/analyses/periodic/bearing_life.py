@@ -55,7 +55,11 @@ def periodic_life(result: PeriodicResult, element: Any, point: int, *,
         raise ModelError(f"point {point}: the shaft does not turn (speed {speed})", where)
     u = np.hstack([_node_dofs(result, q, int(node)) for node in element.nodes])
     delta = element.relative(u)
-    kappa = _cage_ratio(element, options)
+    relative = abs(float(getattr(element, "inner_speed_ratio", 1.0))
+                   - float(getattr(element, "outer_speed_ratio", 0.0)))
+    if relative == 0.0:
+        raise ModelError("the rings of the bearing turn together: no over-rolling", where)
+    kappa = _cage_ratio(element, options) * relative  # cage relative to the outer ring
     n_periods = max(1, math.ceil(cage_revolutions * 2.0 * math.pi / (kappa * speed * period)))
     steps = n_periods * samples
     time_axis = np.arange(steps + 1) * (period / samples)

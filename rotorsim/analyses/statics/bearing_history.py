@@ -33,8 +33,10 @@ def history_life_result(element: Any, delta: ArrayLike, phi: ArrayLike, *, sourc
                         options: RatingOptions | None = None,
                         record: dict[str, Any] | None = None) -> BearingLifeResult:
     """Life and peak pressures of a bearing over the history ``delta`` (T, 5) [m, rad] at
-    shaft angles ``phi`` (T,) [rad], unwrapped; the inner ring turns with the shaft, the
-    outer ring is fixed.
+    shaft angles ``phi`` (T,) [rad], unwrapped. The rings turn at ``r_i phi`` and
+    ``r_o phi`` with the element's ``inner_speed_ratio`` and ``outer_speed_ratio`` (default
+    1 and 0: the inner ring turns with the shaft, the outer ring stands), the cage at
+    ``(kappa r_i + (1 - kappa) r_o) phi``.
 
     Pressures and loads are those of each element at the sample of its largest load
     (balls) or largest damage density ``sum_k q_k^4`` (rollers: the most damaging
@@ -47,8 +49,10 @@ def history_life_result(element: Any, delta: ArrayLike, phi: ArrayLike, *, sourc
     if d.ndim != 2 or d.shape[1] != 5 or angle.shape != (d.shape[0],):
         raise ModelError(f"delta must be (T, 5) and phi (T,), got {d.shape} and {angle.shape}",
                          source)
-    psi = rated.element_angles(angle)
-    rings = np.stack([angle, np.zeros_like(angle)], axis=1)
+    r_i = float(getattr(element, "inner_speed_ratio", 1.0))
+    r_o = float(getattr(element, "outer_speed_ratio", 0.0))
+    psi = rated.element_angles(angle, r_i, r_o)
+    rings = np.stack([r_i * angle, r_o * angle], axis=1)
     n = rated.base.n_elements
     per_sample = n * (rated.reference.n_laminae if rated.kind == "roller" else 2)
     block = max(64, _BLOCK_VALUES // per_sample)  # samples per block: temporaries in cache

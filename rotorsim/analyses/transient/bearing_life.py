@@ -3,8 +3,11 @@
 The rolling-element loads are recomputed from the kept displacements of the bearing's
 nodes at every sample (one batched evaluation), the elements at their cage positions of
 the shaft angle, and rated by Palmgren-Miner on the material of both rings
-(:mod:`rotorsim.elements.rolling.rating.load_history`). The time step must resolve the
-passage of the elements over a ring cell (``options.n_cells`` cells per ring).
+(:mod:`rotorsim.elements.rolling.rating.load_history`). The rings turn with the element's
+``inner_speed_ratio`` and ``outer_speed_ratio`` times the shaft angle when it has them
+(inter-shaft bearings), else the inner ring with the shaft and the outer ring not. The
+time step must resolve the passage of the elements over a ring cell (``options.n_cells``
+cells per ring).
 """
 
 from __future__ import annotations

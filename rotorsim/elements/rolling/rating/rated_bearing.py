@@ -153,15 +153,17 @@ class RatedBearing:
         loads, u = self.loads(delta, psi)
         return loads, (u * u * u)[:, :, None, :], (1.0, 1.0)
 
-    def element_angles(self, phi: ArrayLike) -> FloatArray:
-        """Element angles (S, N) [rad] at shaft angles ``phi`` (S,): the model's cage law,
-        or the geometric cage ratio for a model built with ``cage="fixed"`` (a life needs
-        orbiting elements)."""
+    def element_angles(self, phi: ArrayLike, inner_ratio: float = 1.0,
+                       outer_ratio: float = 0.0) -> FloatArray:
+        """Element angles (S, N) [rad] at shaft angles ``phi`` (S,) with the rings turning
+        at ``inner_ratio phi`` and ``outer_ratio phi``: the cage at
+        ``(kappa r_i + (1 - kappa) r_o) phi``, ``kappa`` the model's cage ratio, or the
+        geometric one for a model built with ``cage="fixed"`` (a life needs orbiting
+        elements)."""
         phi_arr = np.asarray(phi, dtype=float)
-        if float(getattr(self.base, "kappa", 0.0)) > 0.0:
-            return np.asarray(self.base.element_angles(phi_arr))
-        return np.asarray(self.base.element_angles(0.0)[0]
-                          + self.geometric_cage_ratio * phi_arr[:, None])
+        kappa = float(getattr(self.base, "kappa", 0.0)) or self.geometric_cage_ratio
+        cage = kappa * inner_ratio + (1.0 - kappa) * outer_ratio
+        return np.asarray(self.base.element_angles(0.0)[0] + cage * phi_arr[:, None])
 
     def life(self, delta: ArrayLike, psi: ArrayLike, rotating_ring: str | None = None
              ) -> ReferenceLife:

@@ -132,3 +132,33 @@ def test_duty_cycle_shares_and_errors():
         ref.life(-np.ones((1, 10)))
     with pytest.raises(ModelError, match="rotating_ring"):
         ref.life(np.ones((1, 10)), rotating_ring="cage")
+
+
+def test_history_with_the_outer_ring_turning():
+    """Rings at speed ratios (0, 1) (the outer ring turns with the shaft angle, the inner
+    stands; an inter-shaft or hub bearing) under a load fixed in space: the outer ring now
+    sees every load and the inner a fixed load zone, the steady rule with
+    ``rotating_ring="outer"`` (within 0.5 %, as the inner-ring case above)."""
+    from rotorsim.analyses.statics.bearing_history import history_life_result
+    from rotorsim.elements.rolling.rating.options import RatingOptions
+
+    b = BallBearing.from_geometry(n_balls=9, pitch_diameter=39.04e-3, ball_diameter=7.94e-3,
+                                  f_i=0.52, f_o=0.53)
+
+    class OuterTurning:  # the two speed ratios of a RollingBearing element
+        bearing = b
+        inner_speed_ratio, outer_speed_ratio = 0.0, 1.0
+
+        def relative(self, u):
+            return u
+
+    delta = np.array([12e-6, 0.0, 0.0, 0.0, 0.0])
+    phi = np.linspace(0.0, 80.0 * math.pi, 40001)
+    hist = history_life_result(OuterTurning(), np.broadcast_to(delta, (phi.size, 5)), phi,
+                               source="test", options=RatingOptions(C=14e3))
+    ref = ReferenceRating(BearingRating("ball", C=14e3), 9, 7.94e-3, 39.04e-3,
+                          f_i=0.52, f_o=0.53)
+    steady = b.state(delta[None], b.element_angles(0.0))
+    life = ref.life(steady.element_load, steady.contact_angle, rotating_ring="outer")
+    assert hist.L10r == pytest.approx(float(life.L10r[0]), rel=5e-3)
+    assert hist.stats["revolutions"] == pytest.approx(40.0)
