@@ -94,6 +94,7 @@ def _bearing_life(rolling: Any, equilibrium: Any, rating: Any) -> Any:
         print(f"life and contact pressures: not rated ({err})")
         return None
     print(life.table())
+    print(life.pressure_table())
     return life
 
 

@@ -122,6 +122,28 @@ class BearingLifeResult:
                              "BearingLifeResult.hours")
         return float(self.L10r * 1e6 / (60.0 * speed_rpm))
 
+    def pressure_table(self) -> str:
+        """Plain-text table of every rolling element: angle, load, largest Hertz pressure on
+        the inner and outer race and (balls) the inner-race ellipse and shoulder margin."""
+        ball = self.slice_pressure.size == 0
+        head = (f"{'element':>7} {'angle [deg]':>11} {'load [N]':>10} {'p_in [MPa]':>10} "
+                f"{'p_out [MPa]':>11}")
+        head += (f" {'a_in [mm]':>9} {'b_in [mm]':>9} {'margin [deg]':>12}" if ball
+                 else f" {'b_in max [mm]':>13}")
+        rows = [head, "-" * len(head)]
+        for j in range(self.max_pressure.shape[0]):
+            row = (f"{j:>7} {math.degrees(self.element_angles[j]) % 360.0:>11.1f} "
+                   f"{self.element_load[j]:>10.2f} {self.max_pressure[j, 0] / 1e6:>10.1f} "
+                   f"{self.max_pressure[j, 1] / 1e6:>11.1f}")
+            if ball:
+                margin = self.shoulder_margin[j, 0]
+                row += (f" {self.semi_major[j, 0] * 1e3:>9.4f} {self.semi_minor[j, 0] * 1e3:>9.4f}"
+                        f" {'-' if math.isnan(margin) else f'{math.degrees(margin):.2f}':>12}")
+            else:
+                row += f" {self.semi_minor[j, 0] * 1e3:>13.4f}"
+            rows.append(row)
+        return "\n".join(rows)
+
     def table(self) -> str:
         """Plain-text summary of the lives and the largest pressures."""
         def life(x: float) -> str:

@@ -33,6 +33,9 @@ def test_equilibrium_life_fields_and_conventions():
     assert cat.L10r / r.L10r == pytest.approx((14.8e3 / r.C) ** 3, rel=1e-9)
     assert cat.hours(3000.0) == pytest.approx(cat.L10r * 1e6 / 180000.0)
     assert "L10r" in r.table()
+    rows = r.pressure_table().splitlines()
+    assert len(rows) == 2 + 9 and rows[0].split()[:2] == ["element", "angle"]
+    assert float(rows[2].split()[3]) == pytest.approx(r.max_pressure[0, 0] / 1e6, abs=0.05)
 
 
 def test_a_iso_reliability_and_truncation():
