@@ -1,5 +1,5 @@
 """Bearing life and contact pressure against references no one here wrote (issue 18;
-docs/validation.md, case 28).
+docs/validation.md, case 29).
 
 * Catalogue: the 6205 deep-groove ball bearing, internal geometry from the Case Western
   Reserve University Bearing Data Center (SKF 6205-2RS JEM: 9 balls of 0.3126 in on a
