@@ -107,6 +107,9 @@ class ExcitationPlan:
         absent).
     approximation : str
         "" for an exact periodic problem, else what was neglected.
+    unbalance_ratio : float
+        Signed speed ratio of the spool that carries the unbalance (1 on a one-line rotor):
+        its unbalance turns at ``r W`` with the angle ``r phi``.
     """
 
     order: float
@@ -114,6 +117,7 @@ class ExcitationPlan:
     unbalance_harmonic: int
     base_harmonic: int
     approximation: str = ""
+    unbalance_ratio: float = 1.0
 
 
 def vc_orders(elements: Sequence[Any]) -> list[float]:
@@ -171,8 +175,12 @@ def _multiple(order: float, f: float) -> int | None:
 
 def plan_excitation(elements: Sequence[Any], *, unbalance: bool, base: HarmonicBase | None,
                     varying_compliance: bool | None, fundamental: float | None,
-                    frequency_parameter: bool) -> ExcitationPlan:
+                    frequency_parameter: bool, unbalance_ratio: float = 1.0
+                    ) -> ExcitationPlan:
     """Fundamental order, harmonics of each forcing and the VC treatment (module docstring).
+
+    ``unbalance_ratio`` is the signed speed ratio of the spool carrying the unbalance on a
+    machine of several lines: the unbalance is then of order ``|r|``.
 
     Raises
     ------
@@ -183,7 +191,8 @@ def plan_excitation(elements: Sequence[Any], *, unbalance: bool, base: HarmonicB
     vc = vc_orders(elements)
     if frequency_parameter:
         return _frequency_plan(vc, unbalance, base, varying_compliance)
-    forced = ([1.0] if unbalance else []) + ([base.order] if base is not None else [])
+    u_order = abs(float(unbalance_ratio))
+    forced = ([u_order] if unbalance else []) + ([base.order] if base is not None else [])
     moving = bool(vc) and varying_compliance is not False
     approximation = ""
     f = fundamental if fundamental is not None else fundamental_order(
@@ -207,9 +216,9 @@ def plan_excitation(elements: Sequence[Any], *, unbalance: bool, base: HarmonicB
     if vc and not moving and not approximation:
         approximation = ("rolling elements frozen at the shaft angle phi0 (varying "
                          "compliance neglected on request)")
-    return ExcitationPlan(float(f), moving, harmonic_of(1.0, f) if unbalance else 0,
+    return ExcitationPlan(float(f), moving, harmonic_of(u_order, f) if unbalance else 0,
                           harmonic_of(base.order, f) if base is not None else 0,
-                          approximation)
+                          approximation, float(unbalance_ratio))
 
 
 def _frequency_plan(vc: list[float], unbalance: bool, base: HarmonicBase | None,

@@ -40,7 +40,7 @@ from rotorsim.analyses.periodic.output import (
     branch_arrays,
     kept_dofs,
 )
-from rotorsim.analyses.periodic.problem import build_problem, check_discretization
+from rotorsim.analyses.periodic.problem import build_problem, check_discretization, spool_ratio
 from rotorsim.analyses.periodic.stability import DEFAULT_TOL, stability_model
 from rotorsim.analyses.periodic.variation import (
     RotorFamilyResidual,
@@ -174,7 +174,8 @@ def periodic_parameter(
     stats = Stats()
     plan = plan_excitation(system.nonlinear.elements, unbalance=bool(unbalance), base=None,
                            varying_compliance=None, fundamental=None,
-                           frequency_parameter=False)
+                           frequency_parameter=False,
+                           unbalance_ratio=spool_ratio(system, list(unbalance)))
     harmonics, samples = h.count, h.samples
     check_discretization(harmonics, samples, plan, system, True, WHERE)
     scaled = [(n, d, float(start) * v) for n, d, v in loads] if mode == "loads" else loads

@@ -58,6 +58,7 @@ from rotorsim.analyses.periodic.problem import (
     RotorPeriodicProblem,
     build_problem,
     check_discretization,
+    spool_ratio,
 )
 from rotorsim.analyses.periodic.resume import finished_result, resumed
 from rotorsim.analyses.periodic.stability import DEFAULT_TOL, stability_model
@@ -232,7 +233,8 @@ def periodic(
     elements = () if system.nonlinear is None else system.nonlinear.elements
     plan = plan_excitation(elements, unbalance=bool(e.unbalance), base=opts.base,
                            varying_compliance=varying_compliance, fundamental=h.fundamental,
-                           frequency_parameter=frequency)
+                           frequency_parameter=frequency,
+                           unbalance_ratio=spool_ratio(system, list(e.unbalance)))
     check_discretization(h.count, h.samples, plan, system, h.condense, WHERE)
     stats = Stats()
     q0 = start_point(system, x0, f"{WHERE}.x0") if x0 is not None else _static_guess(

@@ -88,8 +88,12 @@ class PeriodicLoads:
         out[0] = self.constant
         scale = 1.0 - param   # p = 1 removes the periodic forcing (start homotopy)
         if self.unbalance is not None:
+            # the spool's unbalance turns at r W with the angle r phi; backwards (r < 0) it
+            # is Re(U e^{-i |r| W t}) = Re(conj(U) e^{i |r| W t})
+            r = plan.unbalance_ratio
             W = omega / plan.order
-            U = self.unbalance * (scale * np.exp(1j * self.phi0) * W**2)
+            U = self.unbalance * (scale * np.exp(1j * r * self.phi0) * (r * W) ** 2)
+            U = U if r > 0 else U.conj()
             out += rotating_coefficients(U, plan.unbalance_harmonic, self.rows)
         if self.base is not None and self.mass_direction is not None:
             b = self.base
@@ -200,8 +204,9 @@ def build_problem(system: RotorSystem, plan: ExcitationPlan, *, speed0: float,
     if base is not None:
         e = rigid_translation(system.dof_map.n_nodes, base.direction)[system.dof_map.free]
         mass_direction = np.asarray(mats.M @ e)[active]
-    if unbalance:
-        check_one_spool(system, unbalance)
+    if unbalance and spool_ratio(system, unbalance) != plan.unbalance_ratio:
+        raise ModelError("the excitation plan was made for another spool's unbalance",
+                         "periodic.unbalance")
     unb = unbalance_amplitudes(system, unbalance)[active] if unbalance else None
     periodic_loads = PeriodicLoads(f_const[active], unb, mass_direction, base, plan, phi0)
     force, nl_dofs, uses_speed = _force(system, active, plan, phi0, fixed_speed)
@@ -218,26 +223,23 @@ def build_problem(system: RotorSystem, plan: ExcitationPlan, *, speed0: float,
     return RotorPeriodicProblem(problem, active, held, static, periodic_loads, recipe)
 
 
-def check_one_spool(system: RotorSystem, unbalance: Any) -> None:
-    """Refuse unbalances that a periodic response at the reference speed cannot carry.
+def spool_ratio(system: RotorSystem, unbalance: Any) -> float:
+    """Speed ratio of the spool that carries ``unbalance`` (1 without lines or unbalance).
 
     The unbalances of two spools turning at different speeds force two incommensurate
     frequencies in general: the response is quasi-periodic (a 2-torus), which needs the
-    two-frequency harmonic balance. An unbalance on one spool at a ratio other than 1 is
-    periodic, at that spool's speed: the reference is then that spool.
+    two-frequency harmonic balance, and is refused. One spool's unbalance at a ratio ``r``
+    is periodic at ``|r| W``.
     """
-    spools = spool_groups(system, unbalance)
-    ratios = [float(r) for r in spools]
+    if not unbalance:
+        return 1.0
+    ratios = [float(r) for r in spool_groups(system, unbalance)]
     if len(ratios) > 1:
         raise ModelError(f"unbalances on spools turning at {', '.join(f'{r:g}' for r in ratios)}"
                          " times the reference speed force incommensurate frequencies: the "
                          "response is quasi-periodic, which periodic() does not compute; "
                          "give the unbalance of one spool", "periodic.unbalance")
-    if ratios[0] != 1.0:
-        raise ModelError(f"the unbalance turns at {ratios[0]:g} times the reference speed: "
-                         "make its spool the reference (speed_ratio 1, the others divided "
-                         f"by {ratios[0]:g}) so that the response is periodic at the speed",
-                         "periodic.unbalance")
+    return ratios[0]
 
 
 def check_discretization(harmonics: Any, samples: Any, plan: ExcitationPlan,

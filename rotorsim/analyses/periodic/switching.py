@@ -36,7 +36,7 @@ from rotorsim.analyses.periodic.excitation import (
 )
 from rotorsim.analyses.periodic.output import Recovery, kept_dofs, periodic_result
 from rotorsim.analyses.periodic.periodic import DEFAULTS, _system
-from rotorsim.analyses.periodic.problem import RotorPeriodicProblem, build_problem
+from rotorsim.analyses.periodic.problem import RotorPeriodicProblem, build_problem, spool_ratio
 from rotorsim.analyses.periodic.stability import stability_model
 from rotorsim.assembly.system import RotorSystem
 from rotorsim.elements.base import FloatArray, NonlinearElement
@@ -83,15 +83,16 @@ def rebuilt(model: Any, result: PeriodicResult, nonlinear: Sequence[NonlinearEle
     frequency = result.parameter_name == "frequency"
     base = None if o.get("base") is None else HarmonicBase(**o["base"])
     elements = () if system.nonlinear is None else system.nonlinear.elements
+    unbalance = [(int(n), float(me), float(a)) for n, me, a in o["unbalance"]]
     plan = plan_excitation(elements, unbalance=bool(o["unbalance"]), base=base,
                            varying_compliance=o["varying_compliance"],
-                           fundamental=o["fundamental"], frequency_parameter=frequency)
+                           fundamental=o["fundamental"], frequency_parameter=frequency,
+                           unbalance_ratio=spool_ratio(system, unbalance))
     held = np.flatnonzero(np.isin(system.dof_map.free, result.held_dofs)).astype(np.int64)
     rp = build_problem(system, plan, speed0=float(o["start"]),
                        fixed_speed=o["speed"] if frequency else None,
                        phi0=float(o["shaft_angle"]),
-                       unbalance=[(int(n), float(me), float(a)) for n, me, a in o["unbalance"]],
-                       gravity=o["gravity"], direction=o["direction"],
+                       unbalance=unbalance, gravity=o["gravity"], direction=o["direction"],
                        loads=[(int(n), str(d), float(v)) for n, d, v in o["loads"]],
                        base=base, stats=stats, held=held)
     condense = bool(o["condense"]) and rp.problem.k > 0
