@@ -35,7 +35,7 @@ from numpy.typing import NDArray
 from rotorsim.analyses.linear.modal import _elastic_indices, _rigid
 from rotorsim.assembly.system import RotorSystem, SystemMatrices
 from rotorsim.errors import ConvergenceError
-from rotorsim.solvers.eigen import default_shift, quadratic_eigen
+from rotorsim.solvers.eigen import RIGID_ROUNDING, default_shift, quadratic_eigen
 from rotorsim.solvers.linear import Factorization, factorize
 from rotorsim.solvers.projected_eigen import (
     extend_basis,
@@ -85,6 +85,7 @@ class _Block:
 class _State:
     blocks: list[_Block]
     samples: dict[int, float]  # speed index -> |lam| up to which the sample holds all modes
+    abs_k: sp.csr_matrix | None = None
     refinements: int = 0
     projected_solves: int = 0
 
@@ -107,7 +108,8 @@ def reduced_modes(system: RotorSystem, grid: FloatArray, n_wanted: int, *,
     shift = default_shift(first.M, first.K) if sigma is None else float(sigma)
     lu = factorize(first.K + shift * (first.C + float(grid[0]) * first.G) + shift**2 * first.M,
                    stats=stats, where=f"campbell shift (sigma = {shift:.6g} rad/s)")
-    state = _State([_Block(d, np.zeros((d.size, 0))) for d in uncoupled_blocks(system)], {})
+    state = _State([_Block(d, np.zeros((d.size, 0))) for d in uncoupled_blocks(system)], {},
+                   abs_k=None if constant is None else abs(constant.K))
     sample_wanted = n_wanted + max(2, int(np.ceil(SAMPLE_MARGIN * n_wanted)))
     ends = sorted({0, grid.size - 1})
     first_modes = {i: _sample(state, i, at(float(grid[i])), float(grid[i]), sample_wanted,
@@ -221,7 +223,7 @@ def _solve_speed(state: _State, mats: SystemMatrices, speed: float, i: int, n_wa
                 block.reduced = _projected(block, mats)
         else:
             _project_constant(state, mats)
-        values, X = _ritz(state.blocks, speed, n_wanted, shift, mats)
+        values, X = _ritz(state.blocks, speed, n_wanted, shift, mats, state.abs_k)
         state.projected_solves += 1
         if values.size < n_wanted or np.abs(values).max() > _reach(state.samples, i):
             break  # modes above those the basis is known to hold: solve in full
@@ -249,7 +251,7 @@ def _reach(samples: dict[int, float], i: int) -> float:
 
 
 def _ritz(blocks: list[_Block], speed: float, n_wanted: int, shift: float,
-          mats: SystemMatrices) -> tuple[ComplexArray, ComplexArray]:
+          mats: SystemMatrices, abs_k: sp.csr_matrix | None) -> tuple[ComplexArray, ComplexArray]:
     """The ``n_wanted`` lowest elastic Ritz pairs of all blocks, on the free DOFs."""
     n = mats.M.shape[0]
     values, columns = [], []
@@ -267,6 +269,17 @@ def _ritz(blocks: list[_Block], speed: float, n_wanted: int, shift: float,
     X = np.hstack(columns)
     order = np.argsort(np.abs(lam - shift), kind="stable")
     lam, X = lam[order], X[:, order]
-    rigid, _ = _rigid(lam, X, mats.M, mats.K, None)
-    elastic = _elastic_indices(lam, rigid)[:n_wanted]
+    elastic = _elastic_indices(lam, _rigid_mask(lam, X, mats, abs_k))[:n_wanted]
     return lam[elastic], X[:, elastic]
+
+
+def _rigid_mask(lam: ComplexArray, X: ComplexArray, mats: SystemMatrices,
+                abs_k: sp.csr_matrix | None) -> NDArray[np.bool_]:
+    """The rigid-body test of :func:`~rotorsim.analyses.linear.modal.modal` (elastic energy
+    at the rounding level of ``K x``), with ``|K|`` formed once."""
+    abs_k = abs(mats.K) if abs_k is None else abs_k
+    size = np.abs(X)
+    rounding = RIGID_ROUNDING * np.finfo(float).eps * np.einsum("ij,ij->j", size,
+                                                                abs_k @ size)
+    kinetic = np.real(np.einsum("ij,ij->j", X.conj(), mats.M @ X))
+    return np.asarray(np.abs(lam) <= np.sqrt(rounding / kinetic))
