@@ -69,7 +69,7 @@ def extend_basis(V: FloatArray, new: NDArray, drop_tol: float = DROP_TOL) -> Flo
         return V
     for _ in range(2):  # classical Gram-Schmidt twice is enough (Giraud et al. 2005)
         W = W - V @ (V.T @ W)
-    Q, R, piv = sl.qr(W, mode="economic", pivoting=True)
+    Q, R, _ = sl.qr(W, mode="economic", pivoting=True)
     diag = np.abs(np.diag(R))
     rank = int(np.sum(diag > drop_tol)) if diag.size else 0
     Q = Q[:, :rank]

@@ -86,6 +86,7 @@ class _State:
     blocks: list[_Block]
     samples: dict[int, float]  # speed index -> |lam| up to which the sample holds all modes
     abs_k: sp.csr_matrix | None = None
+    n_rigid: int = 0
     refinements: int = 0
     projected_solves: int = 0
 
@@ -173,6 +174,7 @@ def _sample(state: _State, i: int, mats: SystemMatrices, speed: float, wanted: i
         elif part.size:
             block.V = extend_basis(block.V, part)
     rigid, _ = _rigid(values, vectors, mats.M, mats.K, None)
+    state.n_rigid = max(state.n_rigid, int(np.count_nonzero(rigid)))
     elastic = _elastic_indices(values, rigid)
     state.samples[i] = float(np.abs(values[elastic]).max()) if elastic.size >= wanted \
         else np.inf
@@ -223,7 +225,8 @@ def _solve_speed(state: _State, mats: SystemMatrices, speed: float, i: int, n_wa
                 block.reduced = _projected(block, mats)
         else:
             _project_constant(state, mats)
-        values, X = _ritz(state.blocks, speed, n_wanted, shift, mats, state.abs_k)
+        values, X = _ritz(state.blocks, speed, n_wanted, shift, mats, state.abs_k,
+                          state.n_rigid)
         state.projected_solves += 1
         if values.size < n_wanted or np.abs(values).max() > _reach(state.samples, i):
             break  # modes above those the basis is known to hold: solve in full
@@ -251,24 +254,33 @@ def _reach(samples: dict[int, float], i: int) -> float:
 
 
 def _ritz(blocks: list[_Block], speed: float, n_wanted: int, shift: float,
-          mats: SystemMatrices, abs_k: sp.csr_matrix | None) -> tuple[ComplexArray, ComplexArray]:
-    """The ``n_wanted`` lowest elastic Ritz pairs of all blocks, on the free DOFs."""
+          mats: SystemMatrices, abs_k: sp.csr_matrix | None, n_rigid: int
+          ) -> tuple[ComplexArray, ComplexArray]:
+    """The ``n_wanted`` lowest elastic Ritz pairs of all blocks, on the free DOFs.
+
+    Only the ``2 (n_wanted + n_rigid) + 8`` pairs nearest the shift over all blocks are
+    lifted to the full space and tested for rigid-body motion (``n_rigid``: the most
+    rigid-body modes a sample had), the cost of the rest is saved.
+    """
     n = mats.M.shape[0]
-    values, columns = [], []
-    for block in blocks:
+    values, vectors, owner = [], [], []
+    for k, block in enumerate(blocks):
         r = block.reduced
         if block.V.shape[1] == 0:
             continue
         lam, Y = projected_quadratic_eigen(r["M"], r["C"] + speed * r["G"], r["K"], shift)
-        take = min(lam.size, 2 * n_wanted + 8)
-        X = np.zeros((n, take), dtype=complex)
-        X[block.dofs] = block.V @ Y[:, :take]
-        values.append(lam[:take])
-        columns.append(X)
+        values.append(lam)
+        vectors.append(Y)
+        owner.append(np.full(lam.size, k))
     lam = np.concatenate(values)
-    X = np.hstack(columns)
-    order = np.argsort(np.abs(lam - shift), kind="stable")
-    lam, X = lam[order], X[:, order]
+    which = np.concatenate(owner)
+    column = np.concatenate([np.arange(v.size) for v in values])
+    order = np.argsort(np.abs(lam - shift), kind="stable")[:2 * (n_wanted + n_rigid) + 8]
+    X = np.zeros((n, order.size), dtype=complex)
+    for k, Y in zip(np.unique(which), vectors, strict=True):
+        mine = np.flatnonzero(which[order] == k)
+        X[np.ix_(blocks[k].dofs, mine)] = blocks[k].V @ Y[:, column[order[mine]]]
+    lam = lam[order]
     elastic = _elastic_indices(lam, _rigid_mask(lam, X, mats, abs_k))[:n_wanted]
     return lam[elastic], X[:, elastic]
 

@@ -110,5 +110,5 @@ def test_auto_method_reduces_only_large_models() -> None:
 @pytest.mark.parametrize("kwargs", [{"method": "fast"}, {"tol": 0.0}, {"tol": 2.0},
                                     {"tol": True}])
 def test_bad_method_or_tol_raises_model_error(kwargs) -> None:
-    with pytest.raises(ModelError, match="method|tol"):
+    with pytest.raises(ModelError, match=r"method|tol"):
         campbell(build_rotorsim(benchmark_description(20)), [0.0, 10.0], **kwargs)
