@@ -35,6 +35,7 @@ NONLINEAR: tuple[tuple[str, list[str], list[str]], ...] = (
     ("bench_transient.py", [], ["--quick"]),
     ("bench_harmonic_balance.py", [], ["--repeat", "1"]),
     ("bench_periodic.py", [], ["--points", "30", "--subset", "1"]),
+    ("bench_bearing_life.py", [], ["--repeat", "3", "--steps", "10000"]),
 )
 """The nonlinear benchmarks (issues 4-7), run as scripts after the linear ones: (script,
 full arguments, --quick arguments)."""

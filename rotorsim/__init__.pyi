@@ -7,10 +7,12 @@ from .analyses.linear.critical_speed_map import critical_speed_map
 from .analyses.linear.critical_speeds import critical_speeds
 from .analyses.linear.frequency_response import frequency_response, unbalance_response
 from .analyses.linear.modal import modal
+from .analyses.periodic.bearing_life import periodic_life
 from .analyses.periodic.excitation import HarmonicBase
 from .analyses.periodic.parameter import periodic_parameter
 from .analyses.periodic.periodic import periodic
 from .analyses.periodic.switching import switch_branch
+from .analyses.statics.bearing_life import bearing_life, duty_cycle_life
 from .analyses.statics.bearing_statics import (
     bearing_equilibrium,
     linearize_at_load,
@@ -29,6 +31,7 @@ from .analyses.sweep.sweep import (
     Uniform,
     sweep,
 )
+from .analyses.transient.bearing_life import transient_life
 from .analyses.transient.loads import BaseExcitation
 from .analyses.transient.speed_profile import ConstantSpeed, LinearSpeed, SpeedFunction
 from .analyses.transient.torque_drive import TorqueDrive
@@ -46,6 +49,7 @@ from .assembly.dof_map import DofMap
 from .assembly.system import RotorSystem, SystemMatrices, assemble
 from .elements.base import DOF_NAMES, ElementMatrices
 from .elements.disk import DiskElement, PointMass
+from .elements.foundation import Foundation
 from .elements.linear_bearing import BearingElement
 from .elements.rolling import (
     BallBearing,
@@ -53,10 +57,14 @@ from .elements.rolling import (
     ReversedBearing,
     RollerBearing,
 )
+from .elements.rolling.contact.exponent_fit import kn_for_exponent
 from .elements.rolling.element import RollingBearing
 from .elements.rolling.flexible_ring.bearing import FlexibleRingRollerBearing
 from .elements.rolling.flexible_ring.element import FlexibleRingBearingElement
 from .elements.rolling.large_rotation import LargeRotationBearing
+from .elements.rolling.rating.hertz_pressure import contact_pressures
+from .elements.rolling.rating.iso281 import BearingRating
+from .elements.rolling.rating.options import RatingOptions
 from .elements.shaft import ShaftElement, cowper_shear_coefficient
 from .errors import (
     ConvergenceError,
@@ -69,6 +77,7 @@ from .io.hdf5 import ResultsFileError, load, save
 from .io.model_file import Model, load_model, run_analysis, save_model
 from .io.sweep_store import load_sweep
 from .io.vtk import export_vtk
+from .model.damping import SystemDamping
 from .model.lines import ShaftLine
 from .model.material import Material
 from .model.rotor import Rotor
@@ -83,6 +92,7 @@ from .options import (
 )
 from .plotting import plot
 from .results.bearing import BearingEquilibriumResult, StiffnessVariation
+from .results.bearing_life import BearingLifeResult
 from .results.campbell import CampbellResult
 from .results.critical_speeds import CriticalSpeedMapResult, CriticalSpeeds
 from .results.event_verification import EventCheck, EventVerification, SideCheck
@@ -108,6 +118,8 @@ __all__ = [
     "BaseExcitation",
     "BearingElement",
     "BearingEquilibriumResult",
+    "BearingLifeResult",
+    "BearingRating",
     "CampbellResult",
     "CentrifugalBearing",
     "Checkpointing",
@@ -126,6 +138,7 @@ __all__ = [
     "Excitation",
     "FlexibleRingBearingElement",
     "FlexibleRingRollerBearing",
+    "Foundation",
     "FrequencyResponseResult",
     "Grid",
     "HarmonicBase",
@@ -149,6 +162,7 @@ __all__ = [
     "PointMass",
     "PulsatingTorque",
     "QuadraticTorque",
+    "RatingOptions",
     "ResultsFileError",
     "ReversedBearing",
     "RollerBearing",
@@ -167,6 +181,7 @@ __all__ = [
     "SteadyStop",
     "StiffnessVariation",
     "SweepResult",
+    "SystemDamping",
     "SystemMatrices",
     "TorqueCurve",
     "TorqueDrive",
@@ -176,14 +191,18 @@ __all__ = [
     "ViscousTorque",
     "assemble",
     "bearing_equilibrium",
+    "bearing_life",
     "campbell",
+    "contact_pressures",
     "cowper_shear_coefficient",
     "critical_speed_map",
     "critical_speeds",
+    "duty_cycle_life",
     "ellipse",
     "export_vtk",
     "frequency_response",
     "hb",
+    "kn_for_exponent",
     "linearize_at_load",
     "linearize_rolling_bearings",
     "load",
@@ -191,6 +210,7 @@ __all__ = [
     "load_sweep",
     "modal",
     "periodic",
+    "periodic_life",
     "periodic_parameter",
     "plot",
     "run_analysis",
@@ -201,6 +221,7 @@ __all__ = [
     "sweep",
     "switch_branch",
     "transient",
+    "transient_life",
     "unbalance_response",
     "verify_events",
 ]

@@ -156,6 +156,8 @@ def gravity_load_all_dofs(
         if kind:
             groups.append((np.array([el.nodes for el in kind]),
                            np.stack([el.matrices().M for el in kind])))
+    for foundation in rotor.foundations:
+        groups.append((np.array([foundation.nodes]), foundation.matrices().M[None]))
     for nodes, mass in groups:
         dofs = (DOFS_PER_NODE * nodes[:, :, None] + np.arange(DOFS_PER_NODE)).reshape(
             nodes.shape[0], -1)

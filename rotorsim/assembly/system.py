@@ -13,6 +13,7 @@ from numpy.typing import NDArray
 from rotorsim.assembly.dof_map import DofMap, dof_label
 from rotorsim.assembly.nonlinear import NonlinearAssembly
 from rotorsim.assembly.sparse import SparsityPattern
+from rotorsim.assembly.system_damping import modal_damping_matrix
 from rotorsim.elements.base import (
     DOF_NAMES,
     DOFS_PER_NODE,
@@ -196,9 +197,10 @@ def assemble(rotor: Rotor, nonlinear: Sequence[NonlinearElement] = ()) -> RotorS
     if not isinstance(rotor, Rotor):
         raise ModelError(f"expected a Rotor, got {type(rotor).__name__}", "assemble")
     fixed = [DOFS_PER_NODE * n + DOF_NAMES.index(d) for n, d in rotor.fixed]
-    system = _assemble(rotor, fixed)
+    damped = rotor.damping is not None and rotor.damping.active
+    system = _assemble(rotor, fixed, with_damping=False)  # system damping on the final DOFs
     inactive = _unconnected_dofs(system)
-    if inactive.size:
+    if inactive.size or damped:
         system = _assemble(rotor, [*fixed, *inactive.tolist()])
         system.summary["inactive_dofs"] = [dof_label(i, short=True) for i in inactive]
     elements = (*rotor.nonlinear_elements, *nonlinear)
@@ -222,8 +224,10 @@ def _unconnected_dofs(system: RotorSystem) -> NDArray[np.int64]:
     return system.dof_map.free[~touched]
 
 
-def _assemble(rotor: Rotor, fixed: list[int]) -> RotorSystem:
-    dof_map = DofMap(rotor.n_nodes, fixed)
+def _assemble(rotor: Rotor, fixed: list[int], with_damping: bool = True) -> RotorSystem:
+    dof_map = DofMap(rotor.n_nodes, fixed, node_names=tuple(
+        rotor.node_name(n) if rotor.node_line[n] >= 0 else ""
+        for n in range(rotor.n_nodes)) if rotor.multi_line else ())
     groups: list[tuple[NDArray[np.int64], ElementMatrices]] = []
 
     ratios = rotor.node_speed_ratio if rotor.multi_line else None
@@ -238,6 +242,9 @@ def _assemble(rotor: Rotor, fixed: list[int]) -> RotorSystem:
             groups.append((_element_dofs(nodes),
                            _spinning(_stack([el.matrices() for el in kind]), nodes[:, 0],
                                      ratios)))
+    for foundation in rotor.foundations:  # support structures: structural mass too
+        nodes = np.array([foundation.nodes], dtype=np.int64)
+        groups.append((_element_dofs(nodes), _stack([foundation.matrices()])))
     n_structural = len(groups)
     variable: list[tuple[int, BearingElement]] = []
     constant_bearings: dict[int, list[BearingElement]] = {}
@@ -252,18 +259,22 @@ def _assemble(rotor: Rotor, fixed: list[int]) -> RotorSystem:
         nodes = np.array([b.nodes for b in same_size], dtype=np.int64)
         groups.append((_element_dofs(nodes), _stack([b.matrices(0.0) for b in same_size])))
 
-    free_dofs = [dof_map.full_to_free[dofs] for dofs, _ in groups]
-    pattern = SparsityPattern.from_blocks(dof_map.n_free, free_dofs)
     variable_groups = {g for g, _ in variable}
-    constant = {k: np.zeros(pattern.nnz) for k in "MCGK"}
-    structural_mass = np.zeros(pattern.nnz)
-    for g, (_, mats) in enumerate(groups):
-        if g in variable_groups:
-            continue
-        for k in "MCGK":
-            constant[k] += pattern.scatter(g, getattr(mats, k))
-        if g < n_structural:
-            structural_mass += pattern.scatter(g, mats.M)
+    pattern, constant, structural_mass = _scatter(groups, dof_map, variable_groups,
+                                                  n_structural)
+    damping = rotor.damping
+    if with_damping and damping is not None and damping.active:
+        if damping.modal_ratios:
+            extra = modal_damping_matrix(pattern.matrix(constant["M"]),
+                                         pattern.matrix(constant["K"]),
+                                         tuple(damping.modal_ratios), f"Rotor '{rotor.tag}'")
+            zero = np.zeros((1, *extra.shape))
+            groups.append((dof_map.free[None, :], ElementMatrices(zero, extra[None], zero,
+                                                                  zero)))
+            pattern, constant, structural_mass = _scatter(groups, dof_map, variable_groups,
+                                                          n_structural)
+        constant["C"] = constant["C"] + damping.alpha * constant["M"] \
+            + damping.beta * constant["K"]
     return RotorSystem(
         dof_map=dof_map,
         nodes_pos=rotor.nodes_pos,
@@ -280,6 +291,25 @@ def _assemble(rotor: Rotor, fixed: list[int]) -> RotorSystem:
         line_ratios=tuple(line.speed_ratio for line in rotor.layout.lines)
         if rotor.multi_line else (),
     )
+
+
+def _scatter(groups: list[tuple[NDArray[np.int64], ElementMatrices]], dof_map: DofMap,
+             variable_groups: set[int], n_structural: int
+             ) -> tuple[SparsityPattern, dict[str, FloatArray], FloatArray]:
+    """The shared pattern of ``groups`` and the constant matrix data on it (the
+    speed-dependent bearings' groups are only placed), with the structural mass."""
+    free_dofs = [dof_map.full_to_free[dofs] for dofs, _ in groups]
+    pattern = SparsityPattern.from_blocks(dof_map.n_free, free_dofs)
+    constant = {k: np.zeros(pattern.nnz) for k in "MCGK"}
+    structural_mass = np.zeros(pattern.nnz)
+    for g, (_, mats) in enumerate(groups):
+        if g in variable_groups:
+            continue
+        for k in "MCGK":
+            constant[k] += pattern.scatter(g, getattr(mats, k))
+        if g < n_structural:
+            structural_mass += pattern.scatter(g, mats.M)
+    return pattern, constant, structural_mass
 
 
 def _spinning(mats: ElementMatrices, first_nodes: NDArray[np.int64],

@@ -151,7 +151,8 @@ def _bearing(model: Any, args: argparse.Namespace) -> int:
     for i in chosen:
         write_bearing_outputs(model.rolling_bearings[i], linear.equilibria[i], linear.tags[i],
                               args.out / model.name, plots=not args.no_plots,
-                              n_points=6 if args.fast else 24)
+                              n_points=6 if args.fast else 24,
+                              rating=model.ratings[i] if model.ratings else None)
     print(f"\n{len(chosen)} bearings in {time.perf_counter() - t0:.2f} s; results in "
           f"{args.out / model.name}/")
     return 0

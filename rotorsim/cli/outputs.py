@@ -48,7 +48,8 @@ def _figures(result: Any, folder: Path, name: str, units: str,
     if kind == "ModalResult":
         for j in range(min(MODE_FIGURES, result.num_modes)):
             figures[f"{name}_mode_{j}.png"] = plot(result, mode=j, units="Hz")
-    elif kind in ("StaticResult", "BearingEquilibriumResult", "StiffnessVariation"):
+    elif kind in ("StaticResult", "BearingEquilibriumResult", "StiffnessVariation",
+                  "BearingLifeResult"):
         figures[f"{name}.png"] = plot(result)
     elif kind == "FrequencyResponseResult":
         figures[f"{name}.png"] = plot(result, units=units, **options)
@@ -81,13 +82,32 @@ def write_layout(rotor: Any, folder: Path) -> Path:
     return path
 
 
+def _bearing_life(rolling: Any, equilibrium: Any, rating: Any) -> Any:
+    """Print the lives and pressures of one bearing equilibrium; None (with a note) when the
+    bearing cannot be rated (e.g. no groove factors, a thrust bearing without ``C``)."""
+    from rotorsim.analyses.statics.bearing_life import bearing_life
+    from rotorsim.errors import ModelError
+
+    try:
+        life = bearing_life(rolling, equilibrium=equilibrium, options=rating)
+    except ModelError as err:
+        print(f"life and contact pressures: not rated ({err})")
+        return None
+    print(life.table())
+    print(life.pressure_table())
+    return life
+
+
 def write_bearing_outputs(rolling: Any, equilibrium: Any, tag: str, folder: Path, *,
-                          plots: bool = True, n_points: int = 24) -> list[Path]:
+                          plots: bool = True, n_points: int = 24,
+                          rating: Any = None) -> list[Path]:
     """Print and write one rolling bearing at its linearisation point.
 
-    Writes ``bearing_<tag>.h5`` (the ``BearingEquilibriumResult``) and
+    Writes ``bearing_<tag>.h5`` (the ``BearingEquilibriumResult``),
     ``bearing_<tag>_pass.h5`` (its ``StiffnessVariation`` over one element pass at the same
-    load), with their figures as PNG. Returns the paths written.
+    load) and ``bearing_<tag>_life.h5`` (lives and contact pressures,
+    :func:`rotorsim.bearing_life` with the options ``rating``), with their figures as PNG.
+    Returns the paths written.
     """
     from rotorsim.analyses.statics.bearing_statics import stiffness_over_pass
     from rotorsim.cli.summaries import bearing_summary, stiffness_variation_summary
@@ -104,5 +124,8 @@ def write_bearing_outputs(rolling: Any, equilibrium: Any, tag: str, folder: Path
     name = f"bearing_{tag}"
     files = write_outputs(equilibrium, folder, name, plots=plots)
     files += write_outputs(variation, folder, f"{name}_pass", plots=plots)
+    life = _bearing_life(rolling, equilibrium, rating)
+    if life is not None:
+        files += write_outputs(life, folder, f"{name}_life", plots=plots)
     print("wrote " + ", ".join(str(f) for f in files))
     return files

@@ -53,18 +53,24 @@ def modal_summary(result: Any, units: str = "Hz") -> str:
 def critical_speeds_summary(crit: Any, units: str = "rpm", title: str = "") -> str:
     f = _factor(units)
     kinds = getattr(crit, "kind", None)
+    excitation = getattr(crit, "excitation", None)
     rows = []
     for i in range(len(crit.speed)):
         if kinds is not None and kinds[i] != "lateral":
             continue
         log_dec = crit.log_dec[i]
-        rows.append((f"{crit.speed[i] * f:.1f}", f"{crit.frequency[i] * f:.1f}", crit.whirl[i],
-                     "-" if not np.isfinite(log_dec) else f"{log_dec:.4f}"))
-    head = title or f"{crit.harmonic:g}X critical speeds"
+        row = (f"{crit.speed[i] * f:.1f}", f"{crit.frequency[i] * f:.1f}", crit.whirl[i],
+               "-" if not np.isfinite(log_dec) else f"{log_dec:.4f}")
+        rows.append(row if excitation is None else (*row, f"{excitation[i]:.3f}"))
+    spool = getattr(crit, "options", {}).get("spool")
+    head = title or (f"{crit.harmonic:g}X critical speeds" + (
+        f" of spool {spool} (reference speed; 'excited' = how strongly its unbalance drives "
+        "the mode, 0 to 1)" if spool else ""))
     if not rows:
         return head + ": none in range"
-    return head + "\n" + table(rows, (f"speed [{units}]", f"frequency [{units}]", "whirl",
-                                      "log dec"))
+    columns = (f"speed [{units}]", f"frequency [{units}]", "whirl", "log dec")
+    return head + "\n" + table(rows, columns if excitation is None else (*columns,
+                                                                          "excited"))
 
 
 def campbell_summary(result: Any, units: str = "rpm",

@@ -57,6 +57,9 @@ class Model:
         their static loads).
     data : mapping, optional
         The parsed file the model was built from (:meth:`parameter` varies its values).
+    ratings : tuple of RatingOptions or None
+        Rating options of each rolling bearing (``[rolling_bearings.rating]``; None: the
+        ISO 281 geometry formulas), used by ``rotorsim bearing`` for lives and pressures.
     """
 
     name: str
@@ -68,6 +71,7 @@ class Model:
     rolling_bearings: tuple[RollingBearing, ...] = ()
     linearize: tuple[LinearizationPoint, ...] = ()
     data: Mapping[str, Any] | None = field(default=None, repr=False)
+    ratings: tuple[Any, ...] = ()
     _linearized: dict[float, LinearizedRotor] = field(default_factory=dict, init=False,
                                                        repr=False)
 
@@ -135,6 +139,7 @@ def model_from_dict(data: Mapping[str, Any], *, source: str | os.PathLike[str] |
     from rotorsim.io import model_build as build
     from rotorsim.io.analysis_schema import validate_analyses
     from rotorsim.io.model_schema import validate_model
+    from rotorsim.io.rating_build import rating_options
     from rotorsim.io.rolling_schema import validate_rolling_bearings
 
     table = validate_model(dict(data) if isinstance(data, Mapping) else data)
@@ -143,7 +148,7 @@ def model_from_dict(data: Mapping[str, Any], *, source: str | os.PathLike[str] |
     build.check_unique_tags(table, rolling_tables)
     src = None if source is None else Path(source)
     name = table.model.name or (src.stem if src is not None else "rotor")
-    rotor, nodes = build.build_rotor(table, name)
+    rotor, nodes = build.build_rotor(table, name, None if src is None else src.parent)
     rolling, points = build.build_rolling(rolling_tables, nodes)
     loads = build.build_loads(table, nodes)
     tags = tuple(rb.tag for rb in rolling)
@@ -151,7 +156,8 @@ def model_from_dict(data: Mapping[str, Any], *, source: str | os.PathLike[str] |
              for key, loc, t in analyses}
     model = Model(name=name, rotor=rotor, loads=loads, analyses=specs,
                   description=table.model.description, source=src, rolling_bearings=rolling,
-                  linearize=points, data=copy.deepcopy(dict(data)))
+                  linearize=points, data=copy.deepcopy(dict(data)),
+                  ratings=rating_options(rolling_tables))
     return _parameter_ranges(model)
 
 

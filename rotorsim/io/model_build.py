@@ -10,12 +10,14 @@ bearing references. Errors name the key path of the culprit
 from __future__ import annotations
 
 from dataclasses import dataclass
+from pathlib import Path
 from typing import Any
 
 import numpy as np
 
 from rotorsim.analyses.statics.linearized_rotor import LinearizationPoint
 from rotorsim.elements.disk import DiskElement, PointMass
+from rotorsim.elements.foundation import Foundation, read_matrix
 from rotorsim.elements.linear_bearing import BearingElement
 from rotorsim.elements.rolling.ball.bearing import BallBearing
 from rotorsim.elements.rolling.element import RollingBearing
@@ -30,10 +32,11 @@ from rotorsim.elements.shaft import ShaftElement
 from rotorsim.errors import ModelError
 from rotorsim.io import analysis_spec as spec
 from rotorsim.io.drive_schema import drive_spec
-from rotorsim.io.model_schema import BearingTable, ModelTable, ShaftSegment
+from rotorsim.io.model_schema import BearingTable, CouplingTable, ModelTable, ShaftSegment
 from rotorsim.io.rolling_schema import BallTable, ProfileTable, RollerTable, RollingTable
 from rotorsim.io.schema_types import Linked, Located, format_path
 from rotorsim.io.spec_registry import SPEC_TYPES
+from rotorsim.model.damping import SystemDamping
 from rotorsim.model.lines import ShaftLine
 from rotorsim.model.material import Material
 from rotorsim.model.rotor import Rotor
@@ -76,8 +79,8 @@ class Nodes:
             return self._at(item.z, f"{where}.z", first, count)
         assert item.node is not None
         if item.node >= count:
-            on = f"line {item.line!r}" if item.line else "the shaft"
-            raise ModelError(f"node {item.node} is not a node of {on} (0..{count - 1})",
+            what = f"a node of line {item.line!r}" if item.line else "a shaft node"
+            raise ModelError(f"node {item.node} is not {what} (0..{count - 1})",
                              f"{where}.node")
         return first + item.node
 
@@ -151,7 +154,8 @@ def check_unique_tags(table: ModelTable, rolling: list[RollingTable]) -> None:
     groups: tuple[tuple[tuple[str, list[Any]], ...], ...] = (
         (("disks", table.disks),),
         (("point_masses", table.point_masses),),
-        (("bearings", table.bearings), ("rolling_bearings", rolling)),
+        (("bearings", table.bearings), ("couplings", table.couplings),
+         ("rolling_bearings", rolling)),
     )
     for group in groups:
         seen: dict[str, str] = {}
@@ -252,14 +256,19 @@ def node_layout(table: ModelTable, shaft: list[ShaftElement],
     else:
         z = np.concatenate([[0.0], np.cumsum([el.L for el in shaft])])
     housing = {pm.node for pm in table.point_masses if pm.node is not None
-               and pm.node >= z.size}
+               and pm.node >= z.size} | {
+        c.node for f in table.foundations for c in f.connections
+        if c.node is not None and c.line is None and c.z is None and c.node >= z.size}
     expected = set(range(z.size, z.size + len(housing)))
     if housing != expected:
         bad = min(housing - expected)
-        j = next(j for j, pm in enumerate(table.point_masses) if pm.node == bad)
+        places = [f"point_masses[{j}].node" for j, pm in enumerate(table.point_masses)
+                  if pm.node == bad] + [
+            f"foundations[{j}].connections[{k}].node" for j, f in enumerate(table.foundations)
+            for k, c in enumerate(f.connections) if c.node == bad]
         raise ModelError(f"housing node {bad}: nodes after the last shaft node "
                          f"({z.size - 1}) must be numbered {z.size}, {z.size + 1}, ... "
-                         "without gaps", f"point_masses[{j}].node")
+                         "without gaps", places[0])
     return Nodes(z=z, housings=frozenset(housing), lines=spans)
 
 
@@ -280,6 +289,7 @@ def build_elements(table: ModelTable, materials: dict[str, Material], nodes: Nod
         except ModelError as err:
             raise ModelError(bare(err), where) from None
     bearings = [_bearing(b, nodes, f"bearings[{i}]") for i, b in enumerate(table.bearings)]
+    bearings += [_coupling(c, nodes, f"couplings[{i}]") for i, c in enumerate(table.couplings)]
     masses = []
     for i, pm in enumerate(table.point_masses):
         where = f"point_masses[{i}]"
@@ -309,7 +319,53 @@ def _bearing(b: BearingTable, nodes: Nodes, where: str) -> BearingElement:
         raise ModelError(bare(err), where) from None
 
 
-def build_rotor(table: ModelTable, name: str) -> tuple[Rotor, Nodes]:
+def _coupling(c: CouplingTable, nodes: Nodes, where: str) -> BearingElement:
+    n = nodes.any_node(c, where)
+    link = nodes.link(c, n, where)
+    assert link is not None  # the schema requires the second end
+    values = {k: _scalar(getattr(c, k), f"{where}.{k}") for k in (
+        "lateral", "angular", "torsional", "axial", "lateral_damping", "angular_damping",
+        "torsional_damping", "axial_damping")}
+    try:
+        return BearingElement.coupling(n, link, tag=c.tag, **values)
+    except ModelError as err:
+        raise ModelError(bare(err), where) from None
+
+
+def _scalar(value: Any, where: str) -> float:
+    if isinstance(value, tuple):
+        if len(value) != 1:
+            raise ModelError("a coupling's coefficients are constant: give one value", where)
+        value = value[0]
+    return float(value)
+
+
+def build_foundations(table: ModelTable, nodes: Nodes, base: Path) -> list[Foundation]:
+    """The foundations of ``[[foundations]]``, files read relative to ``base``."""
+    out = []
+    for i, f in enumerate(table.foundations):
+        where = f"foundations[{i}]"
+        at = [nodes.any_node(c, f"{where}.connections[{k}]")
+              for k, c in enumerate(f.connections)]
+        dofs = [(n, d) for n in at for d in f.dofs]
+        try:
+            if f.shapes is not None:
+                assert f.frequencies is not None and f.damping_ratios is not None
+                shapes = read_matrix(base / f.shapes, f"{where}.shapes")
+                out.append(Foundation.from_modal(dofs, f.frequencies, f.damping_ratios,
+                                                 shapes, tag=f.tag))
+            else:
+                assert f.mass is not None and f.stiffness is not None
+                out.append(Foundation.from_files(
+                    dofs, base / f.mass, base / f.stiffness,
+                    None if f.damping is None else base / f.damping, tag=f.tag))
+        except ModelError as err:
+            raise ModelError(bare(err), where) from None
+    return out
+
+
+def build_rotor(table: ModelTable, name: str, base: Path | None = None
+                ) -> tuple[Rotor, Nodes]:
     """The rotor of a validated model file and its node layout."""
     materials = build_materials(table)
     shaft = build_shaft(table, materials)
@@ -318,7 +374,12 @@ def build_rotor(table: ModelTable, name: str) -> tuple[Rotor, Nodes]:
     disks, bearings, masses = build_elements(table, materials, nodes)
     fixed = [(nodes.any_node(f, f"fixed[{i}]"), dof)
              for i, f in enumerate(table.fixed) for dof in f.dofs]
-    rotor = Rotor(shaft, disks, bearings, masses, fixed=fixed, tag=name, lines=lines)
+    d = table.damping
+    damping = None if d is None else SystemDamping(alpha=d.alpha, beta=d.beta,
+                                                   modal_ratios=tuple(d.modal_ratios))
+    foundations = build_foundations(table, nodes, Path.cwd() if base is None else base)
+    rotor = Rotor(shaft, disks, bearings, masses, fixed=fixed, tag=name, lines=lines,
+                  damping=damping, foundations=foundations)
     return rotor, nodes
 
 
@@ -422,6 +483,11 @@ def build_spec(table: Any, loc: tuple[str | int, ...], nodes: Nodes,
                                                f"{where}.bearings")
     elif table.type == "campbell":
         options["harmonics"] = tuple(options["harmonics"])
+    elif table.type == "critical_speeds" and table.spool is not None:
+        names = [name for name, _, _ in nodes.lines] or ["shaft"]
+        if table.spool not in names:
+            raise ModelError(f"no line named {table.spool!r} (lines: {', '.join(names)})",
+                             f"{where}.spool")
     return cls.from_flat(**common, **options)
 
 

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 from rotorsim.io.serialize import register_result_type
 from rotorsim.results.bearing import BearingEquilibriumResult, EnergyMinimum, StiffnessVariation
+from rotorsim.results.bearing_life import BearingLifeResult
 from rotorsim.results.campbell import CampbellResult
 from rotorsim.results.critical_speeds import (
     CriticalSpeedMapResult,
@@ -60,6 +61,12 @@ register_result_type(StiffnessVariation, {
     "position": "1", "cage_angle": "rad", "shaft_angle": "rad", "displacement": "m, rad",
     "force": "N, N m", "stiffness": "N/m, N, N m/rad", "max_element_load": "N",
     "load": "N, N m"})
+register_result_type(BearingLifeResult, {
+    "C": "N", "C0": "N", "load": "N, N m", "P": "N", "L10": "1e6 rev", "L10r": "1e6 rev",
+    "P_ref": "N", "ring_life": "1e6 rev", "equivalent_load": "N", "reference_load": "N",
+    "a1": "1", "a_iso": "1", "Lnmr": "1e6 rev", "Lnm": "1e6 rev", "max_pressure": "Pa",
+    "semi_major": "m", "semi_minor": "m", "shoulder_margin": "rad", "slice_pressure": "Pa",
+    "slice_xi": "1", "element_angles": "rad", "element_load": "N"})
 register_result_type(TransientResult, {
     "t": "s", "q": "m, rad", "v": "m/s, rad/s", "dofs": "1", "speed": _ANGULAR,
     "angle": "rad", "acceleration": "rad/s^2", "bearing_loads": "N, N m",

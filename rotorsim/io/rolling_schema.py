@@ -9,6 +9,7 @@ from pydantic import Field, model_validator
 
 from rotorsim.elements.rolling.geometry import interference_problem
 from rotorsim.errors import ModelError
+from rotorsim.io.rating_schema import RatingTable
 from rotorsim.io.schema_types import (
     Angle,
     Length,
@@ -77,6 +78,7 @@ class RollingTable(Linked):
     damping_factor: Time = 0.0
     axial_direction: Literal["+z", "-z"] = "+z"
     linearize: LinearizationValue = ("static", None)
+    rating: RatingTable | None = None
 
     @model_validator(mode="after")
     def _common(self) -> "RollingTable":
@@ -111,7 +113,7 @@ class BallTable(RollingTable):
     f_i: PositiveRatio | None = None
     f_o: PositiveRatio | None = None
     A0: Length | None = None
-    groove_center_radius: Length | None = None
+    groove_center_radius: Length | Literal["pitch"] | None = None
 
     @model_validator(mode="after")
     def _kn_source(self) -> "BallTable":

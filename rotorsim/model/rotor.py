@@ -13,9 +13,11 @@ from numpy.typing import NDArray
 
 from rotorsim.elements.base import DOF_NAMES, FloatArray, NonlinearElement
 from rotorsim.elements.disk import DiskElement, PointMass
+from rotorsim.elements.foundation import Foundation
 from rotorsim.elements.linear_bearing import BearingElement
 from rotorsim.elements.shaft import ShaftElement
 from rotorsim.errors import ModelError
+from rotorsim.model.damping import SystemDamping
 from rotorsim.model.lines import LineLayout, ShaftLine, check_overlaps, check_rotating_parts
 
 
@@ -43,6 +45,12 @@ class Rotor:
         DOFs held at zero, ``dof`` one of ``ux, uy, uz, rx, ry, rz``.
     tag : str, optional
         Model name.
+    foundations : sequence of Foundation, optional
+        Support structures as superelements on connection DOFs (their nodes need no point
+        mass; :mod:`rotorsim.elements.foundation`).
+    damping : SystemDamping, optional
+        Rayleigh and modal damping of the assembled system, beside the elements' own
+        (:mod:`rotorsim.model.damping`).
     lines : sequence of ShaftLine, optional
         The shaft lines of a machine of several shafts (then ``shaft_elements`` must be
         empty). Lines whose axial extents overlap must be joined by connections, and a
@@ -90,6 +98,8 @@ class Rotor:
     tag: str = "rotor"
     nonlinear_elements: Sequence[Any] = ()
     lines: Sequence[ShaftLine] = ()
+    damping: SystemDamping | None = None
+    foundations: Sequence[Foundation] = ()
     n_shaft_nodes: int = field(init=False)
     n_nodes: int = field(init=False)
     layout: LineLayout = field(init=False, repr=False)
@@ -99,12 +109,16 @@ class Rotor:
                                                                    Iterable):
             raise ModelError("give a sequence of ShaftElement (may be empty: a rigid rotor "
                              "or point mass at node 0)", f"Rotor '{self.tag}'")
+        if self.damping is not None and not isinstance(self.damping, SystemDamping):
+            raise ModelError(f"damping must be a SystemDamping, got {self.damping!r}",
+                             f"Rotor '{self.tag}'")
         layout = self._line_layout()
         object.__setattr__(self, "layout", layout)
         object.__setattr__(self, "lines", tuple(self.lines))
         object.__setattr__(self, "shaft_elements", layout.numbered_elements())
         object.__setattr__(self, "n_shaft_nodes", layout.n_line_nodes)
-        for name in ("disk_elements", "bearing_elements", "point_mass_elements"):
+        for name in ("disk_elements", "bearing_elements", "point_mass_elements",
+                     "foundations"):
             object.__setattr__(self, name, tuple(getattr(self, name)))
             _check_kinds(name, getattr(self, name))
         moved = tuple(b for b in self.bearing_elements if _is_nonlinear(b))
@@ -127,8 +141,8 @@ class Rotor:
         object.__setattr__(self, "fixed", fixed)
         if self.multi_line:
             where = f"Rotor '{self.tag}'"
-            links = [el.nodes for el in (*self.bearing_elements, *self.nonlinear_elements)
-                     if len(el.nodes) > 1]
+            links = [el.nodes for el in (*self.bearing_elements, *self.nonlinear_elements,
+                                         *self.foundations) if len(el.nodes) > 1]
             check_overlaps(layout, links, self.n_nodes, where)
             check_rotating_parts(layout, [(d.n, d.Ip) for d in self.disk_elements], where)
             ratios = self.node_speed_ratio
@@ -195,14 +209,16 @@ class Rotor:
     def _count_nodes(self) -> int:
         n_shaft = self.n_shaft_nodes
         last = n_shaft - 1
-        massive = {pm.n for pm in self.point_mass_elements}
+        massive = {pm.n for pm in self.point_mass_elements} | {
+            n for f in self.foundations for n in f.nodes}
         extra: set[int] = set()
         for disk in self.disk_elements:
             if disk.n > last:
                 raise ModelError(f"node {disk.n} is not on the shaft (nodes 0..{last})",
                                  disk.label)
         others: tuple[Any, ...] = (
-            *self.bearing_elements, *self.point_mass_elements, *self.nonlinear_elements)
+            *self.bearing_elements, *self.point_mass_elements, *self.nonlinear_elements,
+            *self.foundations)
         for el in others:
             for node in el.nodes:
                 if node > last and node not in massive:
@@ -295,6 +311,7 @@ class Rotor:
             "bearings": len(self.bearing_elements),
             "nonlinear_elements": len(self.nonlinear_elements),
             "point_masses": len(self.point_mass_elements),
+            **({"foundations": len(self.foundations)} if self.foundations else {}),
             **(self.lines_description() if self.multi_line else {}),
             "length_m": self.length,
             "mass_shaft_kg": self.m_shaft,
@@ -329,7 +346,8 @@ def _check_unique_tags(rotor: Rotor) -> None:
 
 _KINDS: dict[str, tuple[type, ...]] = {"disk_elements": (DiskElement,),
                                        "bearing_elements": (BearingElement,),
-                                       "point_mass_elements": (PointMass,)}
+                                       "point_mass_elements": (PointMass,),
+                                       "foundations": (Foundation,)}
 
 
 def _check_kinds(name: str, elements: tuple[Any, ...]) -> None:

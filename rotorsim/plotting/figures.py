@@ -13,6 +13,7 @@ from rotorsim.plotting.bearing_figures import (
     stiffness_variation_figure,
 )
 from rotorsim.plotting.layout import rotor_layout_figure
+from rotorsim.plotting.life_figures import bearing_life_figure
 from rotorsim.plotting.periodic_figures import periodic_figure
 from rotorsim.plotting.transient_figures import (
     order_track_figure,
@@ -227,6 +228,7 @@ DRAWERS: dict[str, Callable[..., Any]] = {
     "ModalResult": mode_shape_figure,
     "BearingEquilibriumResult": load_distribution_figure,
     "StiffnessVariation": stiffness_variation_figure,
+    "BearingLifeResult": bearing_life_figure,
     "TransientResult": transient_figure,
     "Spectrum": spectrum_figure,
     "Waterfall": waterfall_figure,

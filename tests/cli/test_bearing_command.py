@@ -34,6 +34,10 @@ def test_bearing_writes_results_and_figures(tmp_path, capsys):
     assert "bearing 'DE' (BallBearing, 9 elements): loaded 3/9" in out
     assert "stiffness matrix K_ij" in out and "Mx [N m]" in out
     assert "stiffness over one element pass (6 positions)" in out
+    life = rs.load(folder / "bearing_DE_life.h5")
+    assert type(life).__name__ == "BearingLifeResult" and life.source == "equilibrium"
+    assert (folder / "bearing_DE_life.png").stat().st_size > 10_000
+    assert f"L10r = {life.L10r:.4g} Mrev" in out and "max Hertz pressure inner" in out
     # the element table of DE: one row per ball with the loads of the result file
     lines = out.splitlines()
     start = lines.index(next(line for line in lines if line.startswith("element  angle")))
@@ -44,11 +48,46 @@ def test_bearing_writes_results_and_figures(tmp_path, capsys):
                                atol=5e-4)
 
 
+RATING = """
+[rolling_bearings.rating]
+C = "14.8 kN"
+C0 = "7.8 kN"
+viscosity_ratio = 1.5
+contamination = 0.5
+fatigue_load_limit = "335 N"
+reliability = 95
+shoulder_heights = ["1.5 mm", "1.5 mm"]
+"""
+
+
+def test_rating_table_of_a_model_file(tmp_path, capsys):
+    """``[rolling_bearings.rating]`` of the DE bearing: catalogue ratings and the a_ISO
+    inputs reach the life; the NDE bearing (no table) is rated from its geometry."""
+    text = (MODELS / "rolling_ball.toml").read_text()
+    marker = 'damping_factor = "20 us"\n'
+    head, tail = text.split(marker, 1)
+    path = tmp_path / "rated.toml"
+    path.write_text(head + marker + RATING + tail)
+    model = load_model(path)
+    assert model.ratings[0].C == 14.8e3 and model.ratings[1] is None
+    assert model.ratings[0].shoulder_heights == (1.5e-3, 1.5e-3)
+    assert main(["bearing", str(path), "--out", str(tmp_path), "--no-plots", "--fast"]) == 0
+    de = rs.load(tmp_path / "rolling_ball" / "bearing_DE_life.h5")
+    nde = rs.load(tmp_path / "rolling_ball" / "bearing_NDE_life.h5")
+    assert de.rating_source == "catalogue" and de.C == 14.8e3 and de.a1 == 0.64
+    assert de.a_iso > 1 and not np.isnan(de.shoulder_margin).any()
+    assert nde.rating_source.startswith("ISO 281 geometry")
+    bad = path.read_text().replace('contamination = 0.5\n', "")
+    path.write_text(bad)
+    with pytest.raises(rs.ModelError, match=r"rating\.contamination: a_ISO needs"):
+        load_model(path)
+
+
 def test_bearing_tag_selects_one(tmp_path, capsys):
     assert main(["bearing", str(MODELS / "rolling_tapered.toml"), "--tag", "B", "--out",
                  str(tmp_path), "--no-plots", "--fast"]) == 0
     files = sorted(p.name for p in (tmp_path / "rolling_tapered").iterdir())
-    assert files == ["bearing_B.h5", "bearing_B_pass.h5"]
+    assert files == ["bearing_B.h5", "bearing_B_life.h5", "bearing_B_pass.h5"]
     out = capsys.readouterr().out
     assert "bearing 'B' (ReversedBearing, 17 elements): loaded 17/17" in out
 

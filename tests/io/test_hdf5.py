@@ -131,8 +131,19 @@ def _bearing_results() -> dict[str, Any]:
                           A0=0.1e-3, contact_angle=0.3, radial_clearance=5e-6)
     load = [800.0, -200.0, 300.0, 0.0, 0.0]
     found = bearing_equilibrium(bearing, load, method="global")
+    from rotorsim.analyses.statics.bearing_life import bearing_life
+    from rotorsim.elements.rolling import RollerBearing
+    from rotorsim.elements.rolling.rating.options import RatingOptions
+
+    rated = BallBearing.from_geometry(n_balls=10, pitch_diameter=0.05, ball_diameter=0.008,
+                                      f_i=0.52, f_o=0.53, contact_angle=0.3)
+    roller = RollerBearing(14, 0.065, 0.01, 0.0096, model="slices", n_slices=6)
     return {"bearing_equilibrium": found, "energy_minimum": found.minima[0],
-            "stiffness_over_pass": stiffness_over_pass(bearing, load, 6)}
+            "stiffness_over_pass": stiffness_over_pass(bearing, load, 6),
+            "bearing_life": bearing_life(rated, load, options=RatingOptions(
+                shoulder_heights=(1e-3, 1e-3), viscosity_ratio=2.0, contamination=0.3,
+                fatigue_load_limit=400.0)),
+            "roller_life": bearing_life(roller, [5000.0, 0.0, 0.0, 0.0, 3.0])}
 
 
 def _transient_results() -> dict[str, Any]:

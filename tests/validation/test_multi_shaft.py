@@ -44,6 +44,7 @@ def _frequencies(rotor: rs.Rotor, speed: float) -> np.ndarray:
     return rs.modal(rotor, speed=speed, num_modes=10).wd
 
 
+@pytest.mark.verification
 @pytest.mark.parametrize("speed", [0.0, 800.0, 3000.0])
 def test_two_lines_joined_rigidly_equal_the_single_line(speed: float) -> None:
     shaft = _shaft(8)
@@ -56,6 +57,7 @@ def test_two_lines_joined_rigidly_equal_the_single_line(speed: float) -> None:
     np.testing.assert_allclose(got, expected, rtol=1e-6)
 
 
+@pytest.mark.verification
 def test_gyroscopic_matrix_of_a_machine_is_the_ratio_weighted_sum_of_its_lines() -> None:
     """``G = sum_k r_k G_k`` (DESIGN section 12): assembled with ratios (1, 1.45), (1, 0) and
     (0, 1) on the same two lines."""
@@ -86,6 +88,7 @@ def _rigid_disk(ratio: float, kr: float = 4e4, k: float = 1e6) -> rs.Rotor:
     return rs.Rotor([], [disk], [spring], lines=[line])
 
 
+@pytest.mark.validation
 @pytest.mark.parametrize("ratio", [1.45, 0.7, -1.3])
 def test_critical_speeds_of_a_spool_match_the_closed_form(ratio: float) -> None:
     """A rigid disk spinning at ``r W`` on a spring (lateral ``k``, tilt ``kr``), excited by
@@ -111,6 +114,7 @@ def test_critical_speeds_of_a_spool_match_the_closed_form(ratio: float) -> None:
     assert np.all(lateral.excitation[~driven] < 1e-9)
 
 
+@pytest.mark.verification
 def test_a_counter_rotating_line_mirrors_the_whirl_directions() -> None:
     """Reversing a line's rotation (ratio -1 instead of 1) keeps every frequency and swaps
     forward and backward whirl (``G -> -G`` is the mirror image ``y -> -y``)."""
@@ -129,6 +133,7 @@ def test_a_counter_rotating_line_mirrors_the_whirl_directions() -> None:
         list(np.asarray(back.whirl)[lateral])
 
 
+@pytest.mark.verification
 def test_campbell_crossings_of_each_spool_match_the_exact_critical_speeds() -> None:
     rotor = _two_spool_undamped()
     campbell = rs.campbell(rotor, np.linspace(0.0, 1500.0, 301), num_modes=10)
@@ -155,6 +160,7 @@ def _two_spool_undamped() -> rs.Rotor:
     return rs.Rotor([], disks, bearings, lines=[lp, hp])
 
 
+@pytest.mark.verification
 def test_a_rigid_casing_equals_ground() -> None:
     """The spool on bearings to a casing line held everywhere by penalty springs equals the
     spool on the same bearings to ground."""
@@ -174,6 +180,7 @@ def test_a_rigid_casing_equals_ground() -> None:
     np.testing.assert_allclose(got[: expected.size], expected, rtol=1e-6)
 
 
+@pytest.mark.validation
 def test_unbalance_of_each_spool_responds_at_its_own_speed() -> None:
     """A rigid disk at ratio r on an isotropic spring: ``|X| = me (r W)^2 /
     |k - m (r W)^2 + i c r W|`` (closed form), circular, whirling with the spool."""
@@ -201,6 +208,7 @@ def test_unbalance_of_each_spool_responds_at_its_own_speed() -> None:
     np.testing.assert_allclose(peak, result.amplitude(0, "ux", 0) + result.amplitude(0, "ux", 1))
 
 
+@pytest.mark.verification
 def test_transient_unbalance_of_a_spool_turns_with_the_spool() -> None:
     """Time integration of the linear two-spool rotor at constant speed with the HP spool's
     unbalance only: after the start-up transient decays the motion at the HP disk is the
@@ -233,6 +241,7 @@ def _two_spool_damped() -> rs.Rotor:
     return rotor.with_bearings(bearings)
 
 
+@pytest.mark.validation
 def test_inter_shaft_bearing_varying_compliance_at_the_kinematic_cage_speed() -> None:
     """The rolling elements of a bearing whose inner ring turns at ``W_i`` and outer ring at
     ``W_o`` orbit at ``W_c = ((1 - g) W_i + (1 + g) W_o) / 2``, ``g = D cos(a) / d_m``:
@@ -279,3 +288,108 @@ def test_the_two_spool_example_model_runs_its_linear_analyses(tmp_path: Path) ->
     assert not np.allclose(lp.speed[:2], hp.speed[:2])
     unb = rs.unbalance_response(rotor, np.linspace(50, 1500, 30), model.loads.unbalance)
     assert unb.n_inputs == 2 and unb.input_ratios is not None
+
+
+def _plain_rotor(damping: rs.SystemDamping | None) -> rs.Rotor:
+    disk = rs.DiskElement(n=3, m=12.0, Id=0.06, Ip=0.11, tag="disk")
+    bearings = [rs.BearingElement(n=0, kxx=2e7, kyy=3e7, kzz=1e8, ktt=1e4, tag="left"),
+                rs.BearingElement(n=8, kxx=2e7, kyy=3e7, tag="right")]
+    return rs.Rotor(_shaft(8), [disk], bearings, damping=damping)
+
+
+@pytest.mark.validation
+def test_system_rayleigh_damping_gives_the_proportional_damping_ratios() -> None:
+    """``C = alpha M + beta K`` over the whole system (disk included): every undamped mode
+    at rest has ``zeta = alpha / (2 w) + beta w / 2`` (classical proportional damping)."""
+    alpha, beta = 8.0, 2e-5
+    modes = rs.modal(_plain_rotor(rs.SystemDamping(alpha=alpha, beta=beta)), speed=0.0,
+                     num_modes=8)
+    wn = modes.wn
+    # 1e-9: the modes of a proportionally damped system are the undamped ones exactly
+    np.testing.assert_allclose(modes.damping_ratio, alpha / (2 * wn) + beta * wn / 2, rtol=1e-9)
+
+
+@pytest.mark.validation
+def test_modal_damping_sets_the_ratio_of_each_mode() -> None:
+    """``C = M Phi diag(2 zeta w) Phi^T M``: mode ``j`` at rest has exactly ``zeta_j`` (the
+    undamped modes diagonalise it); the anisotropic supports split every pair."""
+    ratios = (0.01, 0.02, 0.03, 0.04, 0.05, 0.06)
+    modes = rs.modal(_plain_rotor(rs.SystemDamping(modal_ratios=ratios)), speed=0.0,
+                     num_modes=8)
+    order = np.argsort(modes.wn)  # the ratios go to the elastic modes by frequency,
+    assert np.asarray(modes.kind)[order][0] == "torsional"  # whatever their kind
+    # 1e-8: the damped modes are the undamped ones exactly (Phi^T C Phi diagonal)
+    np.testing.assert_allclose(modes.damping_ratio[order][:6], ratios, rtol=1e-8)
+    assert np.all(modes.damping_ratio[order][6:] < 1e-12)
+
+
+@pytest.mark.validation
+def test_a_coupling_carries_torque_between_two_lines() -> None:
+    """Two rigid disks on two lines joined by a torsional coupling ``kt``: the torsional
+    mode has ``w^2 = kt (1/Ip1 + 1/Ip2)`` (two inertias on a spring)."""
+    kt, ip1, ip2 = 5e4, 0.2, 0.3
+    lines = [ShaftLine("motor", []), ShaftLine("pump", [], z0=0.1)]
+    disks = [rs.DiskElement(n=0, m=10.0, Id=0.1, Ip=ip1, tag="rotor"),
+             rs.DiskElement(n=1, m=10.0, Id=0.1, Ip=ip2, tag="impeller")]
+    supports = [rs.BearingElement(n=n, kxx=1e7, kzz=1e7, krr=1e5, tag=f"b{n}")
+                for n in (0, 1)]
+    coupling = rs.BearingElement.coupling(0, 1, torsional=kt, tag="coupling")
+    modes = rs.modal(rs.Rotor([], disks, [*supports, coupling], lines=lines), speed=0.0,
+                     num_modes=12)
+    torsion = np.asarray(modes.kind) == "torsional"
+    assert torsion.sum() == 1
+    expected = math.sqrt(kt * (1 / ip1 + 1 / ip2))
+    assert modes.wn[torsion][0] == pytest.approx(expected, rel=1e-9)
+
+
+@pytest.mark.validation
+def test_inter_shaft_bearing_varying_compliance_in_a_machine_transient() -> None:
+    """The HP disk rides on the LP shaft through a 9-ball inter-shaft bearing (inner ring on
+    HP at 1.45 W, outer on LP at W) under gravity: the relative motion's spectrum peaks at
+    the element passes of the fixed load direction, ``Z W_c`` with the kinematic cage speed
+    of both rings turning (2124 rad/s), not at the value of a standing outer ring (1044) nor
+    at the passes over the outer ring (324)."""
+    ball = rs.BallBearing(n_balls=9, pitch_diameter=0.05, ball_diameter=0.01, Kn=8e9,
+                          f_i=0.52, f_o=0.52, radial_clearance=0.0)
+    lines = [ShaftLine("LP", []), ShaftLine("HP", [], speed_ratio=1.45)]
+    disks = [rs.DiskElement(n=0, m=20.0, Id=0.1, Ip=0.15, tag="lp"),
+             rs.DiskElement(n=1, m=5.0, Id=0.02, Ip=0.03, tag="hp")]
+    supports = [rs.BearingElement(n=0, kxx=5e8, kzz=5e8, krr=1e7, cxx=2e3, tag="lp"),
+                rs.BearingElement(n=1, kzz=1e8, krr=1e6, tag="hp_thrust")]
+    inter = rs.RollingBearing(ball, n=1, n_link=0, tag="inter",
+                              contact_damping="proportional", damping_factor=2e-5)
+    rotor = rs.Rotor([], disks, supports, lines=lines, nonlinear_elements=[inter])
+    W, g = 200.0, 0.01 / 0.05
+    passes = 9 * ((1 - g) * 1.45 + (1 + g) * 1.0) / 2 * W
+    result = rs.transient(rotor, speed=W, t_end=0.12, dt=5e-5,
+                          excitation=rs.Excitation(gravity=9.81))
+    t = result.t
+    y = result.displacement(1, "uy") - result.displacement(0, "uy")
+    keep = t > 0.04
+    signal = (y[keep] - y[keep].mean()) * np.hanning(keep.sum())
+    spectrum = np.abs(np.fft.rfft(signal))
+    freq = np.fft.rfftfreq(signal.size, t[1] - t[0]) * 2 * np.pi
+    # 0.05: the 0.08 s window resolves 79 rad/s, 3.7 % of the line
+    assert freq[np.argmax(spectrum)] == pytest.approx(passes, rel=0.05)
+
+
+@pytest.mark.validation
+def test_a_torque_drive_sees_the_inertia_of_every_spool_through_its_ratio() -> None:
+    """Constant motor torque ``T`` on a machine of two rigid-disk spools at ratios 1 and
+    1.45 (and a casing at 0): the kinetic energy ``sum_k I_k (r_k W)^2 / 2`` makes
+    ``W' = T / (I_LP + 1.45^2 I_HP)`` (the casing's inertia does not count)."""
+    lines = [ShaftLine("LP", []), ShaftLine("HP", [], speed_ratio=1.45),
+             ShaftLine("casing", [], speed_ratio=0.0)]
+    disks = [rs.DiskElement(n=0, m=20.0, Id=0.1, Ip=0.4, tag="lp"),
+             rs.DiskElement(n=1, m=5.0, Id=0.05, Ip=0.1, tag="hp"),
+             rs.DiskElement(n=2, m=50.0, Id=1.0, Ip=2.0, tag="casing")]
+    bearings = [rs.BearingElement(n=n, kxx=1e8, kzz=1e8, krr=1e6, tag=f"b{n}")
+                for n in (0, 1, 2)]
+    rotor = rs.Rotor([], disks, bearings, lines=lines)
+    T, W0 = 20.0, 100.0
+    result = rs.transient(rotor, 0.05, 1e-3, speed=rs.TorqueDrive(motor=T, initial_speed=W0),
+                          excitation=rs.Excitation(gravity=None), initial="zero")
+    J = 0.4 + 1.45**2 * 0.1
+    assert result.options["speed"]["inertia"] == pytest.approx(J, rel=1e-12)
+    # a constant torque on a linear speed law: exact up to the drive integrator's rounding
+    np.testing.assert_allclose(result.speed, W0 + T * result.t / J, rtol=1e-9)

@@ -11,6 +11,9 @@ Subpackages, one bearing model each, over a shared contact layer:
   whole-roller or sliced), roller profiles, input checks, centrifugal state.
 - :mod:`~rotorsim.elements.rolling.flexible_ring`: ``FlexibleRingRollerBearing`` (per-roller
   internal DOFs and ring energies, condensed) and its 2-node element.
+- :mod:`~rotorsim.elements.rolling.rating`: ISO 281 and ISO/TS 16281 lives and Hertz
+  contact pressures from the element loads of the ball and roller models (may import them;
+  nothing else of ``rolling`` imports it).
 
 Shared modules at this level: ``geometry`` (angular positions, cage ratio), ``state``
 (``BearingState``), ``element_equilibrium`` and ``condensation`` (batched inner Newton). The

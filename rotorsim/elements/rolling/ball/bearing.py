@@ -97,11 +97,13 @@ class BallBearing:
     cage : {"rotating", "fixed"}
         Balls orbit with the cage ratio ``(1 - d cos(alpha0)/d_m)/2`` of the shaft angle
         (inner ring turning, outer fixed), or stay at ``psi0 + 2 pi j / N``.
-    groove_center_radius : float, optional
+    groove_center_radius : float or "pitch", optional
         ``r_j`` [m], radius of the locus of the inner groove curvature centres, the arm of
         the tilt terms in eq 2a. Default ``d_m/2 + (f_i - 1/2) d cos(alpha0)`` (Harris &
         Kotzalas); with only ``A0`` given, ``f_i = f_o`` is assumed:
-        ``d_m/2 + A0 cos(alpha0)/2``. Seed 000 Table 1 uses the pitch radius.
+        ``d_m/2 + A0 cos(alpha0)/2``. ``"pitch"``: the pitch radius ``d_m/2``, the tilt
+        lever arm of ISO/TS 16281 (and of seed 000 Table 1; bearing tools such as MASTA
+        follow it).
     tag : str, optional
         Name used in messages.
 
@@ -127,7 +129,7 @@ class BallBearing:
     exponent: float = 1.5
     psi0: float = 0.0
     cage: str = "rotating"
-    groove_center_radius: float | None = None
+    groove_center_radius: float | str | None = None
     tag: str | None = None
     _geo: ResolvedGeometry = field(init=False, repr=False)
 

@@ -125,7 +125,13 @@ def _resolve_clearance(b: BallBearing, where: str) -> float:
 
 
 def _resolve_arm(b: BallBearing, a0: float, where: str) -> float:
-    """Moment arm ``r_j`` [m]: given, or ``d_m/2 + (f_i - 1/2) d cos(alpha0)``."""
+    """Moment arm ``r_j`` [m]: given, ``"pitch"`` (``d_m/2``, ISO/TS 16281), or
+    ``d_m/2 + (f_i - 1/2) d cos(alpha0)``."""
+    if isinstance(b.groove_center_radius, str):
+        if b.groove_center_radius != "pitch":
+            raise ModelError(f"groove_center_radius must be a length [m] or 'pitch', got "
+                             f"{b.groove_center_radius!r}", where)
+        return 0.5 * b.pitch_diameter
     if b.groove_center_radius is not None:
         arm = finite_number(b.groove_center_radius, "groove_center_radius", where)
         if arm <= 0:

@@ -1,0 +1,43 @@
+"""Pydantic schema of ``[rolling_bearings.rating]`` (ratings and life inputs of a rolling
+bearing: ISO 281, ISO/TS 16281), a key of the tables of :mod:`rotorsim.io.rolling_schema`.
+"""
+
+from typing import Annotated, Literal
+
+from pydantic import Field, model_validator
+
+from rotorsim.io.schema_types import Force, Length, PositiveRatio, Ratio, Table, fail
+
+
+class RatingTable(Table):
+    """``[rolling_bearings.rating]``: ratings and life inputs (ISO 281, ISO/TS 16281)."""
+
+    C: Force | None = None
+    C0: Force | None = None
+    bm: PositiveRatio | None = None
+    rotating_ring: Literal["inner", "outer"] = "inner"
+    n_laminae: Annotated[int, Field(ge=1, le=10_000)] | None = None
+    reliability: PositiveRatio = 90.0
+    viscosity_ratio: PositiveRatio | None = None
+    contamination: Ratio | None = None
+    fatigue_load_limit: Force | None = None
+    shoulder_heights: list[Length] | None = None
+
+    @model_validator(mode="after")
+    def _values(self) -> "RatingTable":
+        for key in ("C", "C0", "fatigue_load_limit"):
+            value = getattr(self, key)
+            if value is not None and not value > 0:
+                raise fail(f"must be > 0 N, got {value}", f".{key}")
+        if not 90.0 <= self.reliability <= 99.95:
+            raise fail(f"must be in [90, 99.95] %, got {self.reliability}", ".reliability")
+        if self.contamination is not None and not 0.0 <= self.contamination <= 1.0:
+            raise fail(f"must be in [0, 1], got {self.contamination}", ".contamination")
+        keys = ("viscosity_ratio", "contamination", "fatigue_load_limit")
+        given = [k for k in keys if getattr(self, k) is not None]
+        if given and len(given) != len(keys):
+            missing = [k for k in keys if k not in given]
+            raise fail(f"a_ISO needs {', '.join(keys)} together", f".{missing[0]}")
+        if self.shoulder_heights is not None and len(self.shoulder_heights) != 2:
+            raise fail("give two heights [inner, outer]", ".shoulder_heights")
+        return self
