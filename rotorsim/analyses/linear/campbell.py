@@ -20,8 +20,9 @@ from rotorsim.analyses.linear.argument_checks import (
     check_num_modes,
     check_sparse,
 )
-from rotorsim.analyses.linear.modal import modal
-from rotorsim.analyses.linear.mode_shapes import mac
+from rotorsim.analyses.linear.campbell_reduced import RESIDUAL_TOL, SpeedModes, reduced_modes
+from rotorsim.analyses.linear.modal import _classify, _normalise, modal
+from rotorsim.analyses.linear.mode_shapes import circularize, clusters, mac
 from rotorsim.analyses.system_input import as_system
 from rotorsim.assembly.system import RotorSystem
 from rotorsim.errors import ConvergenceError, ModelError, Status
@@ -36,6 +37,10 @@ ComplexArray = NDArray[np.complex128]
 
 EXTRA_CANDIDATES = 4
 """Modes computed beyond ``num_modes`` at every speed, so tracks have candidates to follow."""
+METHODS = ("auto", "reduced", "full")
+REDUCED_MIN_DOFS = 300
+"""``method="auto"`` reduces models with at least this many free DOFs: the basis of 20 or so
+modes at two speeds has 50-70 columns, and projecting a smaller model gains little."""
 _FIELDS = ("wd", "wn", "log_dec", "damping_ratio", "whirl_ratio", "tracking_mac")
 
 
@@ -61,11 +66,21 @@ def campbell(
     sigma: float | None = None,
     on_failure: Literal["raise", "record"] = "raise",
     progress: bool = False,
+    method: Literal["auto", "reduced", "full"] = "auto",
+    tol: float = RESIDUAL_TOL,
 ) -> CampbellResult:
     """Campbell diagram: damped natural frequencies tracked over spin speed.
 
-    The model is assembled once; at every speed :func:`~rotorsim.analyses.linear.modal.modal`
-    computes ``num_modes + 4`` modes (bearing coefficients at that speed). Tracks start
+    The model is assembled once and ``num_modes + 4`` modes are computed at every speed
+    (bearing coefficients at that speed). ``method="full"`` calls
+    :func:`~rotorsim.analyses.linear.modal.modal` (one shift-invert ARPACK solve) at every
+    speed. ``method="reduced"`` solves in full only at the first and last speeds and, at
+    the others, projects the problem on the real basis their modes span, refined until
+    every returned mode's relative residual in the full space,
+    ``||P^-1 (lam^2 M + lam (C + W G) + K) x|| / ||x||`` (``P`` the shifted stiffness), is
+    at most ``tol`` (:mod:`rotorsim.analyses.linear.campbell_reduced`); ``"auto"`` (the
+    default) takes it for models of at least :data:`REDUCED_MIN_DOFS` free DOFs and three
+    or more speeds (unless ``sparse=False``). Tracks start
     from the ``num_modes`` lowest modes at the first speed; at each next speed, tracks are
     matched to candidates by :func:`scipy.optimize.linear_sum_assignment` on the cost
     ``(1 - MAC) + |lam - lam_prev| / |lam_prev|`` (MAC of the complex shapes, relative
@@ -99,6 +114,12 @@ def campbell(
         record the speed's status and leave ``NaN`` in its row.
     progress : bool
         Show a tqdm progress bar.
+    method : {"auto", "reduced", "full"}
+        How the modes at each speed are found (above).
+    tol : float
+        Largest relative residual of a mode of the reduced method [-]; the default 1e-6
+        keeps the eigenvalues within about 1e-10 (relative) of the full solve's
+        (``docs/benchmarks.md``). The residuals are in ``stats["max_residual"]``.
 
     Returns
     -------
@@ -108,7 +129,7 @@ def campbell(
     ------
     ModelError
         Empty, non-finite, negative or non-increasing speeds; ``num_modes < 1``; a bad
-        ``on_failure``.
+        ``on_failure``, ``method`` or ``tol``.
     ConvergenceError
         A modal solve failed and ``on_failure="raise"``.
 
@@ -125,8 +146,17 @@ def campbell(
     """
     grid = _check_inputs(speeds, num_modes, on_failure)
     sparse = check_sparse(sparse, "campbell")
+    _check_method(method, tol)
     system = as_system(rotor)
     stats = Stats()
+    reduced = method == "reduced" or (method == "auto" and grid.size >= 3
+                                      and sparse is not False
+                                      and system.n_free >= REDUCED_MIN_DOFS)
+    solved: list[SpeedModes | Exception] = []
+    info: dict[str, float] = {}
+    if reduced:
+        solved, info = reduced_modes(system, grid, num_modes + EXTRA_CANDIDATES, sigma=sigma,
+                                     tol=tol, sparse=sparse, stats=stats)
     n_speeds = grid.size
     out = {name: np.full((n_speeds, num_modes), np.nan) for name in _FIELDS}
     whirl = np.full((n_speeds, num_modes), "", dtype="<U9")
@@ -136,7 +166,10 @@ def campbell(
     fewest = num_modes
     for i in with_progress(range(n_speeds), progress, desc="campbell", unit="speed"):
         try:
-            cand = _candidates(system, float(grid[i]), num_modes, sparse, sigma, stats)
+            if reduced:
+                cand = _from_modes(system, solved[i])
+            else:
+                cand = _candidates(system, float(grid[i]), num_modes, sparse, sigma, stats)
         except (ConvergenceError, np.linalg.LinAlgError) as exc:
             if on_failure == "raise":
                 raise ConvergenceError(f"modal analysis failed at speed {grid[i]:.6g} rad/s"
@@ -163,6 +196,7 @@ def campbell(
     options: dict[str, Any] = {
         "num_modes": num_modes, "candidates": num_modes + EXTRA_CANDIDATES, "sparse": sparse,
         "sigma": sigma, "on_failure": on_failure,
+        "method": "reduced" if reduced else "full", **({"tol": tol} if reduced else {}),
         "tracking": "Hungarian assignment on (1 - MAC) + relative eigenvalue change; "
                     "degenerate clusters split into circular forward/backward modes",
     }
@@ -170,8 +204,37 @@ def campbell(
         f"num_modes = {num_modes} asked, but the model has only {fewest} elastic modes at "
         "some speeds: the other tracks hold NaN there",)
     return CampbellResult(speeds=grid, whirl=whirl, kind=kind, status=status,
-                          options=options, stats=stats.finish(), summary=system.summary,
-                          notes=notes, **out)
+                          options=options, stats={**stats.finish(), **info},
+                          summary=system.summary, notes=notes, **out)
+
+
+def _check_method(method: str, tol: float) -> None:
+    if method not in METHODS:
+        raise ModelError(f"method must be one of {METHODS}, got {method!r}", "campbell")
+    if isinstance(tol, bool) or not isinstance(tol, int | float) or not 0 < tol < 1:
+        raise ModelError(f"tol must be a number in (0, 1), got {tol!r}", "campbell")
+
+
+def _from_modes(system: RotorSystem, modes: SpeedModes | Exception) -> _Candidates:
+    """Candidates from the eigenpairs of the reduced method, post-processed as
+    :func:`~rotorsim.analyses.linear.modal.modal` does (circular pairs, normalised shapes,
+    whirl and kind)."""
+    if isinstance(modes, Exception):
+        raise modes
+    lam = modes.values
+    shapes = system.dof_map.expand(modes.vectors)
+    groups = clusters(lam)
+    if groups:
+        shapes = circularize(shapes, groups)
+    shapes = _normalise(shapes)
+    whirl, ratio, kind = _classify(system, shapes)
+    wn, wd = np.abs(lam), np.abs(lam.imag)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        log_dec = np.where(wd > 0, -2.0 * np.pi * lam.real / wd, np.inf)
+    fields = {"wd": wd, "wn": wn, "log_dec": log_dec, "damping_ratio": -lam.real / wn,
+              "whirl_ratio": np.asarray(ratio, dtype=float)}
+    return _Candidates(lam, shapes, fields, np.array(whirl, dtype="<U9"),
+                       np.array(kind, dtype="<U9"))
 
 
 def _check_inputs(speeds: ArrayLike, num_modes: int, on_failure: str) -> FloatArray:

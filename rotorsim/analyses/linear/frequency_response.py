@@ -2,7 +2,10 @@
 
 Both solve ``(K(W) - w^2 M + i w (C(W) + W G)) X = F`` for ``x(t) = Re(X e^{i w t})``, the
 steady state of ``M q'' + (C + W G) q' + K q = Re(F e^{i w t})``. Each frequency needs one
-sparse complex LU of the dynamic stiffness, solved for all right-hand sides at once.
+sparse complex LU of the dynamic stiffness, solved for all right-hand sides at once; long
+sweeps of large models without speed-dependent bearings solve directly only at a few
+points and project the others on the basis of those solutions, each point's residual
+checked with the full matrices (:mod:`rotorsim.analyses.linear.frequency_reduced`).
 """
 
 from __future__ import annotations
@@ -17,6 +20,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from rotorsim.analyses.keyword_check import checked_keywords
 from rotorsim.analyses.linear.argument_checks import check_speed
+from rotorsim.analyses.linear.frequency_reduced import reduced_sweep
 from rotorsim.analyses.rigid_motions import free_rigid_motions, held_dofs
 from rotorsim.analyses.system_input import as_system
 from rotorsim.assembly.loads import nodal_load, spool_groups, unbalance_amplitudes
@@ -33,6 +37,11 @@ from rotorsim.solvers.threads import one_blas_thread
 FloatArray = NDArray[np.float64]
 ComplexArray = NDArray[np.complex128]
 _ON_FAILURE = ("raise", "record")
+REDUCED_MIN_DOFS = 300
+"""Sweeps of models with at least this many free DOFs and :data:`REDUCED_MIN_POINTS`
+points, no speed-dependent bearing and no progress bar are solved on a reduced basis of
+direct solutions (:mod:`rotorsim.analyses.linear.frequency_reduced`)."""
+REDUCED_MIN_POINTS = 20
 
 
 @checked_keywords
@@ -254,7 +263,12 @@ def _harmonic_sweep(
     status = np.full(w.size, int(Status.OK), dtype=np.int64)
     speed_dependent = bool(system.variable_bearings)
     mats = system.matrices(float(spins[0]))
-    for i in with_progress(range(w.size), progress, desc=kind, unit="pt"):
+    extra: dict[str, float] = {}
+    if not speed_dependent and not progress and w.size >= REDUCED_MIN_POINTS \
+            and system.n_free >= REDUCED_MIN_DOFS:
+        extra = _reduced(system, mats, w, spins, rhs, response, status, kind, on_failure,
+                         stats)
+    for i in ([] if extra else with_progress(range(w.size), progress, desc=kind, unit="pt")):
         if speed_dependent and (i == 0 or spins[i] != spins[i - 1]):
             mats = system.matrices(float(spins[i]))
         where = f"{kind} at w = {w[i]:.6g} rad/s (point {i})"
@@ -271,10 +285,41 @@ def _harmonic_sweep(
     return FrequencyResponseResult(
         frequencies=w, speeds=np.asarray(spins, dtype=float), response=response,
         dof_map=dof_map, nodes_pos=system.nodes_pos, inputs=inputs, kind=kind,
-        point_status=status, options={**options, "on_failure": on_failure},
-        stats=stats.finish(), status=Status.FAILED if failed else Status.OK,
+        point_status=status, options={**options, "on_failure": on_failure,
+                                      "method": "reduced" if extra else "direct"},
+        stats={**stats.finish(), **extra}, status=Status.FAILED if failed else Status.OK,
         summary=system.summary,
     )
+
+
+def _reduced(system: RotorSystem, mats: SystemMatrices, w: FloatArray, spins: FloatArray,
+             rhs: Callable[[int], ComplexArray], response: ComplexArray, status: NDArray,
+             kind: str, on_failure: str, stats: Stats) -> dict[str, float]:
+    """Fill ``response`` by :func:`~rotorsim.analyses.linear.frequency_reduced.reduced_sweep`;
+    ``{}`` (nothing filled) when the projected systems are singular (a point on an undamped
+    resonance), so the caller solves point by point."""
+    free = system.dof_map.free
+    loads = np.stack([np.asarray(rhs(i), dtype=complex) for i in range(w.size)])
+
+    def direct(i: int) -> ComplexArray:
+        where = f"{kind} at w = {w[i]:.6g} rad/s (point {i})"
+        try:
+            return _solve_point(system, _dynamic_stiffness(system, mats, w[i], spins[i]),
+                                loads[i], w[i], where, stats)
+        except ConvergenceError:
+            if on_failure == "raise":
+                raise
+            status[i] = int(Status.FAILED)
+            return np.full(loads[i].shape, np.nan, dtype=complex)
+
+    try:
+        X, info = reduced_sweep(mats, w, spins, loads, direct, stats)
+    except np.linalg.LinAlgError:
+        status[:] = int(Status.OK)
+        return {}
+    response[:, free, :] = X
+    response[status != Status.OK] = np.nan
+    return info
 
 
 def _solve_point(system: RotorSystem, Z: sp.csr_matrix, load: ComplexArray, w: float,
