@@ -11,6 +11,14 @@ from .analyses.periodic.excitation import HarmonicBase
 from .analyses.periodic.parameter import periodic_parameter
 from .analyses.periodic.periodic import periodic
 from .analyses.periodic.switching import switch_branch
+from .analyses.standards.api_formulas import (
+    anticipated_cross_coupling,
+    level1_screening,
+    required_separation_margin,
+    residual_unbalance,
+)
+from .analyses.standards.api_stability import ApiStage, api_level1
+from .analyses.standards.api_unbalance import Clearance, api_unbalance
 from .analyses.statics.bearing_statics import (
     bearing_equilibrium,
     linearize_at_load,
@@ -81,6 +89,7 @@ from .options import (
     SteadyStop,
 )
 from .plotting import plot
+from .results.api import ApiLevel1Result, ApiUnbalanceResult
 from .results.bearing import BearingEquilibriumResult, StiffnessVariation
 from .results.campbell import CampbellResult
 from .results.critical_speeds import CriticalSpeedMapResult, CriticalSpeeds
@@ -103,6 +112,9 @@ __all__ = [
     "DOF_NAMES",
     "Adams",
     "Adaptive",
+    "ApiLevel1Result",
+    "ApiStage",
+    "ApiUnbalanceResult",
     "BallBearing",
     "BaseExcitation",
     "BearingElement",
@@ -110,6 +122,7 @@ __all__ = [
     "CampbellResult",
     "CentrifugalBearing",
     "Checkpointing",
+    "Clearance",
     "ConstantSpeed",
     "ConstantTorque",
     "ContinuationOptions",
@@ -172,6 +185,9 @@ __all__ = [
     "TransientResult",
     "Uniform",
     "ViscousTorque",
+    "anticipated_cross_coupling",
+    "api_level1",
+    "api_unbalance",
     "assemble",
     "bearing_equilibrium",
     "campbell",
@@ -182,6 +198,7 @@ __all__ = [
     "export_vtk",
     "frequency_response",
     "hb",
+    "level1_screening",
     "linearize_at_load",
     "linearize_rolling_bearings",
     "load",
@@ -191,6 +208,8 @@ __all__ = [
     "periodic",
     "periodic_parameter",
     "plot",
+    "required_separation_margin",
+    "residual_unbalance",
     "run_analysis",
     "save",
     "save_model",

@@ -29,6 +29,7 @@ from rotorsim.elements.rolling.roller.profile import (
 from rotorsim.elements.shaft import ShaftElement
 from rotorsim.errors import ModelError
 from rotorsim.io import analysis_spec as spec
+from rotorsim.io.api_specs import api_options
 from rotorsim.io.drive_schema import drive_spec
 from rotorsim.io.model_schema import BearingTable, ModelTable, ShaftSegment
 from rotorsim.io.rolling_schema import BallTable, ProfileTable, RollerTable, RollingTable
@@ -350,6 +351,8 @@ def build_spec(table: Any, loc: tuple[str | int, ...], nodes: Nodes,
                                                f"{where}.bearings")
     elif table.type == "campbell":
         options["harmonics"] = tuple(options["harmonics"])
+    elif table.type in ("api_stability", "api_unbalance"):
+        options.update(api_options(table, nodes, where))
     return cls.from_flat(**common, **options)
 
 

@@ -119,8 +119,9 @@ class ApiUnbalanceResult:
         Analysed spin speeds [rad/s].
     min_speed, mcs : float
         Operating speed range [rad/s].
-    mode_speed : array (M,)
-        Damped critical speed of each mode (crossing of the 1X line) [rad/s].
+    mode_speed, mode_log_dec : array (M,)
+        Damped critical speed of each mode (crossing of the 1X line) [rad/s] and its log
+        decrement there.
     unbalance_mode, unbalance_node : int array (K,)
         Mode and node of each unbalance plane.
     unbalance_magnitude, unbalance_phase : array (K,)
@@ -135,7 +136,9 @@ class ApiUnbalanceResult:
     half_power_low, half_power_high : array (M,)
         Speeds where the major axis is ``peak / sqrt(2)`` [rad/s] (NaN outside the range).
     af : array (M,)
-        Amplification factor ``peak_speed / (half_power_high - half_power_low)``.
+        Amplification factor ``peak_speed / (half_power_high - half_power_low)`` (NaN
+        without a half-power band: ``notes`` says whether the mode counts as critically
+        damped, ``pi / mode_log_dec < 2.5``, or the speeds are too short).
     required_margin, actual_margin : array (M,)
         Separation margins as fractions (of the minimum speed for a resonance below the
         operating range, of the MCS above it; negative inside it).
@@ -163,6 +166,7 @@ class ApiUnbalanceResult:
     min_speed: float
     mcs: float
     mode_speed: FloatArray
+    mode_log_dec: FloatArray
     unbalance_mode: IntArray
     unbalance_node: IntArray
     unbalance_magnitude: FloatArray
