@@ -75,6 +75,14 @@ def _dispatch(args: argparse.Namespace) -> int:
             raise ModelError(f"no analysis {unknown[0]!r}; the model has "
                              f"{', '.join(model.analyses)}", model.name)
         jobs = [(name, None) for name in names]
+    elif args.command == "api":
+        jobs = [(name, None) for name, spec in model.analyses.items()
+                if spec.type in ("api_stability", "api_unbalance")]
+        if not jobs:
+            from rotorsim.errors import ModelError
+
+            raise ModelError("the model file names no API check: add [analyses.<name>] "
+                             "tables of type api_stability or api_unbalance", model.name)
     else:
         jobs = [adhoc_job(model, args)]
     from rotorsim.io.output_folder import prepare_folder

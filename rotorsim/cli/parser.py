@@ -120,6 +120,12 @@ def build_parser() -> argparse.ArgumentParser:
             p.add_argument("--stiffness", nargs=3, metavar=("KMIN", "KMAX", "NUM"),
                            help='support stiffness range, e.g. "0.1 MN/m" "1 GN/m" 40')
 
+    api = sub.add_parser("api", help="the API 617 checks a model file names (analyses of "
+                         "type api_stability and api_unbalance): Level I stability, "
+                         "unbalance response, separation margins, clearance ratios")
+    api.add_argument("model", type=Path)
+    _add_output_options(api)
+
     bearing = sub.add_parser("bearing", help=_BEARING_HELP)
     bearing.add_argument("model", type=Path)
     bearing.add_argument("--tag", help="only the rolling bearing with this tag (or index)")

@@ -205,7 +205,7 @@ class ApiUnbalanceResult:
     def table(self) -> list[tuple[str, ...]]:
         """Rows of the API table, one per mode: mode, critical speed [rpm], AF, required
         and actual separation margin [%], pass/fail, largest clearance ratio."""
-        rows = []
+        rows: list[tuple[str, ...]] = []
         for m in range(self.num_modes):
             ratio = self.clearance_ratio[m]
             rows.append((str(m), f"{self.peak_speed[m] * RPM:.0f}", f"{self.af[m]:.3g}",

@@ -35,6 +35,7 @@ from rotorsim.elements.base import as_float_array
 from rotorsim.errors import ModelError
 from rotorsim.model.rotor import Rotor
 from rotorsim.results.api import RPM, ApiUnbalanceResult
+from rotorsim.results.frequency_response import FrequencyResponseResult
 from rotorsim.results.orbits import ellipse
 
 FloatArray = NDArray[np.float64]
@@ -123,21 +124,16 @@ def api_unbalance(
     crit, crit_log_dec = _critical_speeds(rotor, w, num_modes)
     mcs_rpm = mcs * RPM
     av1 = vibration_limit(mcs_rpm)
-    rows, planes, notes = [], [], []
+    rows: list[tuple[int, FloatArray, HalfPower]] = []
+    planes: list[tuple[int, int, float, float]] = []
+    notes: list[str] = []
     for m, wc in enumerate(crit):
         nodes, phases, response_node = _antinodes(rotor, wc, num_modes)
         mass = rotor.m / nodes.size if plane_mass is None else plane_mass
         u = factor * residual_unbalance(mass, mcs_rpm)[0]
         plan = [(int(n), float(u), float(a)) for n, a in zip(nodes, phases, strict=True)]
         planes += [(m, *p) for p in plan]
-        major_pp = _major_pp(unbalance_response(rotor, w, plan))
-        index = _peak_index(w, major_pp[:, response_node], wc)
-        if index in (0, w.size - 1):  # no resonance peak inside the speeds
-            hp = HalfPower(float(wc), math.nan, math.nan, math.nan)
-        else:
-            hp = half_power(w, major_pp[:, response_node], index,
-                            lambda s, plan=plan, n=response_node: float(
-                                _major_pp(unbalance_response(rotor, [s], plan))[0, n]))
+        major_pp, hp = _mode_response(rotor, w, plan, response_node, wc)
         if math.isnan(hp.af):  # no band: the resonance is taken at the crossing
             near = int(np.argmin(np.abs(w - wc)))
             hp = HalfPower(float(wc), float(major_pp[near, response_node]), hp.low, hp.high)
@@ -145,6 +141,21 @@ def api_unbalance(
         rows.append((response_node, major_pp, hp))
     return _result(rotor, w, min_speed, mcs, (crit, crit_log_dec), planes, rows, av1,
                    probes_arr, clearances, notes, factor)
+
+
+def _mode_response(rotor: Rotor, w: FloatArray, plan: list[tuple[int, float, float]],
+                   node: int, wc: float) -> tuple[FloatArray, HalfPower]:
+    """Peak-to-peak major axes (F, N) of the response to the unbalance ``plan`` and the
+    half-power band of the peak nearest ``wc`` at ``node`` (refined on the response)."""
+    major_pp = _major_pp(unbalance_response(rotor, w, plan))
+    index = _peak_index(w, major_pp[:, node], wc)
+    if index in (0, w.size - 1):  # no resonance peak inside the speeds
+        return major_pp, HalfPower(float(wc), math.nan, math.nan, math.nan)
+
+    def response(speed: float) -> float:
+        return float(_major_pp(unbalance_response(rotor, [speed], plan))[0, node])
+
+    return major_pp, half_power(w, major_pp[:, node], index, response)
 
 
 def _no_band_note(m: int, wc: float, log_dec: float, w: FloatArray) -> str:
@@ -224,7 +235,7 @@ def _antinodes(rotor: Rotor, wc: float, num_modes: int
     return peaks.astype(np.int64), phases, int(peaks[np.argmax(size[peaks])])
 
 
-def _major_pp(result) -> FloatArray:  # type: ignore[no-untyped-def]
+def _major_pp(result: FrequencyResponseResult) -> FloatArray:
     """Peak-to-peak major axis (F, n_nodes) of every node's orbit [m]."""
     nodes = result.response[:, :, 0].reshape(result.frequencies.size, -1, 6)
     return 2.0 * ellipse(nodes[:, :, 0], nodes[:, :, 1]).major
