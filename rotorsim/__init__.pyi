@@ -89,6 +89,7 @@ from .options import (
     SteadyStop,
 )
 from .plotting import plot
+from .report.build import write_report
 from .results.api import ApiLevel1Result, ApiUnbalanceResult
 from .results.bearing import BearingEquilibriumResult, StiffnessVariation
 from .results.campbell import CampbellResult
@@ -220,4 +221,5 @@ __all__ = [
     "transient",
     "unbalance_response",
     "verify_events",
+    "write_report",
 ]

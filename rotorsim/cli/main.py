@@ -63,6 +63,11 @@ def _dispatch(args: argparse.Namespace) -> int:
         return 0
     if args.command == "bearing":
         return _bearing(model, args)
+    if args.command == "report":
+        from rotorsim.report.build import write_report
+
+        print(f"report: {write_report(model, args.out, fast=args.fast, units=args.units)}")
+        return 0
     if args.command == "run":
         names = list(args.analyses) or list(model.analyses)
         if not names:

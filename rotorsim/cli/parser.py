@@ -126,6 +126,16 @@ def build_parser() -> argparse.ArgumentParser:
     api.add_argument("model", type=Path)
     _add_output_options(api)
 
+    report = sub.add_parser("report", help="run every analysis of a model file and write "
+                            "one self-contained HTML report (figures embedded) beside its "
+                            "HDF5 results")
+    report.add_argument("model", type=Path)
+    report.add_argument("--out", type=Path, default=Path("results"),
+                        help="output folder (default: results)")
+    report.add_argument("--units", choices=("rpm", "Hz", "rad/s"), default="rpm",
+                        help="units of speeds in the summaries and figures")
+    report.add_argument("--fast", action="store_true", help="coarse grids (smoke runs)")
+
     bearing = sub.add_parser("bearing", help=_BEARING_HELP)
     bearing.add_argument("model", type=Path)
     bearing.add_argument("--tag", help="only the rolling bearing with this tag (or index)")
