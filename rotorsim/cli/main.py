@@ -66,7 +66,9 @@ def _dispatch(args: argparse.Namespace) -> int:
     if args.command == "report":
         from rotorsim.report.build import write_report
 
-        print(f"report: {write_report(model, args.out, fast=args.fast, units=args.units)}")
+        path = write_report(model, args.out, fast=args.fast, units=args.units,
+                            plots=not args.no_plots)
+        print(f"report: {path}")
         return 0
     if args.command == "run":
         names = list(args.analyses) or list(model.analyses)

@@ -134,6 +134,8 @@ def build_parser() -> argparse.ArgumentParser:
                         help="output folder (default: results)")
     report.add_argument("--units", choices=("rpm", "Hz", "rad/s"), default="rpm",
                         help="units of speeds in the summaries and figures")
+    report.add_argument("--no-plots", action="store_true",
+                        help="leave the figures out (tables and summaries only)")
     report.add_argument("--fast", action="store_true", help="coarse grids (smoke runs)")
 
     bearing = sub.add_parser("bearing", help=_BEARING_HELP)

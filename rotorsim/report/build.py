@@ -16,7 +16,7 @@ HTML_NAME = "report.html"
 
 
 def write_report(model: Any, out: str | os.PathLike[str] = "results", *, fast: bool = False,
-                 units: str = "rpm") -> Path:
+                 units: str = "rpm", plots: bool = True) -> Path:
     """Run every analysis a model file names and write its HTML report.
 
     Parameters
@@ -30,6 +30,8 @@ def write_report(model: Any, out: str | os.PathLike[str] = "results", *, fast: b
         Coarse grids and short runs (as ``run_analysis(..., fast=True)``).
     units : {"rpm", "Hz", "rad/s"}
         Units of speeds in the summaries and figures.
+    plots : bool
+        Embed the figures (False: tables and summaries only).
 
     Returns
     -------
@@ -45,11 +47,12 @@ def write_report(model: Any, out: str | os.PathLike[str] = "results", *, fast: b
     folder = Path(out) / model.name
     prepare_folder(folder / HTML_NAME, "out")
     results: dict[str, Any] = {}
-    sections = [_model_section(model)]
+    sections = [_model_section(model, plots)]
     if model.rolling_bearings:
-        sections.append(_rolling_section(model, results))
+        sections.append(_rolling_section(model, results, plots))
     for name in model.analyses:
-        sections.append(_analysis_section(model, name, folder, fast, units, results))
+        sections.append(_analysis_section(model, name, folder, fast, units, results,
+                                          plots))
     storable = _storable(results)
     if storable:
         save(storable, folder / HDF5_NAME)
@@ -81,7 +84,7 @@ def _header(model: Any, skipped: list[str]) -> list[str]:
     return parts
 
 
-def _model_section(model: Any) -> str:
+def _model_section(model: Any, plots: bool) -> str:
     from rotorsim.elements.linear_bearing import BearingElement
     from rotorsim.plotting import plot
 
@@ -92,10 +95,11 @@ def _model_section(model: Any) -> str:
     drawn = model.rotor.with_bearings([*model.rotor.bearing_elements, *extra])
     return "".join([page.heading(2, "Model", "model"),
                     page.table(rows, ("quantity", "value")),
-                    page.figure(plot(drawn), "layout of the rotor (to scale)")])
+                    page.figure(plot(drawn), "layout of the rotor (to scale)") if plots
+                    else ""])
 
 
-def _rolling_section(model: Any, results: dict[str, Any]) -> str:
+def _rolling_section(model: Any, results: dict[str, Any], plots: bool) -> str:
     from rotorsim.cli.summaries import bearing_summary, linearization_summary
     from rotorsim.plotting import plot
 
@@ -107,15 +111,16 @@ def _rolling_section(model: Any, results: dict[str, Any]) -> str:
         results[key] = equilibrium
         parts += [page.heading(3, f"bearing {tag}"),
                   page.paragraph(f"HDF5: {HDF5_NAME}, group /results/{key}", "source"),
-                  page.preformatted(bearing_summary(equilibrium, tag)),
-                  page.figure(plot(equilibrium), f"load distribution of bearing {tag}")]
+                  page.preformatted(bearing_summary(equilibrium, tag))]
+        if plots:
+            parts.append(page.figure(plot(equilibrium), f"load distribution of bearing {tag}"))
     parts.append(page.paragraph("Bearing life is not computed: rotorsim has no rating-life "
                                 "model yet.", "warn"))
     return "".join(parts)
 
 
 def _analysis_section(model: Any, name: str, folder: Path, fast: bool, units: str,
-                      results: dict[str, Any]) -> str:
+                      results: dict[str, Any], plots: bool) -> str:
     from rotorsim.cli.completeness import incomplete_reason
     from rotorsim.cli.outputs import figures_of
     from rotorsim.cli.summaries import summarize
@@ -138,7 +143,8 @@ def _analysis_section(model: Any, name: str, folder: Path, fast: bool, units: st
         parts.append(page.paragraph(f"incomplete: {why}", "warn"))
     summary_options, figure_options = _display_options(spec, units)
     parts.append(_tables(result) or page.preformatted(summarize(result, **summary_options)))
-    for file_name, fig in figures_of(result, name, units, figure_options).items():
+    figures = figures_of(result, name, units, figure_options) if plots else {}
+    for file_name, fig in figures.items():
         parts.append(page.figure(fig, file_name.removesuffix(".png").replace("_", " ")))
     return "".join(parts)
 
