@@ -92,7 +92,9 @@ def api_unbalance(
         The rotor on its bearings.
     speeds : array (F,)
         Increasing spin speeds [rad/s]; they must cover the operating range (API: from 0
-        to the trip speed).
+        to the trip speed) and resolve each resonance peak (a few points within its
+        half-power band): the peak and the band are refined on the response, but a peak
+        the grid misses (e.g. one of two close peaks on anisotropic supports) is not.
     min_speed, mcs : float
         Minimum operating and maximum continuous speeds [rad/s].
     num_modes : int

@@ -41,7 +41,8 @@ class HalfPower:
 
     @property
     def af(self) -> float:
-        return self.peak_speed / (self.high - self.low)
+        width = self.high - self.low
+        return self.peak_speed / width if width > 0 else math.nan
 
 
 def half_power(speeds: ArrayLike, amplitude: ArrayLike, index: int,
@@ -90,8 +91,8 @@ def half_power(speeds: ArrayLike, amplitude: ArrayLike, index: int,
     if response is not None and 0 < index < w.size - 1:
         peak_speed, peak = _refine_peak(response, w[index - 1], w[index + 1], rtol)
     level = peak / math.sqrt(2.0)
-    low = _crossing(w, a, index, level, -1, response, rtol)
-    high = _crossing(w, a, index, level, +1, response, rtol)
+    low = _crossing(w, a, peak_speed, level, -1, response, rtol)
+    high = _crossing(w, a, peak_speed, level, +1, response, rtol)
     return HalfPower(peak_speed, peak, low, high)
 
 
@@ -104,20 +105,24 @@ def _refine_peak(response: Callable[[float], float], lo: float, hi: float, rtol:
     return float(found.x), float(-found.fun)
 
 
-def _crossing(w: np.ndarray, a: np.ndarray, index: int, level: float, step: int,
+def _crossing(w: np.ndarray, a: np.ndarray, peak_speed: float, level: float, step: int,
               response: Callable[[float], float] | None, rtol: float) -> float:
-    """Speed where the curve falls to ``level`` walking from the peak by ``step``."""
-    side = np.arange(index + step, -1 if step < 0 else w.size, step)
+    """Speed where the curve falls to ``level`` walking from the peak by ``step``: the
+    first sample beyond the peak below the level, bracketed with the nearest point between
+    it and the peak at or above the level (a sample, or the peak itself)."""
+    side = np.flatnonzero(w < peak_speed)[::-1] if step < 0 else np.flatnonzero(
+        w > peak_speed)
     below = side[a[side] < level]
     if below.size == 0:
         return math.nan
     j = int(below[0])
-    i = j - step  # the sample before it, still at or above the level (or the peak)
+    above = side[:int(np.flatnonzero(side == j)[0])]  # samples between the peak and j
+    above = above[a[above] >= level]
+    near_speed, near_amp = (float(w[above[-1]]), float(a[above[-1]])) if above.size else (
+        peak_speed, level * math.sqrt(2.0))
     if response is None:
-        return float(np.interp(level, [a[j], a[i]], [w[j], w[i]]))
+        return float(np.interp(level, [a[j], near_amp], [w[j], near_speed]))
     from scipy.optimize import brentq
 
-    lo, hi = sorted((float(w[i]), float(w[j])))
-    if response(lo) < level and response(hi) < level:  # the peak sample itself (coarse)
-        return float(np.interp(level, [a[j], a[i]], [w[j], w[i]]))
+    lo, hi = sorted((float(w[j]), near_speed))
     return float(brentq(lambda s: response(s) - level, lo, hi, xtol=rtol * hi))

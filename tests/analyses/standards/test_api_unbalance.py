@@ -128,3 +128,22 @@ def test_bad_input_raises_model_error(change, match):
 def test_bad_clearance():
     with pytest.raises(rs.ModelError, match="clearance"):
         rs.Clearance(node=0, clearance=-1e-4)
+
+
+def test_half_power_band_narrower_than_the_grid():
+    """A resonance sharper than the speed grid (zeta = 0.01, samples 0.05 wn apart: both
+    neighbours of the peak sample lie below the half-power level) is still measured
+    exactly, the band bracketed between the refined peak and the samples (constant-force
+    SDOF; exact AF from the closed form in the docstring of ``half_power``)."""
+    from rotorsim.analyses.standards.half_power import half_power
+
+    zeta = 0.01
+    amp = lambda r: 1 / np.sqrt((1 - r**2) ** 2 + (2 * zeta * r) ** 2)  # noqa: E731
+    w = np.arange(0.5, 1.5, 0.05) + 0.0123
+    index = int(np.argmax(amp(w)))
+    assert amp(w[index - 1]) < amp(w[index]) / math.sqrt(2) * 0.8
+    hp = half_power(w, amp(w), index, lambda r: float(amp(r)))
+    root = 2 * zeta * math.sqrt(1 - zeta**2)
+    exact = math.sqrt(1 - 2 * zeta**2) / (math.sqrt(1 - 2 * zeta**2 + root)
+                                          - math.sqrt(1 - 2 * zeta**2 - root))
+    assert hp.af == pytest.approx(exact, rel=1e-6)
