@@ -5,10 +5,11 @@ Everything here works in SI (W, rad/s, m, kg, N/m) unless a name says otherwise
 
 Editions and clauses. The formulas follow API Standard 617, 7th edition (2002), chapter 1,
 section 2.6 (2.6.2 unbalance response and separation margins, 2.6.5 Level I stability),
-which API 617 8th edition (2014) carries on in section 4.8 (4.8.2 and 4.8.5) with the
-same numbers, and API RP 684, 2nd edition (2005), sections SP6.8.2 and SP6.8.5, which
-explains them. The clause numbers are those the standards' users (and ROSS's
-``api_report``) cite; check them against the copy of the standard a project is bound to.
+and API RP 684, 2nd edition (2005), sections SP6.8.2 and SP6.8.5, which explains them;
+API 617 8th edition (2014) moved these clauses to section 4.8 (4.8.2, 4.8.5). No copy of
+the standards was at hand: the formulas and clause numbers are those the standards' users
+cite (ROSS's ``api_report`` among them), so check them, and any change of the 8th
+edition, against the copy a project is bound to.
 
 Units of Q_A. The anticipated cross-coupling is Wachel's estimate,
 ``Q_A = B T / (D H) * (rho_d / rho_s)``, with ``T = P / Omega`` the stage torque. API 617
