@@ -54,6 +54,7 @@ from .assembly.dof_map import DofMap
 from .assembly.system import RotorSystem, SystemMatrices, assemble
 from .elements.base import DOF_NAMES, ElementMatrices
 from .elements.disk import DiskElement, PointMass
+from .elements.foundation import Foundation
 from .elements.linear_bearing import BearingElement
 from .elements.rolling import (
     BallBearing,
@@ -77,6 +78,8 @@ from .io.hdf5 import ResultsFileError, load, save
 from .io.model_file import Model, load_model, run_analysis, save_model
 from .io.sweep_store import load_sweep
 from .io.vtk import export_vtk
+from .model.damping import SystemDamping
+from .model.lines import ShaftLine
 from .model.material import Material
 from .model.rotor import Rotor
 from .options import (
@@ -139,6 +142,7 @@ __all__ = [
     "Excitation",
     "FlexibleRingBearingElement",
     "FlexibleRingRollerBearing",
+    "Foundation",
     "FrequencyResponseResult",
     "Grid",
     "HarmonicBase",
@@ -171,6 +175,7 @@ __all__ = [
     "RotorsimError",
     "Sample",
     "ShaftElement",
+    "ShaftLine",
     "SideCheck",
     "SpeedFunction",
     "StabilityOptions",
@@ -179,6 +184,7 @@ __all__ = [
     "SteadyStop",
     "StiffnessVariation",
     "SweepResult",
+    "SystemDamping",
     "SystemMatrices",
     "TorqueCurve",
     "TorqueDrive",

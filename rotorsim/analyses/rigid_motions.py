@@ -27,7 +27,7 @@ _MOTIONS = ("rotation about x", "rotation about y", "rotation about z",
 
 @dataclass(frozen=True)
 class RigidMotions:
-    """Free rigid-body motions of the whole rotor.
+    """Free rigid-body motions of the whole rotor (of each line of a machine).
 
     ``fields`` (n_free, k) holds each motion on the free DOFs, normalised to a unit
     translation [m] or a unit rotation [rad]; ``labels`` names them.
@@ -64,6 +64,33 @@ def rigid_body_fields(system: RotorSystem) -> FloatArray:
     return fields.reshape(-1, 6)
 
 
+def body_groups(system: RotorSystem) -> tuple[NDArray[np.int64], tuple[str, ...]]:
+    """Group of every node and the group names: one group (the whole rotor) for a one-line
+    rotor; each line of a machine, and its housing nodes together, otherwise (each line
+    of a machine may move rigidly on its own, e.g. turn about its axis)."""
+    n_nodes = system.dof_map.n_nodes
+    if system.node_line is None:
+        return np.zeros(n_nodes, dtype=np.int64), ("rotor",)
+    group = np.asarray(system.node_line, dtype=np.int64).copy()
+    names = list(system.line_names)
+    if np.any(group < 0):
+        group[group < 0] = len(names)
+        names.append("housings")
+    return group, tuple(names)
+
+
+def grouped_rigid_fields(system: RotorSystem) -> FloatArray:
+    """:func:`rigid_body_fields` of every body group apart, ``(ndof, 6 G)``: group ``g``'s
+    six motions move only its nodes; their sum over the groups is the whole machine's."""
+    group, names = body_groups(system)
+    whole = rigid_body_fields(system).reshape(-1, DOFS_PER_NODE, 6)
+    out = np.zeros((whole.shape[0], DOFS_PER_NODE, 6 * len(names)))
+    for g in range(len(names)):
+        on = group == g
+        out[on, :, 6 * g:6 * g + 6] = whole[on]
+    return out.reshape(-1, 6 * len(names))
+
+
 def free_rigid_motions(system: RotorSystem, K: sp.spmatrix, rigid_tol: float = 1e-10,
                        *, scaled: bool = False) -> RigidMotions:
     """Rigid-body motions ``r`` of the whole rotor that ``K`` does not restrain.
@@ -86,7 +113,7 @@ def free_rigid_motions(system: RotorSystem, K: sp.spmatrix, rigid_tol: float = 1
         scale = np.where(diag > 0, 1.0 / np.sqrt(np.where(diag > 0, diag, 1.0)), 1.0)
     S = sp.diags(scale)
     Ks = sp.csr_matrix(S @ K @ S)
-    R = rigid_body_fields(system)[system.dof_map.free]
+    R = grouped_rigid_fields(system)[system.dof_map.free]
     B = R / scale[:, None]  # the motions in scaled coordinates, each normalised below
     norms = np.linalg.norm(B, axis=0)
     norms = np.where(norms > 0, norms, 1.0)
@@ -99,10 +126,25 @@ def free_rigid_motions(system: RotorSystem, K: sp.spmatrix, rigid_tol: float = 1
     null = wt[s <= rigid_tol * spl.norm(Ks)].T  # (m, k) in Q coordinates
     if null.shape[1] == 0:
         return RigidMotions(np.zeros((R.shape[0], 0)), ())
-    coef = Vt[keep].T @ (null / sv[keep][:, None]) / norms[:, None]  # (6, k), named motions
+    coef = Vt[keep].T @ (null / sv[keep][:, None]) / norms[:, None]  # (6G, k), named motions
     coef = _reduced_echelon(coef.T).T
-    labels = tuple(_label(c) for c in coef.T)
+    names = body_groups(system)[1]
+    labels = tuple(_group_label(c, names) for c in coef.T)
     return RigidMotions(R @ coef, labels)
+
+
+def _group_label(c: FloatArray, names: tuple[str, ...]) -> str:
+    """Name of a motion with coefficients ``c`` over the groups' :data:`_MOTIONS`."""
+    blocks = c.reshape(len(names), 6)
+    moving = [g for g in range(len(names)) if np.any(blocks[g])]
+    if len(names) == 1:
+        return _label(blocks[0])
+    if len(moving) == 1:
+        return f"{names[moving[0]]}: {_label(blocks[moving[0]])}"
+    if all(np.allclose(blocks[g], blocks[moving[0]]) for g in moving) \
+            and len(moving) == len(names):
+        return f"whole machine: {_label(blocks[moving[0]])}"
+    return " + ".join(f"{names[g]}: {_label(blocks[g])}" for g in moving)
 
 
 def _reduced_echelon(rows: FloatArray) -> FloatArray:

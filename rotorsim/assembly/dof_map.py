@@ -15,7 +15,8 @@ from rotorsim.errors import ModelError
 IntArray = NDArray[np.int64]
 
 
-def dof_label(index: SupportsInt, *, short: bool = False) -> str:
+def dof_label(index: SupportsInt, *, short: bool = False,
+              node_names: tuple[str, ...] = ()) -> str:
     """Label of the global DOF ``index`` (``6 * node + local``), the one place that spells it.
 
     ``"node 8 uy"`` (the default) labels the DOFs of results files (their ``dof_labels``
@@ -27,11 +28,19 @@ def dof_label(index: SupportsInt, *, short: bool = False) -> str:
 
     Examples
     --------
+    On a machine of several lines, ``node_names`` (:attr:`DofMap.node_names`) adds the
+    line and local node of each node: ``"node 20 (HP:3) uy"``.
+
     >>> dof_label(49), dof_label(49, short=True)
     ('node 8 uy', '8:uy')
+    >>> dof_label(49, node_names=("LP:0",) * 8 + ("HP:0",))
+    'node 8 (HP:0) uy'
     """
     node, local = divmod(int(index), DOFS_PER_NODE)
-    return f"{node}:{DOF_NAMES[local]}" if short else f"node {node} {DOF_NAMES[local]}"
+    if short:
+        return f"{node}:{DOF_NAMES[local]}"
+    where = f" ({node_names[node]})" if node_names and node_names[node] else ""
+    return f"node {node}{where} {DOF_NAMES[local]}"
 
 
 @dataclass(frozen=True, eq=False)
@@ -54,6 +63,9 @@ class DofMap:
 
     n_nodes: int
     fixed: Iterable[int] = ()
+    node_names: tuple[str, ...] = ()
+    """``"LINE:local"`` of every node of a machine of several lines (``""`` off the lines);
+    empty for a one-line rotor."""
     free: IntArray = field(init=False, repr=False)
     full_to_free: IntArray = field(init=False, repr=False)
 
@@ -62,6 +74,11 @@ class DofMap:
         if fixed.size and (fixed[0] < 0 or fixed[-1] >= self.ndof):
             raise ModelError(f"fixed DOF index outside 0..{self.ndof - 1}", "DofMap")
         object.__setattr__(self, "fixed", fixed)
+        names = tuple(str(n) for n in self.node_names)
+        if names and len(names) != self.n_nodes:
+            raise ModelError(f"node_names has {len(names)} entries for {self.n_nodes} nodes",
+                             "DofMap")
+        object.__setattr__(self, "node_names", names)
         mask = np.ones(self.ndof, dtype=bool)
         mask[fixed] = False
         free = np.flatnonzero(mask).astype(np.int64)
@@ -110,6 +127,10 @@ class DofMap:
         out = np.zeros((self.ndof, *values.shape[1:]), dtype=values.dtype)
         out[self.free] = values
         return out
+
+    def label(self, index: SupportsInt) -> str:
+        """Results-file label of the global DOF ``index`` (:func:`dof_label`)."""
+        return dof_label(index, node_names=self.node_names)
 
     def names(self) -> list[str]:
         """Short labels ``"node:dof"`` (``"8:uy"``) of all DOFs (:func:`dof_label`)."""

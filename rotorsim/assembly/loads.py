@@ -156,6 +156,8 @@ def gravity_load_all_dofs(
         if kind:
             groups.append((np.array([el.nodes for el in kind]),
                            np.stack([el.matrices().M for el in kind])))
+    for foundation in rotor.foundations:
+        groups.append((np.array([foundation.nodes]), foundation.matrices().M[None]))
     for nodes, mass in groups:
         dofs = (DOFS_PER_NODE * nodes[:, :, None] + np.arange(DOFS_PER_NODE)).reshape(
             nodes.shape[0], -1)
@@ -209,6 +211,35 @@ def unbalance_amplitudes(
         out[ix] += amp
         out[iy] += -1j * amp
     return out
+
+
+def spool_groups(system: RotorSystem, unbalance: Sequence[tuple[int, float, float]]
+                 ) -> dict[float, list[tuple[int, float, float]]]:
+    """The unbalances grouped by the speed ratio of their line, in order of appearance.
+
+    An unbalance on a line that does not turn (ratio 0: a casing) is refused: it would
+    excite nothing, and is almost always a node number on the wrong line.
+    """
+    out: dict[float, list[tuple[int, float, float]]] = {}
+    for i, item in enumerate(unbalance):
+        ratio = system.speed_ratio_of(int(item[0]))
+        if ratio == 0.0:
+            raise ModelError(f"node {item[0]} does not rotate (speed ratio 0: a casing or "
+                             "housing node); an unbalance must sit on a turning line",
+                             f"unbalance[{i}]")
+        out.setdefault(ratio, []).append(tuple(item))  # type: ignore[arg-type]
+    return out
+
+
+def unbalance_speed_ratios(system: RotorSystem,
+                           unbalance: Sequence[tuple[int, float, float]]) -> FloatArray | None:
+    """Speed ratio of the line under every free DOF, for unbalances on spools that turn at
+    different speeds; ``None`` when every unbalance turns at the reference speed."""
+    if list(spool_groups(system, unbalance)) == [1.0]:
+        return None
+    ratios = system.node_speed_ratio
+    assert ratios is not None  # a ratio other than 1 needs lines
+    return np.repeat(ratios, DOFS_PER_NODE)[system.dof_map.free]
 
 
 def unbalance_load(

@@ -53,18 +53,24 @@ def modal_summary(result: Any, units: str = "Hz") -> str:
 def critical_speeds_summary(crit: Any, units: str = "rpm", title: str = "") -> str:
     f = _factor(units)
     kinds = getattr(crit, "kind", None)
+    excitation = getattr(crit, "excitation", None)
     rows = []
     for i in range(len(crit.speed)):
         if kinds is not None and kinds[i] != "lateral":
             continue
         log_dec = crit.log_dec[i]
-        rows.append((f"{crit.speed[i] * f:.1f}", f"{crit.frequency[i] * f:.1f}", crit.whirl[i],
-                     "-" if not np.isfinite(log_dec) else f"{log_dec:.4f}"))
-    head = title or f"{crit.harmonic:g}X critical speeds"
+        row = (f"{crit.speed[i] * f:.1f}", f"{crit.frequency[i] * f:.1f}", crit.whirl[i],
+               "-" if not np.isfinite(log_dec) else f"{log_dec:.4f}")
+        rows.append(row if excitation is None else (*row, f"{excitation[i]:.3f}"))
+    spool = getattr(crit, "options", {}).get("spool")
+    head = title or (f"{crit.harmonic:g}X critical speeds" + (
+        f" of spool {spool} (reference speed; 'excited' = how strongly its unbalance drives "
+        "the mode, 0 to 1)" if spool else ""))
     if not rows:
         return head + ": none in range"
-    return head + "\n" + table(rows, (f"speed [{units}]", f"frequency [{units}]", "whirl",
-                                      "log dec"))
+    columns = (f"speed [{units}]", f"frequency [{units}]", "whirl", "log dec")
+    return head + "\n" + table(rows, columns if excitation is None else (*columns,
+                                                                          "excited"))
 
 
 def campbell_summary(result: Any, units: str = "rpm",
@@ -78,32 +84,48 @@ def campbell_summary(result: Any, units: str = "rpm",
     lowest = float(np.nanmin(result.log_dec))
     verdict = "  (UNSTABLE)" if lowest < -1e-6 else "  (undamped mode)" if lowest < 1e-6 else ""
     parts.append(f"lowest log dec over the map: {_fixed(lowest, 4)}{verdict}")
+    ratios = result.summary.get("line_speed_ratios") or {}
+    spools = [name for name, r in ratios.items() if r != 0] or [None]
     for k in harmonics:
-        parts.append(critical_speeds_summary(
-            result.critical_speeds(harmonic=k), units,
-            f"{k:g}X critical speeds (damped, Campbell crossings)"))
+        for spool in spools:
+            on = "" if spool is None else f" of spool {spool} ({ratios[spool]:g}X)"
+            crit = result.critical_speeds(harmonic=k, spool=spool)
+            excites = crit.options.get("excites")
+            parts.append(critical_speeds_summary(
+                crit, units, f"{k:g}X critical speeds{on} (damped, Campbell crossings)"
+                + (f"; its unbalance excites {excites} whirl" if excites else "")))
     return "\n".join(parts + [f"note: {n}" for n in getattr(result, "notes", ())])
 
 
 def response_summary(result: Any, units: str = "rpm", amplitude_units: str = "um",
                      nodes: Sequence[int] | None = None) -> str:
+    head = (f"{result.kind} response: {len(result.frequencies)} points, "
+            + ("peaks at the requested nodes" if nodes else "largest peaks"))
+    if getattr(result, "input_ratios", None) is None:
+        return head + "\n" + _peak_table(result, 0, units, amplitude_units, nodes)
+    parts = [head + f" of each spool's unbalance (reference speed in {units})"]
+    for k, name in enumerate(result.inputs):
+        parts.append(f"{name}\n" + _peak_table(result, k, units, amplitude_units, nodes))
+    return "\n".join(parts)
+
+
+def _peak_table(result: Any, column: int, units: str, amplitude_units: str,
+                nodes: Sequence[int] | None) -> str:
     f = _factor(units)
     scale = {"m": 1.0, "mm": 1e3, "um": 1e6}[amplitude_units]
     n_nodes = result.dof_map.n_nodes
-    amp = np.nan_to_num(np.abs(result.response[:, :, 0])).reshape(len(result.frequencies),
-                                                                    n_nodes, 6)
+    amp = np.nan_to_num(np.abs(result.response[:, :, column])).reshape(
+        len(result.frequencies), n_nodes, 6)
     peak_per_node = np.hypot(amp[:, :, 0], amp[:, :, 1]).max(axis=0)
     order = list(nodes) if nodes else np.argsort(peak_per_node)[::-1][:5]
     rows = []
     for node in order:
-        w_x, a_x = result.peak(int(node), "ux")
-        w_y, a_y = result.peak(int(node), "uy")
+        w_x, a_x = result.peak(int(node), "ux", column)
+        w_y, a_y = result.peak(int(node), "uy", column)
         rows.append((int(node), f"{a_x * scale:.3f}", f"{w_x * f:.1f}", f"{a_y * scale:.3f}",
                      f"{w_y * f:.1f}"))
-    head = (f"{result.kind} response: {len(result.frequencies)} points, "
-            + ("peaks at the requested nodes" if nodes else "largest peaks"))
-    return head + "\n" + table(rows, ("node", f"ux [{amplitude_units}]", f"at [{units}]",
-                                      f"uy [{amplitude_units}]", f"at [{units}]"))
+    return table(rows, ("node", f"ux [{amplitude_units}]", f"at [{units}]",
+                        f"uy [{amplitude_units}]", f"at [{units}]"))
 
 
 def static_summary(result: Any) -> str:

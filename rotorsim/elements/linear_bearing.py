@@ -17,12 +17,12 @@ from rotorsim.errors import ModelError
 
 _LATERAL = ("xx", "xy", "yx", "yy")
 COEFFICIENTS: tuple[str, ...] = (
-    *(f"k{s}" for s in _LATERAL), "kzz", "krr",
-    *(f"c{s}" for s in _LATERAL), "czz", "crr",
+    *(f"k{s}" for s in _LATERAL), "kzz", "krr", "ktt",
+    *(f"c{s}" for s in _LATERAL), "czz", "crr", "ctt",
     *(f"m{s}" for s in _LATERAL),
 )
 """Coefficient names: stiffness ``k``, damping ``c`` and added mass ``m``; ``zz`` axial,
-``rr`` tilting (moment) about x and y."""
+``rr`` tilting (moment) about x and y, ``tt`` torsional (about z)."""
 
 
 @dataclass(frozen=True, eq=False)
@@ -40,7 +40,10 @@ class BearingElement:
         Axial stiffness [N/m].
     krr : float or array
         Tilting stiffness about x and y [N m/rad].
-    cxx, cxy, cyx, cyy, czz, crr : float or array
+    ktt : float or array
+        Torsional stiffness about z [N m/rad] (couplings between shaft ends; bearings carry
+        no torque).
+    cxx, cxy, cyx, cyy, czz, crr, ctt : float or array
         Damping [N s/m, N m s/rad]; ``cyy`` defaults to ``cxx``.
     mxx, mxy, myx, myy : float or array
         Added mass [kg] (seals); ``myy`` defaults to ``mxx``.
@@ -74,12 +77,14 @@ class BearingElement:
     kyx: float | FloatArray = 0.0
     kzz: float | FloatArray = 0.0
     krr: float | FloatArray = 0.0
+    ktt: float | FloatArray = 0.0
     cxx: float | FloatArray = 0.0
     cyy: float | FloatArray | None = None
     cxy: float | FloatArray = 0.0
     cyx: float | FloatArray = 0.0
     czz: float | FloatArray = 0.0
     crr: float | FloatArray = 0.0
+    ctt: float | FloatArray = 0.0
     mxx: float | FloatArray = 0.0
     myy: float | FloatArray | None = None
     mxy: float | FloatArray = 0.0
@@ -126,7 +131,8 @@ class BearingElement:
                         f"{key} has {value.size} values but frequency has {freq.size}", where
                     )
             table[key] = value
-        for key in ("kxx", "kyy", "kzz", "krr", "cxx", "cyy", "czz", "crr", "mxx", "myy"):
+        for key in ("kxx", "kyy", "kzz", "krr", "ktt", "cxx", "cyy", "czz", "crr", "ctt",
+                    "mxx", "myy"):
             if np.any(table[key] < 0):
                 raise ModelError(f"direct coefficient {key} must be >= 0", where)
         object.__setattr__(self, "_table", table)
@@ -159,6 +165,35 @@ class BearingElement:
             return np.broadcast_to(values[0], np.shape(speed)).astype(float)
         return np.asarray(np.interp(speed, self.frequency, values))
 
+    @classmethod
+    def coupling(cls, n: int, n_link: int, *, lateral: float = 0.0, angular: float = 0.0,
+                 torsional: float = 0.0, axial: float = 0.0, lateral_damping: float = 0.0,
+                 angular_damping: float = 0.0, torsional_damping: float = 0.0,
+                 axial_damping: float = 0.0, tag: str | None = None) -> BearingElement:
+        """A flexible coupling between two shaft ends ``n`` and ``n_link``.
+
+        Parameters
+        ----------
+        n, n_link : int
+            The two shaft ends (nodes of two lines, or of one line).
+        lateral, angular, torsional, axial : float
+            Stiffness [N/m, N m/rad, N m/rad, N/m] against relative radial offset, relative
+            tilt (about x and y), relative twist (about z) and axial offset.
+        lateral_damping, angular_damping, torsional_damping, axial_damping : float
+            Damping in the same motions [N s/m, N m s/rad, N m s/rad, N s/m].
+        tag : str, optional
+
+        Examples
+        --------
+        >>> c = BearingElement.coupling(4, 5, lateral=1e7, angular=2e4, torsional=5e4)
+        >>> m = c.matrices().K
+        >>> float(m[5, 5]), float(m[5, 11]), float(m[3, 9])
+        (50000.0, -50000.0, -20000.0)
+        """
+        return cls(n=n, n_link=n_link, kxx=lateral, krr=angular, ktt=torsional, kzz=axial,
+                   cxx=lateral_damping, crr=angular_damping, ctt=torsional_damping,
+                   czz=axial_damping, tag=tag)
+
     def with_node(self, n: int) -> BearingElement:
         import dataclasses
 
@@ -179,6 +214,7 @@ class BearingElement:
             if prefix != "m":
                 rr = float(self.coefficient(f"{prefix}rr", speed))
                 b[3, 3] = b[4, 4] = rr
+                b[5, 5] = float(self.coefficient(f"{prefix}tt", speed))
                 full = self.stiffness_matrix if prefix == "k" else self.damping_matrix
                 if full is not None:
                     b[:5, :5] += full

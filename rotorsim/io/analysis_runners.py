@@ -69,7 +69,7 @@ def _critical_speeds(rotor: Rotor, model: Model, spec: Any, fast: bool, progress
     from rotorsim.analyses.linear.critical_speeds import critical_speeds
 
     return critical_speeds(rotor, harmonic=spec.harmonic, num_modes=spec.num_modes,
-                           whirl=spec.whirl)
+                           whirl=spec.whirl, spool=spec.spool)
 
 
 def _critical_speed_map(rotor: Rotor, model: Model, spec: Any, fast: bool,

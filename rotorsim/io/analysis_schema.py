@@ -96,6 +96,7 @@ class CriticalSpeedsTable(AnalysisTable):
     harmonic: PositiveRatio = 1.0
     num_modes: NumModes = 8
     whirl: Literal["forward", "backward"] | None = None
+    spool: Annotated[str, Field(min_length=1)] | None = None
 
 
 class CriticalSpeedMapTable(AnalysisTable):

@@ -43,6 +43,7 @@ class CriticalSpeedsSpec(AnalysisSpec):
     harmonic: float = 1.0
     num_modes: int = 8
     whirl: str | None = None
+    spool: str | None = None
 
 
 @dataclass(frozen=True, kw_only=True)

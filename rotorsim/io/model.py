@@ -143,7 +143,7 @@ def model_from_dict(data: Mapping[str, Any], *, source: str | os.PathLike[str] |
     build.check_unique_tags(table, rolling_tables)
     src = None if source is None else Path(source)
     name = table.model.name or (src.stem if src is not None else "rotor")
-    rotor, nodes = build.build_rotor(table, name)
+    rotor, nodes = build.build_rotor(table, name, None if src is None else src.parent)
     rolling, points = build.build_rolling(rolling_tables, nodes)
     loads = build.build_loads(table, nodes)
     tags = tuple(rb.tag for rb in rolling)

@@ -10,12 +10,14 @@ bearing references. Errors name the key path of the culprit
 from __future__ import annotations
 
 from dataclasses import dataclass
+from pathlib import Path
 from typing import Any
 
 import numpy as np
 
 from rotorsim.analyses.statics.linearized_rotor import LinearizationPoint
 from rotorsim.elements.disk import DiskElement, PointMass
+from rotorsim.elements.foundation import Foundation, read_matrix
 from rotorsim.elements.linear_bearing import BearingElement
 from rotorsim.elements.rolling.ball.bearing import BallBearing
 from rotorsim.elements.rolling.element import RollingBearing
@@ -31,10 +33,12 @@ from rotorsim.errors import ModelError
 from rotorsim.io import analysis_spec as spec
 from rotorsim.io.api_specs import api_options
 from rotorsim.io.drive_schema import drive_spec
-from rotorsim.io.model_schema import BearingTable, ModelTable, ShaftSegment
+from rotorsim.io.model_schema import BearingTable, CouplingTable, ModelTable, ShaftSegment
 from rotorsim.io.rolling_schema import BallTable, ProfileTable, RollerTable, RollingTable
-from rotorsim.io.schema_types import Located, format_path
+from rotorsim.io.schema_types import Linked, Located, format_path
 from rotorsim.io.spec_registry import SPEC_TYPES
+from rotorsim.model.damping import SystemDamping
+from rotorsim.model.lines import ShaftLine
 from rotorsim.model.material import Material
 from rotorsim.model.rotor import Rotor
 
@@ -51,10 +55,15 @@ def bare(err: ModelError) -> str:
 
 @dataclass(frozen=True)
 class Nodes:
-    """Node layout of a model being built: shaft node positions and housing nodes."""
+    """Node layout of a model being built: line node positions and housing nodes.
+
+    ``lines`` holds ``(name, first node, node count)`` of each ``[lines.NAME]`` table of a
+    machine; it is empty for a one-line model (``[[shaft]]``), whose items name no line.
+    """
 
     z: np.ndarray
     housings: frozenset[int]
+    lines: tuple[tuple[str, int, int], ...] = ()
 
     @property
     def n_shaft(self) -> int:
@@ -65,20 +74,43 @@ class Nodes:
         return self.n_shaft + len(self.housings)
 
     def shaft_node(self, item: Located, where: str) -> int:
-        """Node of an item that must sit on the shaft (by node number or z)."""
+        """Node of an item that must sit on a shaft line (by node number or z)."""
+        first, count = self._line(item.line, where)
         if item.z is not None:
-            return self._at(item.z, f"{where}.z")
+            return self._at(item.z, f"{where}.z", first, count)
         assert item.node is not None
-        if item.node >= self.n_shaft:
-            raise ModelError(f"node {item.node} is not a shaft node (0..{self.n_shaft - 1})",
+        if item.node >= count:
+            what = f"a node of line {item.line!r}" if item.line else "a shaft node"
+            raise ModelError(f"node {item.node} is not {what} (0..{count - 1})",
                              f"{where}.node")
-        return item.node
+        return first + item.node
 
     def any_node(self, item: Located, where: str) -> int:
-        """Node of an item that may also sit on a housing node."""
-        if item.z is None and item.node is not None:
+        """Node of an item that may also sit on a housing node (by its global number)."""
+        if item.z is None and item.node is not None and item.line is None:
             return self.check(item.node, f"{where}.node")
         return self.shaft_node(item, where)
+
+    def link(self, item: Linked, node: int, where: str) -> int | None:
+        """The node an item's ``n_link`` / ``link_line`` names, or None (ground)."""
+        if item.link_line is None:
+            link = None if item.n_link is None else self.check(item.n_link, f"{where}.n_link")
+        else:
+            first, count = self._line(item.link_line, f"{where}.link_line", key="link_line")
+            if item.n_link is not None:
+                if item.n_link >= count:
+                    raise ModelError(f"node {item.n_link} is not a node of line "
+                                     f"{item.link_line!r} (0..{count - 1})", f"{where}.n_link")
+                link = first + item.n_link
+            else:
+                if item.link_z is None and node >= self.n_shaft:
+                    raise ModelError("give link_z or n_link: the bearing's own node is a "
+                                     "housing node with no axial position", where)
+                z = self.z[node] if item.link_z is None else item.link_z
+                link = self._at(float(z), f"{where}.link_z", first, count)
+        if link == node:
+            raise ModelError(f"must differ from the bearing node ({node})", f"{where}.n_link")
+        return link
 
     def check(self, node: int, where: str) -> int:
         if node < self.n_shaft or node in self.housings:
@@ -86,13 +118,33 @@ class Nodes:
         raise ModelError(f"node {node} is neither a shaft node (0..{self.n_shaft - 1}) nor a "
                          "housing node with a point mass", where)
 
-    def _at(self, z: float, where: str) -> int:
-        gap = np.abs(self.z - z)
+    def _line(self, name: str | None, where: str, key: str = "line") -> tuple[int, int]:
+        """First node and node count of the line ``name`` (the whole shaft: one line)."""
+        if not self.lines:
+            if name is not None:
+                raise ModelError(f"{key} = {name!r} but the model has one shaft line "
+                                 "([[shaft]]); give [lines.NAME] tables for several lines",
+                                 f"{where}.{key}" if key == "line" else where)
+            return 0, self.n_shaft
+        names = [n for n, _, _ in self.lines]
+        if name is None:
+            raise ModelError(f"give {key} = one of {', '.join(names)} (the model has "
+                             "several lines)", where)
+        if name not in names:
+            raise ModelError(f"no line named {name!r} (lines: {', '.join(names)})",
+                             f"{where}.{key}" if key == "line" else where)
+        _, first, count = self.lines[names.index(name)]
+        return first, count
+
+    def _at(self, z: float, where: str, first: int = 0, count: int | None = None) -> int:
+        count = self.n_shaft if count is None else count
+        z_line = self.z[first:first + count]
+        gap = np.abs(z_line - z)
         node = int(np.argmin(gap))
         if gap[node] <= Z_TOLERANCE:
-            return node
+            return first + node
         near = np.argsort(gap)[:2]
-        listed = ", ".join(f"{i} at {self.z[i]:.6g} m" for i in sorted(near))
+        listed = ", ".join(f"{first + i} at {z_line[i]:.6g} m" for i in sorted(near))
         raise ModelError(f"{z:.6g} m is not a node position; nearest nodes: {listed}", where)
 
 
@@ -103,7 +155,8 @@ def check_unique_tags(table: ModelTable, rolling: list[RollingTable]) -> None:
     groups: tuple[tuple[tuple[str, list[Any]], ...], ...] = (
         (("disks", table.disks),),
         (("point_masses", table.point_masses),),
-        (("bearings", table.bearings), ("rolling_bearings", rolling)),
+        (("bearings", table.bearings), ("couplings", table.couplings),
+         ("rolling_bearings", rolling)),
     )
     for group in groups:
         seen: dict[str, str] = {}
@@ -167,26 +220,57 @@ def segment_elements(seg: ShaftSegment, mat: Material, where: str) -> list[Shaft
 
 
 def build_shaft(table: ModelTable, materials: dict[str, Material]) -> list[ShaftElement]:
+    return _segments(table.shaft, materials, "shaft")
+
+
+def _segments(segments: list[ShaftSegment], materials: dict[str, Material], where: str
+              ) -> list[ShaftElement]:
     shaft: list[ShaftElement] = []
-    for i, seg in enumerate(table.shaft):
-        mat = material(materials, seg.material, f"shaft[{i}].material")
-        shaft.extend(segment_elements(seg, mat, f"shaft[{i}]"))
+    for i, seg in enumerate(segments):
+        mat = material(materials, seg.material, f"{where}[{i}].material")
+        shaft.extend(segment_elements(seg, mat, f"{where}[{i}]"))
     return shaft
 
 
-def node_layout(table: ModelTable, shaft: list[ShaftElement]) -> Nodes:
-    """Shaft node positions (as :attr:`Rotor.nodes_pos`) and the housing nodes."""
-    z = np.concatenate([[0.0], np.cumsum([el.L for el in shaft])])
+def build_lines(table: ModelTable, materials: dict[str, Material]) -> list[ShaftLine]:
+    """The shaft lines of the ``[lines.NAME]`` tables, in file order."""
+    out = []
+    for name, line in table.lines.items():
+        elements = _segments(line.shaft, materials, f"lines.{name}.shaft")
+        try:
+            out.append(ShaftLine(name, elements, z0=line.z0, speed_ratio=line.speed_ratio))
+        except ModelError as err:
+            raise ModelError(bare(err), f"lines.{name}") from None
+    return out
+
+
+def node_layout(table: ModelTable, shaft: list[ShaftElement],
+                lines: list[ShaftLine] | None = None) -> Nodes:
+    """Line node positions (as :attr:`Rotor.nodes_pos`) and the housing nodes."""
+    spans: tuple[tuple[str, int, int], ...] = ()
+    if lines:
+        z = np.concatenate([line.positions() for line in lines])
+        counts = [line.n_nodes for line in lines]
+        firsts = np.concatenate([[0], np.cumsum(counts)[:-1]])
+        spans = tuple((line.name, int(f), int(c))
+                      for line, f, c in zip(lines, firsts, counts, strict=True))
+    else:
+        z = np.concatenate([[0.0], np.cumsum([el.L for el in shaft])])
     housing = {pm.node for pm in table.point_masses if pm.node is not None
-               and pm.node >= z.size}
+               and pm.node >= z.size} | {
+        c.node for f in table.foundations for c in f.connections
+        if c.node is not None and c.line is None and c.z is None and c.node >= z.size}
     expected = set(range(z.size, z.size + len(housing)))
     if housing != expected:
         bad = min(housing - expected)
-        j = next(j for j, pm in enumerate(table.point_masses) if pm.node == bad)
+        places = [f"point_masses[{j}].node" for j, pm in enumerate(table.point_masses)
+                  if pm.node == bad] + [
+            f"foundations[{j}].connections[{k}].node" for j, f in enumerate(table.foundations)
+            for k, c in enumerate(f.connections) if c.node == bad]
         raise ModelError(f"housing node {bad}: nodes after the last shaft node "
                          f"({z.size - 1}) must be numbered {z.size}, {z.size + 1}, ... "
-                         "without gaps", f"point_masses[{j}].node")
-    return Nodes(z=z, housings=frozenset(housing))
+                         "without gaps", places[0])
+    return Nodes(z=z, housings=frozenset(housing), lines=spans)
 
 
 def build_elements(table: ModelTable, materials: dict[str, Material], nodes: Nodes
@@ -206,6 +290,7 @@ def build_elements(table: ModelTable, materials: dict[str, Material], nodes: Nod
         except ModelError as err:
             raise ModelError(bare(err), where) from None
     bearings = [_bearing(b, nodes, f"bearings[{i}]") for i, b in enumerate(table.bearings)]
+    bearings += [_coupling(c, nodes, f"couplings[{i}]") for i, c in enumerate(table.couplings)]
     masses = []
     for i, pm in enumerate(table.point_masses):
         where = f"point_masses[{i}]"
@@ -219,9 +304,7 @@ def build_elements(table: ModelTable, materials: dict[str, Material], nodes: Nod
 
 def _bearing(b: BearingTable, nodes: Nodes, where: str) -> BearingElement:
     n = nodes.any_node(b, where)
-    link = None if b.n_link is None else nodes.check(b.n_link, f"{where}.n_link")
-    if link == n:
-        raise ModelError(f"must differ from the bearing node ({n})", f"{where}.n_link")
+    link = nodes.link(b, n, where)
     coefficients: dict[str, Any] = {}
     for key in BearingTable.coefficient_names():
         value = getattr(b, key)
@@ -237,15 +320,67 @@ def _bearing(b: BearingTable, nodes: Nodes, where: str) -> BearingElement:
         raise ModelError(bare(err), where) from None
 
 
-def build_rotor(table: ModelTable, name: str) -> tuple[Rotor, Nodes]:
+def _coupling(c: CouplingTable, nodes: Nodes, where: str) -> BearingElement:
+    n = nodes.any_node(c, where)
+    link = nodes.link(c, n, where)
+    assert link is not None  # the schema requires the second end
+    values = {k: _scalar(getattr(c, k), f"{where}.{k}") for k in (
+        "lateral", "angular", "torsional", "axial", "lateral_damping", "angular_damping",
+        "torsional_damping", "axial_damping")}
+    try:
+        return BearingElement.coupling(n, link, tag=c.tag, **values)
+    except ModelError as err:
+        raise ModelError(bare(err), where) from None
+
+
+def _scalar(value: Any, where: str) -> float:
+    if isinstance(value, tuple):
+        if len(value) != 1:
+            raise ModelError("a coupling's coefficients are constant: give one value", where)
+        value = value[0]
+    return float(value)
+
+
+def build_foundations(table: ModelTable, nodes: Nodes, base: Path) -> list[Foundation]:
+    """The foundations of ``[[foundations]]``, files read relative to ``base``."""
+    out = []
+    for i, f in enumerate(table.foundations):
+        where = f"foundations[{i}]"
+        at = [nodes.any_node(c, f"{where}.connections[{k}]")
+              for k, c in enumerate(f.connections)]
+        dofs = [(n, d) for n in at for d in f.dofs]
+        try:
+            if f.shapes is not None:
+                assert f.frequencies is not None and f.damping_ratios is not None
+                shapes = read_matrix(base / f.shapes, f"{where}.shapes")
+                out.append(Foundation.from_modal(dofs, f.frequencies, f.damping_ratios,
+                                                 shapes, tag=f.tag))
+            else:
+                assert f.mass is not None and f.stiffness is not None
+                out.append(Foundation.from_files(
+                    dofs, base / f.mass, base / f.stiffness,
+                    None if f.damping is None else base / f.damping, tag=f.tag))
+        except ModelError as err:
+            raise ModelError(bare(err), where) from None
+    return out
+
+
+def build_rotor(table: ModelTable, name: str, base: Path | None = None
+                ) -> tuple[Rotor, Nodes]:
     """The rotor of a validated model file and its node layout."""
     materials = build_materials(table)
     shaft = build_shaft(table, materials)
-    nodes = node_layout(table, shaft)
+    lines = build_lines(table, materials)
+    nodes = node_layout(table, shaft, lines)
     disks, bearings, masses = build_elements(table, materials, nodes)
     fixed = [(nodes.any_node(f, f"fixed[{i}]"), dof)
              for i, f in enumerate(table.fixed) for dof in f.dofs]
-    rotor = Rotor(shaft, disks, bearings, masses, fixed=fixed, tag=name)
+    d = table.damping
+    damping = None if d is None else SystemDamping(alpha=d.alpha, beta=d.beta,
+                                                   modal_ratios=tuple(d.modal_ratios))
+    foundations = build_foundations(table, nodes, Path.cwd() if base is None else base)
+    rotor = Rotor(shaft, disks, bearings, masses, fixed=fixed, tag=name, lines=lines,
+                  damping=damping, foundations=foundations)
     return rotor, nodes
 
 
@@ -272,9 +407,7 @@ def build_rolling(tables: list[RollingTable], nodes: Nodes
     for i, t in enumerate(tables):
         where = f"rolling_bearings[{i}]"
         n = nodes.any_node(t, where)
-        link = None if t.n_link is None else nodes.check(t.n_link, f"{where}.n_link")
-        if link == n:
-            raise ModelError(f"must differ from the bearing node ({n})", f"{where}.n_link")
+        link = nodes.link(t, n, where)
         try:
             model = _rolling_model(t)
             element = RollingBearing(
@@ -353,6 +486,11 @@ def build_spec(table: Any, loc: tuple[str | int, ...], nodes: Nodes,
         options["harmonics"] = tuple(options["harmonics"])
     elif table.type in ("api_stability", "api_unbalance"):
         options.update(api_options(table, nodes, where))
+    elif table.type == "critical_speeds" and table.spool is not None:
+        names = [name for name, _, _ in nodes.lines] or ["shaft"]
+        if table.spool not in names:
+            raise ModelError(f"no line named {table.spool!r} (lines: {', '.join(names)})",
+                             f"{where}.spool")
     return cls.from_flat(**common, **options)
 
 

@@ -31,14 +31,15 @@ from rotorsim.io.schema_types import (
     FrequencyGrid,
     Inertia,
     Length,
+    Linked,
     Located,
     Mass,
     Modulus,
     Name,
-    NodeIndex,
     NonNegLength,
     NonNegMass,
     PositiveRatio,
+    PositiveSpeed,
     Rate,
     Ratio,
     Stiffness,
@@ -191,20 +192,21 @@ class DiskTable(Located):
         return self
 
 
-class BearingTable(Located):
-    n_link: NodeIndex | None = None
+class BearingTable(Linked):
     kxx: DirectStiffness = 0.0
     kyy: DirectStiffness = None
     kxy: Stiffness = 0.0
     kyx: Stiffness = 0.0
     kzz: DirectStiffness = 0.0
     krr: AngularStiffness = 0.0
+    ktt: AngularStiffness = 0.0
     cxx: DirectDamping = 0.0
     cyy: DirectDamping = None
     cxy: Damping = 0.0
     cyx: Damping = 0.0
     czz: DirectDamping = 0.0
     crr: AngularDamping = 0.0
+    ctt: AngularDamping = 0.0
     mxx: DirectAddedMass = 0.0
     myy: DirectAddedMass = None
     mxy: AddedMass = 0.0
@@ -225,14 +227,12 @@ class BearingTable(Located):
                 if len(value) != n_freq:
                     raise fail(f"has {len(value)} values but frequency has {n_freq}",
                                f".{key}")
-        if self.n_link is not None and self.n_link == self.node:
-            raise fail(f"must differ from node ({self.node})", ".n_link")
         return self
 
     @staticmethod
     def coefficient_names() -> tuple[str, ...]:
         return tuple(k for k in BearingTable.model_fields if k[0] in "kcm" and len(k) == 3
-                     and k[1:] in ("xx", "yy", "xy", "yx", "zz", "rr"))
+                     and k[1:] in ("xx", "yy", "xy", "yx", "zz", "rr", "tt"))
 
 
 class PointMassTable(Located):
@@ -286,14 +286,93 @@ class LoadsTable(Table):
         return self
 
 
+class CouplingTable(Linked):
+    """A flexible coupling between two shaft ends (:meth:`BearingElement.coupling`)."""
+
+    lateral: DirectStiffness = 0.0
+    angular: AngularStiffness = 0.0
+    torsional: AngularStiffness = 0.0
+    axial: DirectStiffness = 0.0
+    lateral_damping: DirectDamping = 0.0
+    angular_damping: AngularDamping = 0.0
+    torsional_damping: AngularDamping = 0.0
+    axial_damping: DirectDamping = 0.0
+    tag: str | None = None
+
+    @model_validator(mode="after")
+    def _linked(self) -> "CouplingTable":
+        if self.n_link is None and self.link_line is None:
+            raise fail("a coupling joins two shaft ends: give link_line (with link_z or "
+                       "n_link) or n_link", ".link_line")
+        return self
+
+
+class FoundationTable(Table):
+    """``[[foundations]]``: a support structure on connection DOFs
+    (:class:`~rotorsim.elements.foundation.Foundation`), by its matrices in files (``mass``,
+    ``stiffness``, optional ``damping``: ``.npy`` or Matrix Market ``.mtx``, paths relative
+    to the model file) or by its modal data (``frequencies``, ``damping_ratios`` and the
+    mass-normalised ``shapes`` file). Rows follow ``connections`` then ``dofs``: every DOF of
+    the first connection, then of the next."""
+
+    tag: str | None = None
+    connections: Annotated[list[Located], Field(min_length=1)]
+    dofs: Annotated[list[Dof], Field(min_length=1)]
+    mass: str | None = None
+    stiffness: str | None = None
+    damping: str | None = None
+    frequencies: list[PositiveSpeed] | None = None
+    damping_ratios: list[Annotated[float, Field(ge=0.0, lt=1.0)]] | None = None
+    shapes: str | None = None
+
+    @model_validator(mode="after")
+    def _one_form(self) -> "FoundationTable":
+        matrices = self.mass is not None or self.stiffness is not None
+        modal = any(v is not None for v in (self.frequencies, self.damping_ratios,
+                                            self.shapes))
+        if matrices == modal:
+            raise fail("give mass and stiffness files, or frequencies, damping_ratios and "
+                       "shapes (modal data), not both")
+        if matrices and (self.mass is None or self.stiffness is None):
+            raise fail("give both mass and stiffness", ".stiffness" if self.mass else ".mass")
+        if modal and (self.frequencies is None or self.damping_ratios is None
+                      or self.shapes is None):
+            raise fail("modal data need frequencies, damping_ratios and shapes")
+        if modal and self.damping is not None:
+            raise fail("modal data carry their damping in damping_ratios", ".damping")
+        return self
+
+
+class DampingTable(Table):
+    """``[damping]``: Rayleigh and modal damping of the whole system
+    (:class:`~rotorsim.model.damping.SystemDamping`)."""
+
+    alpha: Rate = 0.0
+    beta: Time = 0.0
+    modal_ratios: list[Annotated[float, Field(ge=0.0, lt=1.0)]] = Field(default_factory=list)
+
+
+class LineTable(Table):
+    """One shaft line of a machine: ``[lines.NAME]`` with its ``[[lines.NAME.shaft]]``."""
+
+    speed_ratio: Ratio = 1.0
+    z0: NonNegLength = 0.0
+    shaft: list[ShaftSegment] = Field(default_factory=list)  # none: a single node
+
+
 class ModelTable(Table):
     """The whole model file (analyses are validated separately)."""
 
     model: ModelInfo = ModelInfo()
     materials: list[MaterialTable] = Field(default_factory=list)
     shaft: list[ShaftSegment] = Field(default_factory=list)  # none: a rigid rotor at node 0
+    lines: dict[Annotated[str, Field(min_length=1, pattern=r"^[^:]+$")], LineTable] = Field(
+        default_factory=dict)
     disks: list[DiskTable] = Field(default_factory=list)
     bearings: list[BearingTable] = Field(default_factory=list)
+    couplings: list[CouplingTable] = Field(default_factory=list)
+    damping: DampingTable | None = None
+    foundations: list[FoundationTable] = Field(default_factory=list)
     rolling_bearings: list[Any] = Field(default_factory=list)
     point_masses: list[PointMassTable] = Field(default_factory=list)
     fixed: list[FixedTable] = Field(default_factory=list)
@@ -305,4 +384,8 @@ def validate_model(data: Any) -> ModelTable:
     """Validate a whole parsed model file (a dict) except its analyses."""
     if not isinstance(data, dict):
         raise ModelError(f"expected a table of model sections, got {show(data)}", "top level")
-    return validate_table(ModelTable, data)
+    table = validate_table(ModelTable, data)
+    if table.lines and table.shaft:
+        raise ModelError("give [[shaft]] (one line) or [lines.NAME] tables, not both",
+                         "shaft")
+    return table

@@ -66,7 +66,72 @@ def model_to_dict(model: Model) -> dict[str, Any]:
     out["loads"] = _loads(model.loads)
     if model.analyses:
         out["analyses"] = {name: spec.to_toml() for name, spec in model.analyses.items()}
+    _system_parts(out, rotor)
+    if rotor.multi_line:
+        _on_lines(out, rotor, names)
     return out
+
+
+def _system_parts(out: dict[str, Any], rotor: Rotor) -> None:
+    """``[damping]``; foundations are written only as files, which a dict cannot hold."""
+    if rotor.foundations:
+        raise ModelError("a model with foundations cannot be saved yet: their matrices live "
+                         "in .npy/.mtx files; keep the model file that names them",
+                         "save_model")
+    d = rotor.damping
+    if d is not None and d.active:
+        out["damping"] = {"alpha": float(d.alpha), "beta": float(d.beta),
+                          "modal_ratios": [float(z) for z in d.modal_ratios]}
+
+
+def _on_lines(out: dict[str, Any], rotor: Rotor, names: dict[Material, str]) -> None:
+    """Rewrite a one-line dict as ``[lines.NAME]`` tables whose items name their line and
+    local node (housing nodes keep their global number)."""
+    del out["shaft"]
+    lines: dict[str, Any] = {}
+    for line in rotor.layout.lines:
+        first = rotor.node(line.name, 0)
+        elements = [el for el in rotor.shaft_elements
+                    if first <= int(el.nodes[0]) < first + line.n_nodes]
+        table: dict[str, Any] = {"speed_ratio": float(line.speed_ratio),
+                                 "z0": float(line.z0)}
+        if elements:
+            table["shaft"] = shaft_segments(elements, names)
+        lines[line.name] = table
+    out["lines"] = lines
+
+    def place(entry: dict[str, Any]) -> None:
+        if "node" in entry:
+            entry.update(_line_node(rotor, int(entry.pop("node")), "line", "node"))
+        if "n_link" in entry:
+            entry.update(_line_node(rotor, int(entry.pop("n_link")), "link_line", "n_link"))
+
+    for key in ("disks", "bearings", "rolling_bearings", "point_masses", "fixed"):
+        for entry in out.get(key, []):
+            place(entry)
+    for key in ("unbalance", "point_loads"):
+        for entry in out["loads"].get(key, []):
+            place(entry)
+    for spec in out.get("analyses", {}).values():
+        for key in ("unbalance", "inputs"):
+            for entry in spec.get(key) or []:
+                if isinstance(entry, dict):
+                    place(entry)
+        drive = spec.get("drive")
+        if isinstance(drive, dict):
+            place(drive)
+            for key in ("loads", "friction"):
+                for entry in drive.get(key, []):
+                    place(entry)
+
+
+def _line_node(rotor: Rotor, node: int, line_key: str, node_key: str) -> dict[str, Any]:
+    """``{line_key: name, node_key: local}`` of a line node; the global number off lines."""
+    k = int(rotor.node_line[node])
+    if k < 0:
+        return {node_key: node}
+    return {line_key: rotor.layout.lines[k].name,
+            node_key: node - int(rotor.layout.first_node[k])}
 
 
 def material_names(rotor: Rotor) -> dict[Material, str]:

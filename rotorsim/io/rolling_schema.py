@@ -13,8 +13,7 @@ from rotorsim.io.schema_types import (
     Angle,
     Length,
     LinearizationValue,
-    Located,
-    NodeIndex,
+    Linked,
     NonNegLength,
     PositiveRatio,
     SignedLength,
@@ -61,11 +60,10 @@ class ProfileTable(Table):
         return self
 
 
-class RollingTable(Located):
+class RollingTable(Linked):
     """Keys shared by ball and roller bearings."""
 
     type: str
-    n_link: NodeIndex | None = None
     tag: str | None = None
     pitch_diameter: Length
     Kn: Any = None
@@ -85,8 +83,6 @@ class RollingTable(Located):
         if not 0.0 <= self.contact_angle <= 0.5 * math.pi:
             raise fail(f"must be in [0, 90] deg, got {math.degrees(self.contact_angle):.6g} "
                        "deg", ".contact_angle")
-        if self.n_link is not None and self.n_link == self.node:
-            raise fail(f"must differ from node ({self.node})", ".n_link")
         if self.exponent is not None and self.exponent < 1.0:
             raise fail(f"must be >= 1 (3/2 points, 10/9 lines), got {self.exponent}",
                        ".exponent")

@@ -246,10 +246,12 @@ class Table(BaseModel):
 
 
 class Located(Table):
-    """An item placed at a node number or at an axial position ``z`` on the shaft."""
+    """An item placed at a node number or at an axial position ``z`` on the shaft; in a
+    model of several ``[lines.NAME]``, ``line`` names the line and ``node`` is local to it."""
 
     node: NodeIndex | None = None
     z: NonNegLength | None = None
+    line: Annotated[str, Field(min_length=1)] | None = None
 
     @model_validator(mode="after")
     def _one_position(self) -> "Located":
@@ -261,6 +263,27 @@ class Located(Table):
 
 
 # ---------------------------------------------------------------- errors
+class Linked(Located):
+    """A connection from its node to ground, to a housing node ``n_link`` or, in a model of
+    several lines, to the line ``link_line`` (at ``link_z``, local node ``n_link``, or by
+    default at the same axial position as its own node)."""
+
+    n_link: NodeIndex | None = None
+    link_line: Annotated[str, Field(min_length=1)] | None = None
+    link_z: NonNegLength | None = None
+
+    @model_validator(mode="after")
+    def _link(self) -> "Linked":
+        if self.link_z is not None and self.link_line is None:
+            raise fail("link_z needs link_line (the line it is measured on)", ".link_z")
+        if self.link_z is not None and self.n_link is not None:
+            raise fail("give n_link or link_z, not both", ".link_z")
+        if self.link_line is None and self.n_link is not None and self.line is None \
+                and self.n_link == self.node:
+            raise fail(f"must differ from node ({self.node})", ".n_link")
+        return self
+
+
 def validate_table(cls: type[Table], data: Any, prefix: tuple[str | int, ...] = ()) -> Any:
     """Validate ``data`` against ``cls``; raise one :class:`ModelError` naming the key path."""
     try:

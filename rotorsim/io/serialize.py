@@ -119,7 +119,7 @@ def write_result(group: h5py.Group, result: object) -> None:
     _write_kept_labels(group, result, kinds)
 
 
-def dof_labels(indices: Any) -> np.ndarray:
+def dof_labels(indices: Any, node_names: tuple[str, ...] = ()) -> np.ndarray:
     """``"node <n> <dof>"`` of each global DOF index (``6 * node + k``), for readers of the
     files that do not use rotorsim.
 
@@ -129,7 +129,7 @@ def dof_labels(indices: Any) -> np.ndarray:
     ['node 0 ux', 'node 8 uy']
     """
     idx = np.asarray(indices, dtype=np.int64).reshape(-1)
-    return np.array([dof_label(i) for i in idx], dtype=object)
+    return np.array([dof_label(i, node_names=node_names) for i in idx], dtype=object)
 
 
 def _write_kept_labels(group: h5py.Group, result: object, kinds: dict[str, str]) -> None:
@@ -140,7 +140,9 @@ def _write_kept_labels(group: h5py.Group, result: object, kinds: dict[str, str])
         return
     dofs = np.asarray(result.dofs)  # type: ignore[attr-defined]
     if dofs.ndim == 1 and dofs.dtype.kind in "iu":
-        _write_strings(group, DOF_LABELS, dof_labels(dofs))
+        names = next((v.node_names for v in vars(result).values() if isinstance(v, DofMap)),
+                     ())
+        _write_strings(group, DOF_LABELS, dof_labels(dofs, names))
 
 
 def _write_field(group: h5py.Group, name: str, value: Any, units: str | None,
@@ -152,7 +154,9 @@ def _write_field(group: h5py.Group, name: str, value: Any, units: str | None,
         sub.attrs["type"] = "DofMap"
         sub.attrs["n_nodes"] = int(value.n_nodes)
         sub.create_dataset("fixed", data=np.asarray(value.fixed, dtype=np.int64))
-        _write_strings(sub, DOF_LABELS, dof_labels(np.arange(value.ndof)))
+        _write_strings(sub, DOF_LABELS, dof_labels(np.arange(value.ndof), value.node_names))
+        if value.node_names:
+            _write_strings(sub, "node_names", np.array(value.node_names, dtype=object))
         return "dofmap"
     if dataclasses.is_dataclass(value) and not isinstance(value, type):
         write_result(group.create_group(name), value)
@@ -296,7 +300,10 @@ def _read_field(group: h5py.Group, name: str, kind: str) -> Any:
         return None
     if kind == "dofmap":
         sub = group[name]
-        return DofMap(int(sub.attrs["n_nodes"]), np.asarray(sub["fixed"][()], dtype=np.int64))
+        names = tuple(str(n) for n in sub["node_names"].asstr()[()]) \
+            if "node_names" in sub else ()
+        return DofMap(int(sub.attrs["n_nodes"]), np.asarray(sub["fixed"][()], dtype=np.int64),
+                      node_names=names)
     if kind == "group":
         return _read_result(group[name])
     if kind == "group_tuple":

@@ -172,15 +172,31 @@ def _geometry(result: object, rotor: Rotor | None) -> _Geometry:
     n_shaft = _shaft_nodes(result, rotor, n_nodes)
     points = np.zeros((n_nodes, 3))
     points[:, 2] = z
-    starts = np.arange(n_shaft - 1, dtype=np.int64)
+    starts = _element_starts(dof_map.node_names, n_shaft)
     cells = [("line", np.column_stack([starts, starts + 1]))] if starts.size else []
     first_vertex = n_shaft if starts.size else 0  # a rigid rotor's node 0 is a vertex
     if n_nodes > first_vertex:
         cells.append(("vertex", np.arange(first_vertex, n_nodes, dtype=np.int64)[:, None]))
     data: dict[str, NDArray[Any]] = {"node": np.arange(n_nodes, dtype=np.int64)}
+    if dof_map.node_names:  # a machine: the line of every node (-1 off the lines)
+        names = [n.split(":")[0] if n else "" for n in dof_map.node_names]
+        order = list(dict.fromkeys(n for n in names if n))
+        data["line"] = np.array([order.index(n) if n else -1 for n in names], dtype=np.int64)
     if rotor is not None:
         data["radius"] = _outer_radius(rotor)
     return _Geometry(points, cells, data)
+
+
+def _element_starts(node_names: tuple[str, ...], n_shaft: int) -> NDArray[np.int64]:
+    """First node of every shaft element: consecutive nodes of one line (every consecutive
+    pair on a one-line rotor; on a machine, pairs whose ``"LINE:local"`` names share the
+    line)."""
+    starts = np.arange(n_shaft - 1, dtype=np.int64)
+    if not node_names:
+        return starts
+    line = [n.split(":")[0] for n in node_names]
+    return np.array([i for i in starts if line[i] and line[i] == line[i + 1]],
+                    dtype=np.int64)
 
 
 def _shaft_nodes(result: Any, rotor: Rotor | None, n_nodes: int) -> int:
@@ -197,11 +213,11 @@ def _shaft_nodes(result: Any, rotor: Rotor | None, n_nodes: int) -> int:
 
 def _outer_radius(rotor: Rotor) -> FloatArray:
     """Largest outer radius of the shaft elements meeting at each node; 0 off the shaft."""
-    od = np.array([(el.odl, el.odr) for el in rotor.shaft_elements], dtype=float).reshape(-1, 2)
     radius = np.zeros(rotor.n_nodes)
-    n_el = od.shape[0]
-    radius[:n_el] = od[:, 0] / 2.0
-    radius[1 : n_el + 1] = np.maximum(radius[1 : n_el + 1], od[:, 1] / 2.0)
+    for el in rotor.shaft_elements:  # element n joins nodes n and n + 1 of its line
+        n = int(el.nodes[0])
+        radius[n] = max(radius[n], float(el.odl) / 2.0)
+        radius[n + 1] = max(radius[n + 1], float(el.odr or el.odl) / 2.0)
     return radius
 
 

@@ -1,1 +1,2 @@
-"""Materials and the rotor model."""
+"""Materials, shaft lines (``lines``: machines of several shafts), system damping
+(``damping``) and the rotor model (``rotor``)."""

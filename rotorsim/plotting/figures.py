@@ -64,10 +64,15 @@ def campbell_figure(result: Any, ax: Any = None, *, units: str = "rpm",
                 grid = np.broadcast_to(speeds[:, None], wd.shape)
                 ax.scatter(grid[mask], wd[mask], s=14, zorder=2, **style)
     top = np.nanmax(wd) * 1.05
-    for k in harmonics:
-        ax.plot(speeds, k * speeds, "k--", lw=1, label=f"{k:g}X")
+    ratios = result.summary.get("line_speed_ratios") or {None: 1.0}
+    spools = [(name, r) for name, r in ratios.items() if r != 0]
+    dashes = ("--", "-.", ":", (0, (5, 1, 1, 1)))
+    for k, (j, (spool, r)) in ((k, sp) for k in harmonics for sp in enumerate(spools)):
+        dash = dashes[j % len(dashes)]  # one dash pattern per spool
+        label = f"{k:g}X" if spool is None else f"{k:g}X {spool}"
+        ax.plot(speeds, k * abs(r) * speeds, color="k", ls=dash, lw=1, label=label)
         if annotate:
-            crit = result.critical_speeds(harmonic=k)
+            crit = result.critical_speeds(harmonic=k, spool=spool)
             span = float(speeds.max() - speeds.min()) or 1.0
             groups: list[list[float]] = []  # crossings closer than 3 % of the axis share a label
             for s in np.sort(crit.speed * f):
@@ -77,7 +82,7 @@ def campbell_figure(result: Any, ax: Any = None, *, units: str = "rpm",
                     groups.append([s])
             ax.plot(crit.speed * f, crit.frequency * f, "o", mfc="none", mec="k", ms=9)
             for g in groups:
-                ax.annotate("/".join(f"{s:.0f}" for s in g), (g[0], k * g[0]),
+                ax.annotate("/".join(f"{s:.0f}" for s in g), (g[0], k * abs(r) * g[0]),
                             textcoords="offset points", xytext=(4, -12), fontsize=8)
     ax.set_ylim(0, top)
     ax.set_xlim(speeds.min(), speeds.max())

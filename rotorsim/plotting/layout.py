@@ -58,10 +58,17 @@ def rotor_layout_figure(rotor: Any, ax: Any = None, *, node_labels: bool = True)
                     ha="center", fontsize=7)
     for pm in rotor.point_mass_elements:
         ax.plot(z[pm.n], -radius * 1.6 - size * 1.5, "ks", ms=6)
-    if node_labels:
+    multi = bool(getattr(rotor, "multi_line", False))
+    if node_labels and not multi:
         for n in range(rotor.n_shaft_nodes):
             ax.annotate(str(n), (z[n], radius * 1.1 + size * 1.2), ha="center", fontsize=6,
                         color="0.3")
+    if multi:  # name each line at its left end, beside its outer radius
+        local_r = _node_radius(rotor) * 1e3
+        for line, first in zip(rotor.layout.lines, rotor.layout.first_node, strict=True):
+            ax.annotate(f"{line.name} ({line.speed_ratio:g}X)", (z[first], local_r[first]),
+                        textcoords="offset points", xytext=(2, 2), fontsize=7,
+                        color="darkred")
     ax.axhline(0.0, color="k", lw=0.5, ls="-.")
     span = z[: rotor.n_shaft_nodes]
     extent = radius * 1.6 + size * 2.5
@@ -71,7 +78,8 @@ def rotor_layout_figure(rotor: Any, ax: Any = None, *, node_labels: bool = True)
     ax.set_aspect("equal", adjustable="box")
     ax.set_xlabel("z [mm]")
     ax.set_ylabel("radius [mm]")
-    ax.set_title(f"rotor '{rotor.tag}': {len(rotor.shaft_elements)} elements, "
+    lines = f"{len(rotor.layout.lines)} lines, " if multi else ""
+    ax.set_title(f"rotor '{rotor.tag}': {lines}{len(rotor.shaft_elements)} elements, "
                  f"{len(rotor.disk_elements)} disks, {len(rotor.bearing_elements)} bearings")
     return fig
 

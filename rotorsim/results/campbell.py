@@ -9,6 +9,7 @@ import numpy as np
 from numpy.polynomial import polynomial as poly
 from numpy.typing import NDArray
 
+from rotorsim.errors import ModelError
 from rotorsim.results.critical_speeds import (
     CriticalSpeeds,
     check_harmonic,
@@ -84,7 +85,8 @@ class CampbellResult:
         """Number of tracked modes (columns of ``wd``)."""
         return int(self.wd.shape[1])
 
-    def critical_speeds(self, harmonic: float = 1, whirl: str | None = None) -> CriticalSpeeds:
+    def critical_speeds(self, harmonic: float = 1, whirl: str | None = None,
+                        spool: str | None = None) -> CriticalSpeeds:
         """Crossings of every track with the excitation line ``w = harmonic * W``.
 
         A crossing is a sign change of ``wd - harmonic * W`` between two consecutive
@@ -99,6 +101,10 @@ class CampbellResult:
             Excitation order ``k`` > 0 (1 for unbalance, 2 for misalignment, ...).
         whirl : {"forward", "backward"}, optional
             Keep only crossings of tracks whirling this way at the crossing.
+        spool : str, optional
+            On a machine of several lines: the exciting line. Its speed ratio ``r`` makes
+            the line ``w = harmonic |r| W``; ``options["excites"]`` names the whirl its
+            unbalance drives (forward for ``r > 0``, backward for ``r < 0``).
 
         Returns
         -------
@@ -106,6 +112,15 @@ class CampbellResult:
             Sorted by speed; ``mode`` is the track (column) index.
         """
         k = check_harmonic(harmonic, "CampbellResult.critical_speeds")
+        ratios = self.summary.get("line_speed_ratios") or {"shaft": 1.0}
+        if spool is not None:
+            if spool not in ratios:
+                raise ModelError(f"no line named {spool!r} (lines: {', '.join(ratios)})",
+                                 "CampbellResult.critical_speeds")
+            if ratios[spool] == 0:
+                raise ModelError(f"line {spool!r} does not rotate (speed ratio 0)",
+                                 "CampbellResult.critical_speeds")
+            k = k * abs(float(ratios[spool]))
         check_whirl_filter(whirl, "CampbellResult.critical_speeds")
         rows: list[tuple[float, float, int, int]] = []  # speed, log_dec, track, nearest row
         for j in range(self.num_modes):
@@ -118,7 +133,10 @@ class CampbellResult:
             speed=speed, frequency=k * speed, mode=track,
             whirl=self.whirl[near, track].astype(str), kind=self.kind[near, track].astype(str),
             log_dec=np.array([r[1] for r in rows], dtype=float), harmonic=k,
-            options={"source": "campbell", "interpolation": "local cubic (4 points)"},
+            options={"source": "campbell", "interpolation": "local cubic (4 points)",
+                     **({} if spool is None else {
+                         "spool": spool, "excites": "forward" if ratios[spool] > 0
+                         else "backward"})},
             summary=self.summary,
         )
         return result.select(whirl)

@@ -63,6 +63,10 @@ class CriticalSpeeds:
         Mode shapes at the critical speeds (exact analysis only).
     dof_map : DofMap, optional
         DOF numbering of ``mode_shapes``.
+    excitation : array (n,), optional
+        With a spool named (machines of several lines): how strongly that spool's unbalance
+        drives each mode, from 0 (not at all) to 1
+        (:func:`~rotorsim.analyses.linear.critical_speeds.spool_excitation`).
 
     Examples
     --------
@@ -87,6 +91,7 @@ class CriticalSpeeds:
     stats: dict[str, float] = field(default_factory=dict)
     status: Status = Status.OK
     summary: dict[str, Any] = field(default_factory=dict)
+    excitation: FloatArray | None = None
 
     def __len__(self) -> int:
         return int(self.speed.size)
@@ -110,11 +115,13 @@ class CriticalSpeeds:
         """Copy keeping the entries ``index`` (in that order)."""
         index = np.asarray(index, dtype=np.int64)
         shapes = None if self.mode_shapes is None else self.mode_shapes[:, index]
+        excitation = None if self.excitation is None else self.excitation[index]
         return CriticalSpeeds(
             speed=self.speed[index], frequency=self.frequency[index], mode=self.mode[index],
             whirl=self.whirl[index], kind=self.kind[index], log_dec=self.log_dec[index],
             harmonic=self.harmonic, mode_shapes=shapes, dof_map=self.dof_map,
             options=self.options, stats=self.stats, status=self.status, summary=self.summary,
+            excitation=excitation,
         )
 
 

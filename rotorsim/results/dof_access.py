@@ -7,7 +7,7 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import NDArray
 
-from rotorsim.assembly.dof_map import DofMap, dof_label
+from rotorsim.assembly.dof_map import DofMap
 
 
 class KeptDofs:
@@ -21,7 +21,7 @@ class KeptDofs:
     def dof_labels(self) -> list[str]:
         """Label of each kept DOF, ``"node 8 uy"`` as in results files
         (:func:`~rotorsim.assembly.dof_map.dof_label`)."""
-        return [dof_label(i) for i in self.dofs]
+        return [self.dof_map.label(i) for i in self.dofs]
 
     def column(self, node: int, dof: str) -> int:
         """Column of ``(node, dof)`` among the kept DOFs.

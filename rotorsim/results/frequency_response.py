@@ -76,6 +76,15 @@ class FrequencyResponseResult:
     options, stats, status, summary
         Options used, cost counters (``factorizations`` = one per frequency), overall status
         and model summary.
+    input_ratios : array (n_inputs,), optional
+        Unbalance response of a machine whose unbalanced spools turn at different speeds:
+        input ``k`` is spool ``k``'s unbalance, which turns at ``input_ratios[k]`` times the
+        reference speed ``speeds``, so its response has the frequency
+        ``|input_ratios[k]| * speeds``. A counter-rotating spool (negative ratio) drives a
+        force that turns backwards; its column is written at the positive frequency
+        (``q = Re(X e^{i |r| W t})``), so its orbits whirl backwards and its phase is
+        measured against the reversed reference angle. ``frequencies`` then holds the
+        reference speed. ``None``: every input at ``frequencies``.
     """
 
     frequencies: FloatArray
@@ -90,10 +99,32 @@ class FrequencyResponseResult:
     stats: dict[str, float] = field(default_factory=dict)
     status: Status = Status.OK
     summary: dict[str, Any] = field(default_factory=dict)
+    input_ratios: FloatArray | None = None
 
     @property
     def n_inputs(self) -> int:
         return int(self.response.shape[2])
+
+    def input_frequencies(self, input: int = 0) -> FloatArray:
+        """Excitation frequency of input ``input`` at every point [rad/s]."""
+        self._check_input(input)
+        if self.input_ratios is None:
+            return self.frequencies
+        return abs(float(self.input_ratios[input])) * self.speeds
+
+    def peak_amplitude(self, node: int, dof: str | int) -> FloatArray:
+        """Largest value over time of ``|dof|`` when every input acts at once ``(F,)``.
+
+        Inputs at incommensurate frequencies (the unbalances of two spools) add to a
+        quasi-periodic motion whose supremum is the sum of their amplitudes; inputs at one
+        frequency add as complex amplitudes.
+        """
+        X = self.response[:, self.dof_map.index(node, dof), :]
+        if self.input_ratios is None:
+            return np.abs(X.sum(axis=1))
+        ratios = np.abs(np.asarray(self.input_ratios))  # all columns at |r| W
+        return np.sum([np.abs(X[:, ratios == r].sum(axis=1)) for r in np.unique(ratios)],
+                      axis=0)
 
     def complex(self, node: int, dof: str | int, input: int = 0) -> ComplexArray:
         """Complex amplitude ``(F,)`` of ``dof`` at ``node`` for input ``input`` [m or rad]."""

@@ -179,7 +179,8 @@ def _support(bearing: BearingElement, stiffness: float) -> BearingElement:
         full[:, :2] = 0.0
     return BearingElement(n=bearing.n, n_link=bearing.n_link, kxx=stiffness, kyy=stiffness,
                           kzz=float(bearing.coefficient("kzz", 0.0)),
-                          krr=float(bearing.coefficient("krr", 0.0)), stiffness_matrix=full,
+                          krr=float(bearing.coefficient("krr", 0.0)),
+                          ktt=float(bearing.coefficient("ktt", 0.0)), stiffness_matrix=full,
                           tag=bearing.tag)
 
 

@@ -85,6 +85,7 @@ def critical_speeds(
     whirl: Literal["forward", "backward"] | None = None,
     sparse: bool | None = None,
     sigma: float | None = None,
+    spool: str | None = None,
 ) -> CriticalSpeeds:
     """Exact undamped critical speeds of order ``harmonic``, without a speed grid.
 
@@ -131,6 +132,14 @@ def critical_speeds(
         (rigid-body modes) and scaled to the model, unaffected by stiff springs on a few DOFs.
         Rigid-body modes are told apart by a scale-free test per mode (elastic energy at the
         rounding level of ``K x``, :func:`~rotorsim.solvers.eigen.rounding_energy`).
+    spool : str, optional
+        On a machine of several lines: the line whose ``harmonic``-th order excites, e.g.
+        ``"HP"``. Its speed ratio ``r`` makes the excitation ``w = harmonic r W``: the
+        critical speeds are the reference speeds ``W`` where a mode's frequency equals
+        ``harmonic |r| W``. A counter-rotating spool (``r < 0``) excites in the backward
+        sense, so its mode shapes are given at the positive frequency (conjugated) and
+        its unbalance excites backward-whirling modes. ``excitation`` then tells, per
+        mode, how strongly that spool's unbalance drives it.
 
     Returns
     -------
@@ -166,10 +175,41 @@ def critical_speeds(
                          "undamped critical speeds need the Rotor, whose cross-coupling is "
                          "then dropped, or use campbell(...).critical_speeds()",
                          "critical_speeds")
+    ratio = 1.0 if spool is None else system.line_ratio(spool, "critical_speeds.spool")
+    if ratio == 0.0:
+        raise ModelError(f"line {spool!r} does not rotate (speed ratio 0): it excites no "
+                         "critical speed", "critical_speeds.spool")
     result = solve_critical_speeds(system, harmonic, num_modes, whirl, True, sparse, sigma,
-                                   stats)
-    options = {**result.options, "cross_coupling": "dropped" if dropped else "none"}
-    return dataclasses.replace(result, options=options, stats=stats.finish())
+                                   stats, ratio=ratio)
+    options = {**result.options, "cross_coupling": "dropped" if dropped else "none",
+               "spool": spool, "speed_ratio": ratio}
+    excitation = None if spool is None else spool_excitation(
+        system, result.mode_shapes, spool, ratio)
+    return dataclasses.replace(result, options=options, stats=stats.finish(),
+                               excitation=excitation)
+
+
+def spool_excitation(system: RotorSystem, shapes: ComplexArray | None, spool: str,
+                     ratio: float) -> FloatArray:
+    """How strongly an unbalance on ``spool`` drives each mode, 0 to 1.
+
+    A unit unbalance at node ``n`` of a spool turning in the sense ``s = sign(r)`` is the
+    rotating force ``F = (1, -i s)`` on ``(ux, uy)``; its modal force is ``x^H F =
+    conj(x_x) - i s conj(x_y)``. It is largest (``|x_x| + |x_y|``) for a circular orbit
+    whirling with the spool and vanishes for one whirling against it. The measure is the
+    largest modal force over the spool's nodes divided by the largest ``|x_x| + |x_y|``
+    over all nodes: 1 for a forward (with the spool) circular mode whose largest motion is
+    on the spool, 0 for a mode the spool's unbalance cannot excite (whirling against it
+    on isotropic supports, or confined to other lines).
+    """
+    if shapes is None or shapes.shape[1] == 0:
+        return np.zeros(0)
+    nodes = shapes.reshape(-1, 6, shapes.shape[1])
+    ux, uy = nodes[:, 0, :], nodes[:, 1, :]
+    modal = np.abs(ux.conj() - 1j * np.sign(ratio) * uy.conj())
+    on_spool = system.line_node_mask(spool, "critical_speeds.spool")
+    scale = np.max(np.abs(ux) + np.abs(uy), axis=0)
+    return np.asarray(np.max(modal[on_spool], axis=0) / np.where(scale > 0, scale, 1.0))
 
 
 def _cross_coupled(rotor: Rotor) -> bool:
@@ -184,10 +224,13 @@ def _direct_only(bearing: BearingElement) -> BearingElement:
 
 def solve_critical_speeds(system: RotorSystem, harmonic: float, num_modes: int,
                           whirl: str | None, gyroscopic: bool, sparse: bool | None,
-                          sigma: float | None, stats: Stats) -> CriticalSpeeds:
+                          sigma: float | None, stats: Stats, ratio: float = 1.0
+                          ) -> CriticalSpeeds:
     """Undamped critical speeds of an assembled system (the engine of :func:`critical_speeds`
-    and of the critical-speed map); ``gyroscopic=False`` drops ``G``."""
-    k = check_harmonic(harmonic, "critical_speeds")
+    and of the critical-speed map); ``gyroscopic=False`` drops ``G``. ``ratio`` is the
+    signed speed ratio of the exciting spool: the excitation order is ``harmonic ratio``."""
+    harmonic = check_harmonic(harmonic, "critical_speeds")
+    k = harmonic * ratio
     check_whirl_filter(whirl, "critical_speeds")
     check_num_modes(num_modes, "critical_speeds")
     sparse = check_sparse(sparse, "critical_speeds")
@@ -198,14 +241,14 @@ def solve_critical_speeds(system: RotorSystem, harmonic: float, num_modes: int,
         return _lowest(system, speed, k, gyroscopic, num_modes, whirl, sparse, sigma, stats)
 
     if system.variable_bearings and gyroscopic:
-        modes = _fixed_points(system, solve, k, num_modes)
+        modes = _fixed_points(system, solve, abs(k), num_modes)
         method = "fixed point W = Wc(W) on the bearing tables (Brent)"
     else:
         modes, method = solve(0.0), "direct"
-    speeds, n = modes.w / k, modes.w.size
+    speeds, n = modes.w / abs(k), modes.w.size
     return CriticalSpeeds(
-        speed=speeds, frequency=k * speeds, mode=np.arange(n, dtype=np.int64),
-        whirl=modes.whirl, kind=modes.kind, log_dec=np.full(n, np.nan), harmonic=k,
+        speed=speeds, frequency=abs(k) * speeds, mode=np.arange(n, dtype=np.int64),
+        whirl=modes.whirl, kind=modes.kind, log_dec=np.full(n, np.nan), harmonic=harmonic,
         mode_shapes=modes.shapes, dof_map=system.dof_map,
         options={"num_modes": num_modes, "whirl": whirl, "sparse": sparse, "sigma": sigma,
                  "gyroscopic": gyroscopic, "bearings": method},
@@ -265,6 +308,8 @@ def _frozen_modes(system: RotorSystem, speed: float, k: float, gyroscopic: bool,
     keep = np.flatnonzero(real & (mu.real > 0) & elastic & complete)
     keep = keep[np.argsort(mu.real[keep], kind="stable")]
     mu_real, shapes = mu.real[keep], system.dof_map.expand(vecs[:, keep])
+    if k < 0:  # excited at w = k W < 0: the same motion at the positive frequency
+        shapes = shapes.conj()
     shapes = circularize(shapes, clusters(mu_real))
     kind = mode_kind(system.dof_map.expand(mats.M.diagonal()), shapes)
     whirl = np.where(kind == "lateral", whirl_of(shapes)[0], "none").astype("<U9")

@@ -7,6 +7,7 @@ sparse complex LU of the dynamic stiffness, solved for all right-hand sides at o
 
 from __future__ import annotations
 
+import dataclasses
 from collections.abc import Callable, Sequence
 from typing import Any
 
@@ -18,7 +19,7 @@ from rotorsim.analyses.keyword_check import checked_keywords
 from rotorsim.analyses.linear.argument_checks import check_speed
 from rotorsim.analyses.rigid_motions import free_rigid_motions, held_dofs
 from rotorsim.analyses.system_input import as_system
-from rotorsim.assembly.loads import nodal_load, unbalance_amplitudes
+from rotorsim.assembly.loads import nodal_load, spool_groups, unbalance_amplitudes
 from rotorsim.assembly.system import RotorSystem, SystemMatrices
 from rotorsim.elements.base import as_float_array
 from rotorsim.errors import ConvergenceError, ModelError, Status
@@ -86,12 +87,55 @@ def unbalance_response(
     system = as_system(rotor)
     w = _frequencies(speeds, "speeds")
     base = unbalance_amplitudes(system, unbalance)[:, None]
-    labels = tuple(f"unbalance {me:g} kg m at node {n}, {a:g} rad" for n, me, a in unbalance)
-    return _harmonic_sweep(
-        system, w, w, lambda i: base * w[i] ** 2, kind="unbalance",
-        inputs=("; ".join(labels),), progress=progress, on_failure=on_failure,
-        options={"unbalance": [tuple(u) for u in unbalance]},
-    )
+    options = {"unbalance": [tuple(u) for u in unbalance]}
+    spools = spool_groups(system, unbalance)
+    if list(spools) == [1.0]:
+        labels = tuple(f"unbalance {me:g} kg m at node {n}, {a:g} rad"
+                       for n, me, a in unbalance)
+        return _harmonic_sweep(
+            system, w, w, lambda i: base * w[i] ** 2, kind="unbalance",
+            inputs=("; ".join(labels),), progress=progress, on_failure=on_failure,
+            options=options)
+    parts = [_spool_sweep(system, w, ratio, items, progress, on_failure, options)
+             for ratio, items in spools.items()]
+    return combine_spools(parts, np.array(list(spools), dtype=float))
+
+
+def _spool_sweep(system: RotorSystem, speeds: FloatArray, ratio: float,
+                 items: list[tuple[int, float, float]], progress: bool, on_failure: str,
+                 options: dict[str, Any]) -> FrequencyResponseResult:
+    """Response to the unbalance of one spool: it turns at ``ratio W``, so its unbalance
+    force ``me (r W)^2`` rotates at the signed frequency ``w = r W`` (backwards in the
+    fixed frame for a counter-rotating spool), while the gyroscopic terms of every line
+    follow the reference speed ``W``."""
+    base = unbalance_amplitudes(system, items)[:, None]
+    w = ratio * speeds
+    labels = "; ".join(f"unbalance {me:g} kg m at node {n}, {a:g} rad" for n, me, a in items)
+    result = _harmonic_sweep(
+        system, w, speeds, lambda i: base * w[i] ** 2, kind="unbalance",
+        inputs=(f"spool at {ratio:g}X: {labels}",), progress=progress, on_failure=on_failure,
+        options=options)
+    if ratio > 0:
+        return result
+    # the same motion written at the positive frequency |w|: Re(X e^{iwt}) = Re(X* e^{i|w|t})
+    return dataclasses.replace(result, frequencies=np.abs(w), response=result.response.conj())
+
+
+def combine_spools(parts: list[FrequencyResponseResult], ratios: FloatArray
+                   ) -> FrequencyResponseResult:
+    """One result with an input column per spool; ``frequencies`` is the reference speed and
+    column ``k`` responds at ``ratios[k]`` times it (:attr:`input_ratios`)."""
+    first = parts[0]
+    status = np.max(np.stack([p.point_status for p in parts]), axis=0)
+    stats = {key: float(sum(p.stats.get(key, 0.0) for p in parts)) for key in first.stats}
+    return FrequencyResponseResult(
+        frequencies=first.speeds, speeds=first.speeds,
+        response=np.concatenate([p.response for p in parts], axis=2),
+        dof_map=first.dof_map, nodes_pos=first.nodes_pos,
+        inputs=tuple(p.inputs[0] for p in parts), kind="unbalance", point_status=status,
+        options=first.options, stats=stats,
+        status=Status.FAILED if np.any(status != Status.OK) else Status.OK,
+        summary=first.summary, input_ratios=ratios)
 
 
 @checked_keywords

@@ -122,6 +122,8 @@ def vc_orders(elements: Sequence[Any]) -> list[float]:
     for el in elements:
         bearing = getattr(el, "bearing", None)
         z, kappa = getattr(bearing, "n_elements", 0), getattr(bearing, "kappa", 0.0)
+        # with both rings turning (an inter-shaft bearing) the cage's own speed ratio
+        kappa = abs(float(getattr(el, "cage_speed_ratio", kappa)))
         if z and kappa:
             out.append(float(z) * float(kappa))
     return out

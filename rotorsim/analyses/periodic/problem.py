@@ -43,6 +43,7 @@ from rotorsim.assembly.loads import (
     gravity_load,
     nodal_load,
     rigid_translation,
+    spool_groups,
     unbalance_amplitudes,
 )
 from rotorsim.assembly.nonlinear import NonlinearAssembly
@@ -199,6 +200,8 @@ def build_problem(system: RotorSystem, plan: ExcitationPlan, *, speed0: float,
     if base is not None:
         e = rigid_translation(system.dof_map.n_nodes, base.direction)[system.dof_map.free]
         mass_direction = np.asarray(mats.M @ e)[active]
+    if unbalance:
+        check_one_spool(system, unbalance)
     unb = unbalance_amplitudes(system, unbalance)[active] if unbalance else None
     periodic_loads = PeriodicLoads(f_const[active], unb, mass_direction, base, plan, phi0)
     force, nl_dofs, uses_speed = _force(system, active, plan, phi0, fixed_speed)
@@ -213,6 +216,28 @@ def build_problem(system: RotorSystem, plan: ExcitationPlan, *, speed0: float,
         plan=plan, speed0=speed0, fixed_speed=fixed_speed, phi0=phi0, unbalance=unbalance,
         gravity=gravity, direction=direction, loads=loads, base=base, stats=stats, held=held))
     return RotorPeriodicProblem(problem, active, held, static, periodic_loads, recipe)
+
+
+def check_one_spool(system: RotorSystem, unbalance: Any) -> None:
+    """Refuse unbalances that a periodic response at the reference speed cannot carry.
+
+    The unbalances of two spools turning at different speeds force two incommensurate
+    frequencies in general: the response is quasi-periodic (a 2-torus), which needs the
+    two-frequency harmonic balance. An unbalance on one spool at a ratio other than 1 is
+    periodic, at that spool's speed: the reference is then that spool.
+    """
+    spools = spool_groups(system, unbalance)
+    ratios = [float(r) for r in spools]
+    if len(ratios) > 1:
+        raise ModelError(f"unbalances on spools turning at {', '.join(f'{r:g}' for r in ratios)}"
+                         " times the reference speed force incommensurate frequencies: the "
+                         "response is quasi-periodic, which periodic() does not compute; "
+                         "give the unbalance of one spool", "periodic.unbalance")
+    if ratios[0] != 1.0:
+        raise ModelError(f"the unbalance turns at {ratios[0]:g} times the reference speed: "
+                         "make its spool the reference (speed_ratio 1, the others divided "
+                         f"by {ratios[0]:g}) so that the response is periodic at the speed",
+                         "periodic.unbalance")
 
 
 def check_discretization(harmonics: Any, samples: Any, plan: ExcitationPlan,

@@ -33,7 +33,7 @@ from rotorsim.assembly.loads import (
     nodal_load,
     unit_direction,
 )
-from rotorsim.assembly.system import RotorSystem
+from rotorsim.assembly.system import RotorSystem, bearing_matrices
 from rotorsim.elements.base import DOFS_PER_NODE, as_float_array
 from rotorsim.elements.shaft import shaft_matrices
 from rotorsim.errors import ModelError
@@ -213,9 +213,10 @@ def _post_process(model: Rotor, q: FloatArray, f_all: FloatArray, g: float,
     internal = np.zeros(model.ndof)  # K_full q assembled element by element
     sections, z = _shaft_sections(model, q, g, unit, internal)
     b_nodes, b_forces = [], []
+    ratios = model.node_speed_ratio if model.multi_line else None
     for b in model.bearing_elements:
         bdofs = (DOFS_PER_NODE * np.asarray(b.nodes)[:, None] + np.arange(6)).ravel()
-        force = b.matrices(speed).K @ q[bdofs]
+        force = bearing_matrices(b, speed, ratios).K @ q[bdofs]
         np.add.at(internal, bdofs, force)
         b_nodes.append(b.n)
         b_forces.append(-force[:6])

@@ -87,8 +87,9 @@ def unbalance_amplitude(problem: SecondOrderProblem, loads: TransientLoads,
         A = sum((c * np.asarray(M) for c, M in terms if M is not None),
                 np.zeros((n, n), dtype=complex))
     try:
-        x = factorize(A, where="transient: motion estimate").solve(
-            speed * speed * loads.unbalance)
+        ratio = 1.0 if loads.unbalance_ratio is None else loads.unbalance_ratio
+        x = factorize(A, where="transient: motion estimate").solve(  # each spool's r W
+            (ratio * speed) ** 2 * loads.unbalance)
     except ConvergenceError:  # exactly at a resonance of the linearised rotor
         return None
     amp = np.abs(np.asarray(x))

@@ -32,6 +32,7 @@ from rotorsim.assembly.loads import (
     nodal_load,
     rigid_translation,
     unbalance_amplitudes,
+    unbalance_speed_ratios,
 )
 from rotorsim.assembly.system import RotorSystem, SystemMatrices
 from rotorsim.errors import ModelError
@@ -73,6 +74,7 @@ def rotor_problem(system: RotorSystem, profile: BoundSpeed, t0: float, ex: Excit
     loads_fn = TransientLoads(
         n=system.n_free, speed=profile, constant=constant,
         unbalance=unbalance_amplitudes(system, unbalance) if unbalance else None,
+        unbalance_ratio=unbalance_speed_ratios(system, unbalance) if unbalance else None,
         base=base_load, base_acceleration=None if base is None else base.acceleration,
         forces=forces, torsion=TorsionLoad.build(system, profile, mats.M)
         if isinstance(profile, BoundTorqueDrive) else None)

@@ -100,6 +100,10 @@ class TransientLoads:
     unbalance : complex array (n,)
         Unbalance amplitudes per unit ``W^2`` (``me e^{i a}`` on ux, ``-i me e^{i a}`` on
         uy), or None.
+    unbalance_ratio : array (n,), optional
+        On a machine whose unbalanced spools turn at different speeds: the speed ratio
+        ``r`` of the line under every DOF. The unbalance of a spool then turns with the
+        spool's own angle ``r phi`` at its own speed ``r W`` and acceleration ``r W'``.
     base : array (n,) or None
         ``-M e`` for the base acceleration [kg].
     torsion : callable or None
@@ -116,6 +120,7 @@ class TransientLoads:
     base_acceleration: Callable[[float], float] | None = None
     forces: Callable[[float], ArrayLike] | None = None
     torsion: Callable[[float], FloatArray] | None = None
+    unbalance_ratio: FloatArray | None = None
 
     def __call__(self, t: float) -> FloatArray:
         f = self.constant.copy()
@@ -123,7 +128,11 @@ class TransientLoads:
             f += self.torsion(t)
         if self.unbalance is not None:
             w, dw = self.speed.speed(t), self.speed.acceleration(t)
-            rot = np.exp(1j * self.speed.angle(t)) * (w * w - 1j * dw)
+            r = self.unbalance_ratio
+            if r is None:
+                rot = np.exp(1j * self.speed.angle(t)) * (w * w - 1j * dw)
+            else:  # each spool at its own angle r phi, speed r W, acceleration r W'
+                rot = np.exp(1j * r * self.speed.angle(t)) * (r * r * w * w - 1j * r * dw)
             f += (self.unbalance * rot).real
         if self.base is not None and self.base_acceleration is not None:
             a = float(self.base_acceleration(t))

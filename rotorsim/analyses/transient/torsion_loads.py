@@ -42,12 +42,23 @@ def shaft_node_count(system: RotorSystem) -> int:
 
 def spin_field(system: RotorSystem) -> tuple[FloatArray, bool]:
     """Unit rotation about the spin axis on the free DOFs (``rz = 1`` at every shaft
-    node) and whether every shaft ``rz`` is free."""
+    node) and whether every shaft ``rz`` is free.
+
+    On a machine of several lines each line turns by its speed ratio per unit reference
+    rotation (``rz = r_k``; casings at 0), so ``e^T M e = sum_k r_k^2 I_k`` is the inertia
+    the drive sees through the prescribed ratios.
+    """
     dm = system.dof_map
-    full = DOFS_PER_NODE * np.arange(shaft_node_count(system)) + RZ
-    free = dm.full_to_free[full]
+    ratios = system.node_speed_ratio
+    if ratios is None:
+        nodes = np.arange(shaft_node_count(system))
+        values = np.ones(nodes.size)
+    else:
+        nodes = np.flatnonzero(ratios != 0.0)
+        values = ratios[nodes]
+    free = dm.full_to_free[DOFS_PER_NODE * nodes + RZ]
     e = np.zeros(system.n_free)
-    e[free[free >= 0]] = 1.0
+    e[free[free >= 0]] = values[free >= 0]
     return e, bool(np.all(free >= 0))
 
 
@@ -60,7 +71,8 @@ def model_polar_inertia(system: RotorSystem) -> float:
 def element_polar_inertia(rotor: Rotor) -> float:
     """Polar inertia of the shaft elements (``rho pi/32 int (d_o^4 - d_i^4) dz``, linear
     taper, exact 3-point Gauss rule) and of the disks (``Ip``) [kg m^2]."""
-    total = float(sum(d.Ip for d in rotor.disk_elements))
+    ratio = rotor.node_speed_ratio  # a machine: each part weighted by its ratio squared
+    total = float(sum(d.Ip * ratio[d.n] ** 2 for d in rotor.disk_elements))
     if rotor.shaft_elements:
         geo = np.array([(e.idl, e.odl, e.idr, e.odr, e.L, e.material.rho)
                         for e in rotor.shaft_elements], dtype=float)
@@ -68,7 +80,8 @@ def element_polar_inertia(rotor: Rotor) -> float:
         do = geo[:, 1, None] + (geo[:, 3, None] - geo[:, 1, None]) * x
         di = geo[:, 0, None] + (geo[:, 2, None] - geo[:, 0, None]) * x
         polar = np.pi / 32.0 * (do**4 - di**4) @ (0.5 * _GL_W)
-        total += float(np.sum(geo[:, 5] * geo[:, 4] * polar))
+        weight = ratio[[int(e.nodes[0]) for e in rotor.shaft_elements]] ** 2
+        total += float(np.sum(geo[:, 5] * geo[:, 4] * polar * weight))
     return total
 
 

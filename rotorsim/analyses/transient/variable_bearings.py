@@ -33,7 +33,7 @@ import numpy as np
 import scipy.sparse as sp
 from numpy.typing import NDArray
 
-from rotorsim.assembly.system import RotorSystem
+from rotorsim.assembly.system import RotorSystem, bearing_matrices, relative_speed_ratio
 from rotorsim.elements.base import DOFS_PER_NODE, FloatArray
 from rotorsim.elements.linear_bearing import BearingElement
 from rotorsim.errors import ModelError
@@ -82,8 +82,12 @@ class SpeedDependentBearings:
         full = [_element_dofs(b) for b in bearings]
         free = [system.dof_map.full_to_free[d] for d in full]
         dofs = np.unique(np.concatenate([f[f >= 0] for f in free])).astype(np.int64)
-        grid = np.unique(np.concatenate([np.asarray(b.frequency, dtype=float)
-                                         for b in bearings]))
+        ratios = system.node_speed_ratio
+        # each table's speeds as reference speeds (a spool at ratio r reaches them at W/|r|)
+        rel = [abs(relative_speed_ratio(b, ratios)) for b in bearings]
+        grid = np.unique(np.concatenate([np.asarray(b.frequency, dtype=float) / r if r > 0
+                                         else np.zeros(1) for b, r in zip(bearings, rel,
+                                                                          strict=True)]))
         K = np.zeros((grid.size, dofs.size, dofs.size))
         C = np.zeros_like(K)
         for b, f in zip(bearings, free, strict=True):
@@ -93,7 +97,7 @@ class SpeedDependentBearings:
             pos = np.searchsorted(dofs, f[keep])
             cells = np.ix_(pos, pos)
             for i, s in enumerate(grid):
-                mats = b.matrices(float(s))
+                mats = bearing_matrices(b, float(s), ratios)
                 K[i][cells] += mats.K[np.ix_(keep, keep)]
                 C[i][cells] += mats.C[np.ix_(keep, keep)]
         return cls(system.n_free, dofs, grid, K, C)

@@ -96,6 +96,15 @@ class RollingBearing:
     ehl_stiffness : bool
         ``"ehl"`` only: :meth:`linearize` returns the EHL-softened stiffness (Hertz and
         film in series, seed 002 eqs 3.1, 3.15, 3.19) instead of the Hertz tangent.
+    inner_speed_ratio, outer_speed_ratio : float
+        Speed of the inner and outer ring per unit shaft speed ``W`` [-]: ``(1, 0)`` for a
+        bearing whose outer ring stands in a housing. Between two turning shafts (an
+        inter-shaft bearing) both rings turn; a :class:`~rotorsim.model.rotor.Rotor` of
+        several lines sets them from the lines of ``n`` and ``n_link``. The cage then
+        turns at ``omega_c = ((1 - g) W_i + (1 + g) W_o) / 2`` with ``g = D cos(a) / d_m``
+        (``= kappa W_i + (1 - kappa) W_o`` with the model's cage ratio ``kappa =
+        (1 - g) / 2``), which places the rolling elements, sets their centrifugal force
+        and the varying-compliance frequency ``N omega_c``.
 
     Examples
     --------
@@ -117,6 +126,8 @@ class RollingBearing:
     damping_factor: float = 0.0
     lubricant: Lubricant | None = None
     ehl_stiffness: bool = False
+    inner_speed_ratio: float = 1.0
+    outer_speed_ratio: float = 0.0
     _ehl: LubricatedContacts | None = field(init=False, repr=False, default=None)
 
     def __post_init__(self) -> None:
@@ -149,6 +160,35 @@ class RollingBearing:
             raise ModelError(f"damping_factor is given but contact_damping is "
                              f"{self.contact_damping!r} (use 'proportional')", where)
         self._check_ehl(where)
+        for key in ("inner_speed_ratio", "outer_speed_ratio"):
+            value = getattr(self, key)
+            if isinstance(value, bool) or not isinstance(value, int | float | np.floating) \
+                    or not math.isfinite(value):
+                raise ModelError(f"{key} must be a finite number, got {value!r}", where)
+        if self.cage_speed_factor != 1.0 and self.contact_damping == "ehl":
+            raise ModelError("contact_damping='ehl' takes its entrainment speed from a "
+                             "standing outer ring; with both rings turning use "
+                             "'proportional' or 'none'", where)
+
+    @cached_property
+    def cage_speed_factor(self) -> float:
+        """Cage speed over that of the same bearing with a standing outer ring [-].
+
+        ``omega_c = kappa W_i + (1 - kappa) W_o`` (class docstring) divided by
+        ``kappa W``: ``r_i + r_o (1 - kappa) / kappa``. The model then sees the shaft angle
+        and speed multiplied by it, which turns its cage (``kappa phi``) and its centrifugal
+        loads (``kappa W``) at the true cage speed. 1 for rings at ``(1, 0)``.
+        """
+        r_i, r_o = float(self.inner_speed_ratio), float(self.outer_speed_ratio)
+        if (r_i, r_o) == (1.0, 0.0):
+            return 1.0
+        kappa = float(getattr(self.bearing, "kappa", 0.0))
+        return r_i if kappa == 0.0 else r_i + r_o * (1.0 - kappa) / kappa
+
+    @property
+    def cage_speed_ratio(self) -> float:
+        """Cage speed per unit shaft speed ``omega_c / W`` [-]."""
+        return float(getattr(self.bearing, "kappa", 0.0)) * self.cage_speed_factor
 
     def _check_ehl(self, where: str) -> None:
         ehl = self.contact_damping == "ehl"
@@ -233,6 +273,8 @@ class RollingBearing:
                              self.label)
         phis = _per_sample(phi, n_samples)
         speeds = _per_sample(speed, n_samples)
+        if self.cage_speed_factor != 1.0:  # both rings turn: the cage's own angle and speed
+            phis, speeds = phis * self.cage_speed_factor, speeds * self.cage_speed_factor
         psi = self.bearing.element_angles(phis)
         if self._ehl is not None:
             st = self.bearing.state(delta, psi)
@@ -343,7 +385,8 @@ class RollingBearing:
                                       or speed == 0.0):
             raise ModelError(f"EHL damping needs the shaft speed to linearise: speed=... "
                              f"finite and non-zero [rad/s], got {speed!r}", self.label)
-        return self.bearing.at_speed(float(speed or 0.0)) if self.centrifugal \
+        factor = self.cage_speed_factor
+        return self.bearing.at_speed(float(speed or 0.0) * factor) if self.centrifugal \
             else self.bearing
 
     def linearize(self, *, displacement: ArrayLike, phi: float = 0.0,
@@ -380,6 +423,7 @@ class RollingBearing:
             damping matrix (``"ehl"``) or ``None``; same nodes and tag.
         """
         model = self.model_at_speed(speed)
+        phi = float(phi) * self.cage_speed_factor
         d = np.asarray(displacement, dtype=float).reshape(1, 5)
         if tangent is None:
             k5 = model.state(d, self.bearing.element_angles(float(phi))).stiffness[0]
