@@ -125,7 +125,7 @@ def api_level1(
     ------
     ModelError
         No stages, a non-positive machine datum, ``mcs`` not > 0, an unknown ``machine`` or
-        ``apply_at``, a rotor without bearings.
+        ``apply_at``, a rotor without bearings or of several shaft lines.
 
     Examples
     --------
@@ -139,8 +139,7 @@ def api_level1(
     1.0
     """
     where = "api_level1"
-    if not isinstance(rotor, Rotor):
-        raise ModelError(f"expected a Rotor, got {type(rotor).__name__}", where)
+    check_one_line(rotor, where)
     if isinstance(mcs, bool) or not isinstance(mcs, int | float | np.number) \
             or not math.isfinite(mcs) or mcs <= 0:
         raise ModelError(f"mcs must be a finite speed > 0 [rad/s], got {mcs!r}", where)
@@ -187,6 +186,17 @@ def api_level1(
         options={"apply_at": apply_at, "q_max": top, "num": num, "num_modes": num_modes,
                  "rtol": rtol, "stage_tags": [s.tag or "" for s in stages]},
         stats=stats.finish(), summary=rotor.summary(), notes=notes)
+
+
+def check_one_line(rotor: Rotor, where: str) -> None:
+    """Refuse anything but a :class:`Rotor` of one shaft line: API 617's mid-span, anti-nodes
+    and critical speed ratio are those of one rotor on its bearings."""
+    if not isinstance(rotor, Rotor):
+        raise ModelError(f"expected a Rotor, got {type(rotor).__name__}", where)
+    lines = rotor.layout.lines
+    if len(lines) > 1:
+        raise ModelError(f"the API checks take a rotor of one shaft line; this machine has "
+                         f"{len(lines)} ({', '.join(line.name for line in lines)})", where)
 
 
 def _stations(rotor: Rotor, stages: Sequence[ApiStage], stage_q: NDArray[np.float64],

@@ -30,6 +30,7 @@ from rotorsim.analyses.standards.api_formulas import (
     residual_unbalance,
     vibration_limit,
 )
+from rotorsim.analyses.standards.api_stability import check_one_line
 from rotorsim.analyses.standards.half_power import HalfPower, half_power
 from rotorsim.elements.base import as_float_array
 from rotorsim.errors import ModelError
@@ -119,7 +120,7 @@ def api_unbalance(
     ModelError
         Speeds not covering ``min_speed .. mcs`` (the MCS outside the analysed range),
         ``min_speed > mcs``, non-positive speeds, factor or plane mass, a node out of
-        range, or no mode in the range.
+        range, no mode in the range, or a rotor of several shaft lines.
     """
     w, probes_arr = _check(rotor, speeds, min_speed, mcs, factor, plane_mass, probes,
                            clearances)
@@ -174,8 +175,7 @@ def _check(rotor: Rotor, speeds: ArrayLike, min_speed: float, mcs: float, factor
            plane_mass: float | None, probes: Sequence[int] | None,
            clearances: Sequence[Clearance]) -> tuple[FloatArray, NDArray[np.int64]]:
     where = "api_unbalance"
-    if not isinstance(rotor, Rotor):
-        raise ModelError(f"expected a Rotor, got {type(rotor).__name__}", where)
+    check_one_line(rotor, where)
     w = np.atleast_1d(as_float_array(speeds, "speeds", where))
     if w.ndim != 1 or w.size < 3 or not np.all(np.isfinite(w)) or np.any(w < 0) \
             or np.any(np.diff(w) <= 0):

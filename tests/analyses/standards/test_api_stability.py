@@ -126,3 +126,15 @@ def test_bad_stage_data(bad):
     args.update(bad)
     with pytest.raises(rs.ModelError):
         rs.ApiStage(**args)
+
+
+def test_machines_of_several_lines_are_refused():
+    """API 617's mid-span, anti-nodes and CSR are those of one rotor: a two-spool machine
+    is refused by name rather than analysed as if its lines were one shaft."""
+    model = rs.load_model(MODELS / "two_spool.toml")
+    stage = rs.ApiStage(node=2, power=5e4, diameter=0.3, flow_height=0.02)
+    with pytest.raises(rs.ModelError, match="one shaft line"):
+        rs.api_level1(model.rotor, 1000.0, [stage])
+    with pytest.raises(rs.ModelError, match="one shaft line"):
+        rs.api_unbalance(model.rotor, np.linspace(10.0, 1000.0, 20), min_speed=500.0,
+                         mcs=600.0)
