@@ -127,6 +127,12 @@ def api_level1(
         No stages, a non-positive machine datum, ``mcs`` not > 0, an unknown ``machine`` or
         ``apply_at``, a rotor without bearings or of several shaft lines.
 
+    References
+    ----------
+    API Standard 617, 7th ed. (2002), 2.6.5 (Level I); API RP 684, 2nd ed. (2005),
+    SP6.8.5; Wachel, J.C., von Nimitz, W.W. (1981), "Ensuring the reliability of offshore
+    gas compression systems", J. Petroleum Technology 33(11) (the Q_A estimate).
+
     Examples
     --------
     >>> import rotorsim as rs

@@ -121,6 +121,21 @@ def api_unbalance(
         Speeds not covering ``min_speed .. mcs`` (the MCS outside the analysed range),
         ``min_speed > mcs``, non-positive speeds, factor or plane mass, a node out of
         range, no mode in the range, or a rotor of several shaft lines.
+
+    References
+    ----------
+    API Standard 617, 7th ed. (2002), 2.6.2.7-2.6.2.11; API RP 684, 2nd ed. (2005),
+    SP6.8.2 (amplification factor by the half-power method, separation margins).
+
+    Examples
+    --------
+    >>> import numpy as np, rotorsim as rs
+    >>> disk = rs.DiskElement(n=0, m=50.0, Id=0.01, Ip=0.02)
+    >>> rotor = rs.Rotor([], [disk], [rs.BearingElement(n=0, kxx=5e6, cxx=1581.14)])
+    >>> rotor = rotor.with_fixed([(0, d) for d in ("uz", "rx", "ry", "rz")])
+    >>> r = api_unbalance(rotor, np.linspace(30.0, 800.0, 241), min_speed=500.0, mcs=630.0)
+    >>> round(float(r.af[0]), 2), bool(r.margin_ok[0])   # zeta = 0.05: AF ~ 1/(2 zeta)
+    (9.9, True)
     """
     w, probes_arr = _check(rotor, speeds, min_speed, mcs, factor, plane_mass, probes,
                            clearances)
