@@ -12,6 +12,14 @@ from .analyses.periodic.excitation import HarmonicBase
 from .analyses.periodic.parameter import periodic_parameter
 from .analyses.periodic.periodic import periodic
 from .analyses.periodic.switching import switch_branch
+from .analyses.standards.api_formulas import (
+    anticipated_cross_coupling,
+    level1_screening,
+    required_separation_margin,
+    residual_unbalance,
+)
+from .analyses.standards.api_stability import ApiStage, api_level1
+from .analyses.standards.api_unbalance import Clearance, api_unbalance
 from .analyses.statics.bearing_life import bearing_life, duty_cycle_life
 from .analyses.statics.bearing_statics import (
     bearing_equilibrium,
@@ -91,6 +99,8 @@ from .options import (
     SteadyStop,
 )
 from .plotting import plot
+from .report.build import write_report
+from .results.api import ApiLevel1Result, ApiUnbalanceResult
 from .results.bearing import BearingEquilibriumResult, StiffnessVariation
 from .results.bearing_life import BearingLifeResult
 from .results.campbell import CampbellResult
@@ -114,6 +124,9 @@ __all__ = [
     "DOF_NAMES",
     "Adams",
     "Adaptive",
+    "ApiLevel1Result",
+    "ApiStage",
+    "ApiUnbalanceResult",
     "BallBearing",
     "BaseExcitation",
     "BearingElement",
@@ -123,6 +136,7 @@ __all__ = [
     "CampbellResult",
     "CentrifugalBearing",
     "Checkpointing",
+    "Clearance",
     "ConstantSpeed",
     "ConstantTorque",
     "ContinuationOptions",
@@ -189,6 +203,9 @@ __all__ = [
     "TransientResult",
     "Uniform",
     "ViscousTorque",
+    "anticipated_cross_coupling",
+    "api_level1",
+    "api_unbalance",
     "assemble",
     "bearing_equilibrium",
     "bearing_life",
@@ -203,6 +220,7 @@ __all__ = [
     "frequency_response",
     "hb",
     "kn_for_exponent",
+    "level1_screening",
     "linearize_at_load",
     "linearize_rolling_bearings",
     "load",
@@ -213,6 +231,8 @@ __all__ = [
     "periodic_life",
     "periodic_parameter",
     "plot",
+    "required_separation_margin",
+    "residual_unbalance",
     "run_analysis",
     "save",
     "save_model",
@@ -224,4 +244,5 @@ __all__ = [
     "transient_life",
     "unbalance_response",
     "verify_events",
+    "write_report",
 ]

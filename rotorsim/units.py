@@ -54,6 +54,7 @@ DIMENSIONS: dict[str, tuple[str, str]] = {
     "force": ("N", "a force"),
     "moment": ("N m", "a moment"),
     "pressure": ("Pa", "a pressure"),
+    "power": ("W", "a power"),
     "modulus": ("Pa", "a modulus"),
     "density": ("kg/m^3", "a density"),
     "unbalance": ("kg m", "an unbalance (mass times eccentricity)"),
@@ -64,8 +65,8 @@ DIMENSIONS: dict[str, tuple[str, str]] = {
 """Dimensions understood by :func:`to_si`: name -> (SI unit, description)."""
 
 _NAMING_ORDER = ("length", "mass", "time", "speed", "force", "moment", "stiffness",
-                 "damping", "pressure", "density", "unbalance", "inertia", "acceleration",
-                 "dimensionless")
+                 "damping", "pressure", "power", "density", "unbalance", "inertia",
+                 "acceleration", "dimensionless")
 _EXTRA_NAMES = (("m/s", "a velocity"), ("m^2", "an area"), ("m^3", "a volume"),
                 ("kg/s", "a mass flow"), ("N s", "an impulse"))
 

@@ -25,7 +25,7 @@ ROLLING = "rotorsim.elements.rolling"
 NUMERICS = ("rotorsim.solvers", "rotorsim.time_integration", "rotorsim.harmonic_balance",
             "rotorsim.hb")
 FAMILIES = tuple(f"rotorsim.analyses.{f}"
-                 for f in ("linear", "statics", "transient", "periodic", "sweep"))
+                 for f in ("linear", "statics", "transient", "periodic", "sweep", "standards"))
 ROLLING_SHARED = tuple(f"{ROLLING}.{m}"
                        for m in ("geometry", "state", "element_equilibrium", "condensation"))
 NOT_AT_IMPORT = (
@@ -72,6 +72,8 @@ RULES = (
          (FAMILIES[2],), FAMILIES[3:]),
     Rule("analyses-periodic", "periodic imports only statics and linear",
          (FAMILIES[3],), (FAMILIES[2], FAMILIES[4])),
+    Rule("analyses-standards", "standards (the API checks) imports only linear and statics",
+         (FAMILIES[5],), FAMILIES[2:5]),
     Rule("analyses-no-front-ends", "no analysis imports the command line or the figures",
          ("rotorsim.analyses",), ("rotorsim.cli", "rotorsim.plotting", "matplotlib")),
     Rule("analyses-shared", "the shared top-level analyses modules (system_input, "
@@ -311,6 +313,10 @@ PLANTED = {
         "rotorsim.analyses.periodic.branch"),
     "analyses-periodic": (
         "rotorsim.analyses.periodic.branch",
+        "from rotorsim.analyses.transient.start import x\n",
+        "rotorsim.analyses.transient.start"),
+    "analyses-standards": (
+        "rotorsim.analyses.standards.api_stability",
         "from rotorsim.analyses.transient.start import x\n",
         "rotorsim.analyses.transient.start"),
     "analyses-no-front-ends": (

@@ -63,6 +63,13 @@ def _dispatch(args: argparse.Namespace) -> int:
         return 0
     if args.command == "bearing":
         return _bearing(model, args)
+    if args.command == "report":
+        from rotorsim.report.build import write_report
+
+        path = write_report(model, args.out, fast=args.fast, units=args.units,
+                            plots=not args.no_plots)
+        print(f"report: {path}")
+        return 0
     if args.command == "run":
         names = list(args.analyses) or list(model.analyses)
         if not names:
@@ -75,6 +82,14 @@ def _dispatch(args: argparse.Namespace) -> int:
             raise ModelError(f"no analysis {unknown[0]!r}; the model has "
                              f"{', '.join(model.analyses)}", model.name)
         jobs = [(name, None) for name in names]
+    elif args.command == "api":
+        jobs = [(name, None) for name, spec in model.analyses.items()
+                if spec.type in ("api_stability", "api_unbalance")]
+        if not jobs:
+            from rotorsim.errors import ModelError
+
+            raise ModelError("the model file names no API check: add [analyses.<name>] "
+                             "tables of type api_stability or api_unbalance", model.name)
     else:
         jobs = [adhoc_job(model, args)]
     from rotorsim.io.output_folder import prepare_folder

@@ -38,12 +38,30 @@ def _figures(result: Any, folder: Path, name: str, units: str,
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
+    paths = []
+    for file_name, fig in figures_of(result, name, units, options).items():
+        path = folder / file_name
+        fig.savefig(path, dpi=110, bbox_inches="tight")
+        plt.close(fig)
+        paths.append(path)
+    return paths
+
+
+def figures_of(result: Any, name: str, units: str = "rpm",
+               options: dict[str, Any] | None = None) -> dict[str, Any]:
+    """The standard figures of ``result`` as ``{file name: matplotlib Figure}`` (none for a
+    type without a figure): the first :data:`MODE_FIGURES` mode shapes of a modal result,
+    Bode and polar plots of a response, one figure otherwise."""
+    import matplotlib
+
+    matplotlib.use("Agg")
     from rotorsim.plotting import plot
     from rotorsim.plotting.figures import DRAWERS
 
+    options = options or {}
     kind = type(result).__name__
     if kind not in DRAWERS:
-        return []
+        return {}
     figures: dict[str, Any] = {}
     if kind == "ModalResult":
         for j in range(min(MODE_FIGURES, result.num_modes)):
@@ -56,13 +74,7 @@ def _figures(result: Any, folder: Path, name: str, units: str,
         figures[f"{name}_polar.png"] = plot(result, polar=True, **options)
     else:
         figures[f"{name}.png"] = plot(result, units=units, **options)
-    paths = []
-    for file_name, fig in figures.items():
-        path = folder / file_name
-        fig.savefig(path, dpi=110, bbox_inches="tight")
-        plt.close(fig)
-        paths.append(path)
-    return paths
+    return figures
 
 
 def write_layout(rotor: Any, folder: Path) -> Path:

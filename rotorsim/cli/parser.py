@@ -120,6 +120,24 @@ def build_parser() -> argparse.ArgumentParser:
             p.add_argument("--stiffness", nargs=3, metavar=("KMIN", "KMAX", "NUM"),
                            help='support stiffness range, e.g. "0.1 MN/m" "1 GN/m" 40')
 
+    api = sub.add_parser("api", help="the API 617 checks a model file names (analyses of "
+                         "type api_stability and api_unbalance): Level I stability, "
+                         "unbalance response, separation margins, clearance ratios")
+    api.add_argument("model", type=Path)
+    _add_output_options(api)
+
+    report = sub.add_parser("report", help="run every analysis of a model file and write "
+                            "one self-contained HTML report (figures embedded) beside its "
+                            "HDF5 results")
+    report.add_argument("model", type=Path)
+    report.add_argument("--out", type=Path, default=Path("results"),
+                        help="output folder (default: results)")
+    report.add_argument("--units", choices=("rpm", "Hz", "rad/s"), default="rpm",
+                        help="units of speeds in the summaries and figures")
+    report.add_argument("--no-plots", action="store_true",
+                        help="leave the figures out (tables and summaries only)")
+    report.add_argument("--fast", action="store_true", help="coarse grids (smoke runs)")
+
     bearing = sub.add_parser("bearing", help=_BEARING_HELP)
     bearing.add_argument("model", type=Path)
     bearing.add_argument("--tag", help="only the rolling bearing with this tag (or index)")

@@ -354,6 +354,15 @@ def sweep_summary(result: Any, units: str = "rpm") -> str:
 SUMMARIES["SweepResult"] = sweep_summary
 
 
+def _api(result: Any, **options: Any) -> str:
+    from rotorsim.cli.api_summaries import api_summary
+
+    return api_summary(result, **options)
+
+
+SUMMARIES["ApiLevel1Result"] = SUMMARIES["ApiUnbalanceResult"] = _api
+
+
 def summarize(result: Any, **options: Any) -> str:
     """Text summary of any result type."""
     drawer = SUMMARIES.get(type(result).__name__)

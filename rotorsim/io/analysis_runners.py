@@ -20,6 +20,7 @@ import numpy as np
 from rotorsim.elements.base import FloatArray
 from rotorsim.errors import ModelError
 from rotorsim.io.analysis_spec import AnalysisSpec, Grid
+from rotorsim.io.api_specs import ApiStabilitySpec, ApiUnbalanceSpec
 from rotorsim.io.linear_specs import (
     CampbellSpec,
     CriticalSpeedMapSpec,
@@ -196,12 +197,40 @@ def _sweep(rotor: Rotor, model: Model, spec: Any, fast: bool, progress: bool, *,
                  resume=spec.resume, progress=progress)
 
 
+def _api_stability(rotor: Rotor, model: Model, spec: Any, fast: bool, progress: bool) -> Any:
+    from rotorsim.analyses.standards.api_stability import ApiStage, api_level1
+
+    stages = [ApiStage(s.node, s.power, s.diameter, s.flow_height, s.density_ratio, s.tag)
+              for s in spec.stages]
+    return api_level1(rotor, spec.mcs, stages, machine=spec.machine, apply_at=spec.apply_at,
+                      density=spec.average_density, q_max=spec.q_max,
+                      num=min(spec.num, FAST_POINTS) if fast else spec.num,
+                      num_modes=spec.num_modes)
+
+
+API_FAST_POINTS = 60
+"""Speeds of an ``api_unbalance`` analysis with ``fast=True`` (a half-power band needs
+more than :data:`FAST_POINTS`)."""
+
+
+def _api_unbalance(rotor: Rotor, model: Model, spec: Any, fast: bool, progress: bool) -> Any:
+    from rotorsim.analyses.standards.api_unbalance import Clearance, api_unbalance
+
+    speeds = (spec.speeds.shrunk(API_FAST_POINTS) if fast else spec.speeds).array()
+    return api_unbalance(rotor, speeds, min_speed=spec.min_speed, mcs=spec.mcs,
+                         num_modes=spec.num_modes, probes=spec.probes,
+                         clearances=[Clearance(c.node, c.clearance, c.tag or "")
+                                     for c in spec.clearances],
+                         plane_mass=spec.plane_mass, factor=spec.factor)
+
+
 RUNNERS: dict[type[AnalysisSpec], Callable[..., Any]] = {
     ModalSpec: _modal, CampbellSpec: _campbell, CriticalSpeedsSpec: _critical_speeds,
     CriticalSpeedMapSpec: _critical_speed_map, UnbalanceSpec: _unbalance,
     FrequencyResponseSpec: _frequency_response, StaticSpec: _static,
     TransientSpec: _transient, PeriodicSpec: _periodic,
     PeriodicParameterSpec: _periodic_parameter, SweepSpec: _sweep,
+    ApiStabilitySpec: _api_stability, ApiUnbalanceSpec: _api_unbalance,
 }
 """The runner of each analysis spec type."""
 

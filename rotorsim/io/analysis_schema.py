@@ -23,14 +23,18 @@ from rotorsim.io.long_specs import (
 )
 from rotorsim.io.model_schema import UnbalanceTable
 from rotorsim.io.schema_types import (
+    Density,
     Dof,
     FrequencyGrid,
+    Length,
     Located,
+    Mass,
     Name,
     NodeIndex,
     PositiveRatio,
     PositiveSpeed,
     PositiveTime,
+    Power,
     Speed,
     SpeedGrid,
     StiffnessGrid,
@@ -250,6 +254,49 @@ class SweepTable(AnalysisTable):
     resume: bool = False
 
 
+class StageTable(Located):
+    """Machine data of one stage for the anticipated cross-coupling Q_A."""
+
+    power: Power
+    diameter: Length
+    flow_height: Length
+    density_ratio: PositiveRatio = 1.0
+    tag: str | None = None
+
+
+class ApiStabilityTable(AnalysisTable):
+    """API 617 Level I stability at the maximum continuous speed (``rs.api_level1``)."""
+
+    type: Literal["api_stability"]
+    mcs: PositiveSpeed
+    stages: Annotated[list[StageTable], Field(min_length=1)]
+    machine: Literal["compressor", "turbine"] = "compressor"
+    apply_at: Literal["midspan", "stages"] = "midspan"
+    average_density: Density | None = None
+    q_max: Annotated[float, Field(gt=0)] | None = None
+    num: Annotated[int, Field(ge=2, le=1000)] = 11
+    num_modes: NumModes = 8
+
+
+class ClearanceTable(Located):
+    clearance: Length
+    tag: str | None = None
+
+
+class ApiUnbalanceTable(AnalysisTable):
+    """API 617 unbalance response analysis (``rs.api_unbalance``)."""
+
+    type: Literal["api_unbalance"]
+    speeds: SpeedGrid
+    min_speed: PositiveSpeed
+    mcs: PositiveSpeed
+    num_modes: NumModes = 3
+    clearances: list[ClearanceTable] = Field(default_factory=list)
+    probes: list[NodeIndex] | None = None
+    plane_mass: Mass | None = None
+    factor: PositiveRatio = 1.0
+
+
 TABLES: dict[str, type[AnalysisTable]] = {
     "modal": ModalTable,
     "campbell": CampbellTable,
@@ -262,6 +309,8 @@ TABLES: dict[str, type[AnalysisTable]] = {
     "periodic": PeriodicTable,
     "periodic_parameter": PeriodicParameterTable,
     "sweep": SweepTable,
+    "api_stability": ApiStabilityTable,
+    "api_unbalance": ApiUnbalanceTable,
 }
 """Analysis types of model files and their tables."""
 

@@ -31,6 +31,7 @@ from rotorsim.elements.rolling.roller.profile import (
 from rotorsim.elements.shaft import ShaftElement
 from rotorsim.errors import ModelError
 from rotorsim.io import analysis_spec as spec
+from rotorsim.io.api_specs import api_options
 from rotorsim.io.drive_schema import drive_spec
 from rotorsim.io.model_schema import BearingTable, CouplingTable, ModelTable, ShaftSegment
 from rotorsim.io.rolling_schema import BallTable, ProfileTable, RollerTable, RollingTable
@@ -483,6 +484,8 @@ def build_spec(table: Any, loc: tuple[str | int, ...], nodes: Nodes,
                                                f"{where}.bearings")
     elif table.type == "campbell":
         options["harmonics"] = tuple(options["harmonics"])
+    elif table.type in ("api_stability", "api_unbalance"):
+        options.update(api_options(table, nodes, where))
     elif table.type == "critical_speeds" and table.spool is not None:
         names = [name for name, _, _ in nodes.lines] or ["shaft"]
         if table.spool not in names:

@@ -4,6 +4,7 @@ its physical fields (imported by :mod:`rotorsim.io.hdf5`)."""
 from __future__ import annotations
 
 from rotorsim.io.serialize import register_result_type
+from rotorsim.results.api import ApiLevel1Result, ApiUnbalanceResult
 from rotorsim.results.bearing import BearingEquilibriumResult, EnergyMinimum, StiffnessVariation
 from rotorsim.results.bearing_life import BearingLifeResult
 from rotorsim.results.campbell import CampbellResult
@@ -102,3 +103,14 @@ register_result_type(PeriodicResult, {
     "dofs": "1", "coefficients": "m, rad", "max_abs": "m, rad", "peak_to_peak": "m, rad",
     "multipliers": "1", "stability_tol": "1", "iterations": "1", "residuals": "1",
     "held_dofs": "1", "nodes_pos": "m"})
+register_result_type(ApiLevel1Result, {
+    "mcs": _ANGULAR, "stage_q": "N/m", "q_a": "N/m", "station_share": "1", "applied": "N/m",
+    "log_dec": "1", "frequency": _ANGULAR, "log_dec_a": "1", "q0": "N/m", "q_ratio": "1",
+    "critical_speed_rigid": _ANGULAR, "csr": "1", "density": "kg/m^3", "csr_limit": "1"})
+register_result_type(ApiUnbalanceResult, {
+    "speeds": _ANGULAR, "min_speed": _ANGULAR, "mcs": _ANGULAR, "mode_speed": _ANGULAR,
+    "mode_log_dec": "1", "unbalance_magnitude": "kg m", "unbalance_phase": "rad",
+    "major_pp": "m", "peak_speed": _ANGULAR, "peak_pp": "m", "half_power_low": _ANGULAR,
+    "half_power_high": _ANGULAR, "af": "1", "required_margin": "1", "actual_margin": "1",
+    "vibration_limit": "m", "probe_peak": "m", "scale_factor": "1", "clearance": "m",
+    "clearance_ratio": "1", "nodes_pos": "m"})

@@ -9,6 +9,7 @@ Examples
 from __future__ import annotations
 
 from rotorsim.io.analysis_spec import AnalysisSpec
+from rotorsim.io.api_specs import ApiStabilitySpec, ApiUnbalanceSpec
 from rotorsim.io.linear_specs import (
     CampbellSpec,
     CriticalSpeedMapSpec,
@@ -24,6 +25,6 @@ SPEC_TYPES: dict[str, type[AnalysisSpec]] = {
     cls.type: cls for cls in (ModalSpec, CampbellSpec, CriticalSpeedsSpec,
                               CriticalSpeedMapSpec, UnbalanceSpec, FrequencyResponseSpec,
                               StaticSpec, TransientSpec, PeriodicSpec, PeriodicParameterSpec,
-                              SweepSpec)
+                              SweepSpec, ApiStabilitySpec, ApiUnbalanceSpec)
 }
 """Analysis ``type`` names of model files and their spec classes."""

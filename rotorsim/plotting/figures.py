@@ -8,6 +8,7 @@ from typing import Any
 import matplotlib.pyplot as plt
 import numpy as np
 
+from rotorsim.plotting.api_figures import api_unbalance_figure, level1_figure
 from rotorsim.plotting.bearing_figures import (
     load_distribution_figure,
     stiffness_variation_figure,
@@ -234,4 +235,6 @@ DRAWERS: dict[str, Callable[..., Any]] = {
     "Waterfall": waterfall_figure,
     "OrderTrack": order_track_figure,
     "PeriodicResult": periodic_figure,
+    "ApiLevel1Result": level1_figure,
+    "ApiUnbalanceResult": api_unbalance_figure,
 }

@@ -118,9 +118,21 @@ def results() -> dict[str, Any]:
         "ellipse": ellipse(np.array([1.0, 2.0j, np.nan]), np.array([-1j, 0.5, 1.0])),
         "intersections": MapIntersections.empty(),
         **_bearing_results(),
+        **_api_results(rotor),
         **_transient_results(),
         **_periodic_results(),
     }
+
+
+def _api_results(rotor: Rotor) -> dict[str, Any]:
+    import rotorsim as rs
+
+    level1 = rs.api_level1(rotor, 600.0, [rs.ApiStage(2, 2e4, 0.3, 0.02, 1.1, "s1")],
+                           num=4)  # no density: NaN fields
+    unbalance = rs.api_unbalance(rotor, np.linspace(10.0, 1500.0, 60), min_speed=900.0,
+                                 mcs=1000.0, num_modes=2,
+                                 clearances=[rs.Clearance(2, 3e-4, "seal")])
+    return {"api_level1": level1, "api_unbalance": unbalance}
 
 
 def _bearing_results() -> dict[str, Any]:
@@ -225,7 +237,8 @@ RESULT_NAMES = ["modal", "campbell", "critical_exact", "critical_campbell", "map
                 "stiffness_over_pass", "transient", "transient_continuable",
                 "transient_state", "stepper_state", "counters", "spectrum", "harmonic_fit",
                 "waterfall",
-                "order_track", "periodic", "periodic_bifurcation",
+                "order_track", "periodic", "periodic_bifurcation", "api_level1",
+                "api_unbalance",
                 "periodic_without_stability", "periodic_peak", "periodic_with_peaks"]
 
 

@@ -14,7 +14,7 @@ from pathlib import Path
 IO = Path(__file__).resolve().parents[2] / "rotorsim" / "io"
 PACKAGE = "rotorsim.io"
 SPECS = {f"{PACKAGE}.{name}" for name in ("analysis_spec", "linear_specs", "long_specs",
-                                          "spec_registry")}
+                                          "api_specs", "spec_registry")}
 """The analysis specs: plain data that imports no schema, builder, Model or runner."""
 
 

@@ -18,6 +18,7 @@ from rotorsim.errors import Status
 from rotorsim.io.analysis_runners import FAST_POINTS
 from rotorsim.io.model_file import load_model, run_analysis
 from rotorsim.io.spec_registry import SPEC_TYPES
+from rotorsim.results.api import ApiLevel1Result, ApiUnbalanceResult
 from rotorsim.results.campbell import CampbellResult
 from rotorsim.results.critical_speeds import CriticalSpeedMapResult, CriticalSpeeds
 from rotorsim.results.frequency_response import FrequencyResponseResult
@@ -41,6 +42,7 @@ RESULT_TYPES = {
     "frequency_response": FrequencyResponseResult, "static": StaticResult,
     "transient": TransientResult, "periodic": PeriodicResult,
     "periodic_parameter": PeriodicResult, "sweep": SweepResult,
+    "api_stability": ApiLevel1Result, "api_unbalance": ApiUnbalanceResult,
 }
 FILES = sorted(p.stem for p in MODELS.glob("*.toml"))
 CASES = [(f, a) for f in FILES for a in load_model(MODELS / f"{f}.toml").analyses]
