@@ -88,7 +88,7 @@ class ApiUnbalanceSpec(AnalysisSpec):
 
 def api_options(table: Any, nodes: Any, where: str) -> dict[str, Any]:
     """The stage or clearance specs of a validated ``api_*`` table, with positions resolved
-    to shaft nodes (``nodes`` is :class:`rotorsim.io.model_build.Nodes`)."""
+    to shaft nodes (``nodes`` is :class:`rotorsim.io.model_nodes.Nodes`)."""
     if table.type == "api_stability":
         return {"stages": tuple(
             StageSpec(nodes.shaft_node(s, f"{where}.stages[{i}]"), s.power, s.diameter,

@@ -108,7 +108,7 @@ class DriveTable(Located):
 
 def drive_spec(table: DriveTable, nodes: Any, where: str) -> DriveSpec:
     """The :class:`DriveSpec` of a validated drive table (``nodes`` resolves node or z on
-    the shaft, :class:`~rotorsim.io.model_build.Nodes`)."""
+    the shaft, :class:`~rotorsim.io.model_nodes.Nodes`)."""
     placed = {key: tuple((nodes.shaft_node(item, f"{where}.{key}[{i}]"), item.law())
                          for i, item in enumerate(getattr(table, key)))
               for key in ("loads", "friction")}
