@@ -9,7 +9,13 @@ from numpy.typing import NDArray
 
 from rotorsim.analyses.keyword_check import checked_keywords
 from rotorsim.analyses.linear.argument_checks import check_num_modes, check_sparse, check_speed
-from rotorsim.analyses.linear.mode_shapes import circularize, clusters, mode_kind, whirl_of
+from rotorsim.analyses.linear.mode_shapes import (
+    PURE_TILT,
+    circularize,
+    clusters,
+    mode_kind,
+    whirl_of,
+)
 from rotorsim.analyses.system_input import as_system
 from rotorsim.assembly.system import RotorSystem
 from rotorsim.elements.base import as_float_array
@@ -190,13 +196,15 @@ def _elastic_indices(values: NDArray[np.complex128], rigid: NDArray[np.bool_]) -
 
 def _normalise(shapes: NDArray[np.complex128]) -> NDArray[np.complex128]:
     """Each shape divided by its largest translation (by its largest entry when it has no
-    translation), so that entry is 1."""
+    translation beyond rounding, :data:`~rotorsim.analyses.linear.mode_shapes.PURE_TILT`),
+    so that entry is 1."""
     n_nodes = shapes.shape[0] // 6
     trans = shapes.reshape(n_nodes, 6, -1)[:, :3, :].reshape(n_nodes * 3, -1)
     columns = np.arange(shapes.shape[1])
     ref_trans = trans[np.argmax(np.abs(trans), axis=0), columns]
     ref_all = shapes[np.argmax(np.abs(shapes), axis=0), columns]
-    has_trans = np.abs(trans).max(axis=0, initial=0.0) > 0
+    has_trans = np.abs(trans).max(axis=0, initial=0.0) > PURE_TILT * np.abs(shapes).max(
+        axis=0, initial=0.0)
     return shapes / np.where(has_trans, ref_trans, ref_all)
 
 

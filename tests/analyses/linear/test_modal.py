@@ -167,3 +167,6 @@ def test_pure_tilt_modes_get_their_whirl_from_the_tilt_orbits():
     # a 12-DOF dense problem: eigenvalues to ~1e-13 relative
     np.testing.assert_allclose([got["forward"], got["backward"]], [forward, backward],
                                rtol=1e-9)
+    # normalised by the largest entry (a tilt), not by a translation at rounding level
+    np.testing.assert_allclose(np.abs(modes.mode_shapes[:, tilt]).max(axis=0), 1.0,
+                               rtol=1e-12)
