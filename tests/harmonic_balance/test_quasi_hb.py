@@ -197,3 +197,19 @@ def test_bad_grid_and_excitation_are_refused() -> None:
         solve_quasi(problem, TorusAFT(h), W1, W2)
     with pytest.raises(ModelError, match="h1 and h2"):
         TorusHarmonics.box(0, 0)
+
+
+def test_public_api_gives_the_same_torus(torus) -> None:
+    """``rs.hb.solve_quasi`` on an ``rs.hb.System`` with a cubic spring element gives the
+    torus of the core solver (the same equations; Newton to 1e-10 of the load)."""
+    import rotorsim as rs
+
+    chain_system = rs.hb.System(M, K, damping=C, elements=[rs.hb.CubicSpring(0, k3=K3)])
+    sol = rs.hb.solve_quasi(chain_system, W1, W2, harmonics=7, forcing=[
+        rs.hb.ToneForcing(0, F1, (1, 0)), rs.hb.ToneForcing(1, F2, (0, 1))])
+    np.testing.assert_allclose(sol.X, torus.X, atol=1e-9 * np.abs(torus.X).max())
+    with pytest.raises(ModelError, match="not in the harmonic set"):
+        rs.hb.solve_quasi(chain_system, W1, W2, harmonics=3,
+                          forcing=[rs.hb.ToneForcing(0, F1, (4, 0))])
+    with pytest.raises(ModelError, match="diamond"):
+        rs.hb.solve_quasi(chain_system, W1, W2, harmonics=3, truncation="circle")
