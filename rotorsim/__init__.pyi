@@ -12,6 +12,7 @@ from .analyses.periodic.excitation import HarmonicBase
 from .analyses.periodic.parameter import periodic_parameter
 from .analyses.periodic.periodic import periodic
 from .analyses.periodic.switching import switch_branch
+from .analyses.quasiperiodic import QuasiPeriodicPoint, quasi_periodic_point
 from .analyses.standards.api_formulas import (
     anticipated_cross_coupling,
     level1_screening,
@@ -176,6 +177,7 @@ __all__ = [
     "PointMass",
     "PulsatingTorque",
     "QuadraticTorque",
+    "QuasiPeriodicPoint",
     "RatingOptions",
     "ResultsFileError",
     "ReversedBearing",
@@ -231,6 +233,7 @@ __all__ = [
     "periodic_life",
     "periodic_parameter",
     "plot",
+    "quasi_periodic_point",
     "required_separation_margin",
     "residual_unbalance",
     "run_analysis",

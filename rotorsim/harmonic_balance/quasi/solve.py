@@ -104,7 +104,7 @@ def solve_quasi(problem: QuasiProblem, aft: TorusAFT, w1: float, w2: float, *,
         return residual(problem, aft, tones, float(w1), float(w2), x.reshape(rows, d))
 
     scaled = ResidualProblem.scaled(fun, rows * d, x_scale, r_scale)
-    state = Newton(tol=tol, max_iter=max_iter, where="quasi-periodic HB").solve(
+    state = Newton(tol=tol, max_iter=max_iter, where="quasi-periodic HB", dense=True).solve(
         scaled, start.ravel())
     X = full_coefficients(problem, tones, state.x.reshape(rows, d))
     return QuasiSolution(X, aft, float(w1), float(w2), float(state.residual),
