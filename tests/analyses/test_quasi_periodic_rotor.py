@@ -73,3 +73,22 @@ def test_periodic_and_mixed_bearings_are_refused() -> None:
         rs.quasi_periodic_point(rotor, -1.0, unbalance=UNBALANCE, harmonics=2)
     with pytest.raises(ModelError, match="truncation"):
         rs.quasi_periodic_point(rotor, SPEED, unbalance=UNBALANCE, harmonics=(2, 2))
+
+
+def test_without_unbalance_only_the_vc_tones_remain() -> None:
+    """With no unbalance nothing depends on the shaft angle: every tone with ``k1 != 0`` is
+    zero and the response is periodic at the VC frequency; point loads enter the mean
+    (here a 50 N load on the textbook rigid rotor, which has no other load)."""
+    sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "validation"))
+    from test_rigid_rotor_vc import textbook
+
+    rotor, _ = textbook()
+    ex = rs.Excitation(gravity=None, loads=[(0, "uy", -50.0)])
+    point = rs.quasi_periodic_point(rotor, 1500.0, harmonics=(3, 3), truncation="box",
+                                    excitation=ex)
+    k = point.solution.aft.harmonics.k
+    vc_tone = point.amplitude(0, "uy", 0, 1)
+    assert vc_tone > 1e-9  # the varying compliance moves the rotor
+    assert point.amplitude(0, "uy", 0, 0) > 10e-6  # the 50 N load pushes through the clearance
+    for k1, k2 in k[k[:, 0] != 0]:
+        assert point.amplitude(0, "uy", int(k1), int(k2)) < 1e-12 * vc_tone

@@ -109,7 +109,8 @@ def quasi_periodic_point(model: Any, speed: float, *,
         Diamond order ``H`` (tones ``|k1| + |k2| <= H``) or box ``(H1, H2)`` with
         ``truncation="box"`` (``k1`` counts the shaft frequency, ``k2`` the VC frequency).
     excitation : Excitation, optional
-        Gravity and its direction (default: standard gravity along ``-y``).
+        Gravity and its direction, constant point loads (default: standard gravity along
+        ``-y``); its unbalance is used when ``unbalance`` is not given.
     tol : float
         Newton tolerance relative to the largest condensed load.
 
@@ -123,10 +124,12 @@ def quasi_periodic_point(model: Any, speed: float, *,
     system = _system(model, nonlinear)
     torus = _torus(harmonics, truncation)
     ex = excitation if excitation is not None else Excitation()
+    if not unbalance and ex.unbalance:
+        unbalance = tuple(ex.unbalance)
     stats = Stats()
     rotor_problem = build_quasi_problem(system, float(speed), torus, unbalance=unbalance,
                                         gravity=ex.gravity, direction=ex.direction,
-                                        stats=stats)
+                                        loads=tuple(ex.loads), stats=stats)
     aft = TorusAFT(torus, samples)
     w1, w2 = float(speed), rotor_problem.vc_order * float(speed)
     solution = _homotopy(rotor_problem, aft, w1, w2, tol)

@@ -8,12 +8,11 @@ When ``Z kappa`` is irrational the two frequencies are incommensurate and the re
 a 2-torus, which :mod:`rotorsim.harmonic_balance.quasi` computes. Every rolling bearing
 must then share one VC order ``Z kappa`` (two orders would make three frequencies).
 
-The problem is posed on the *active* DOFs of :func:`~rotorsim.analyses.periodic.problem.
-build_problem` (free rigid motions held at zero), at a fixed speed: gravity and point
-loads in the mean, the unbalance ``m e W^2`` in the tone ``(1, 0)``. The bearings' forces
-are evaluated with the "shaft angle" ``theta2 / (Z kappa)``, which puts their cages at
-``theta2 / Z``; everything else about them (speed, damping) is as in the periodic
-analysis.
+The problem is posed on the *active* DOFs, as the periodic analysis poses its own (free
+rigid motions held at zero), at a fixed speed: gravity and point loads in the mean, the
+unbalance ``m e W^2`` in the tone ``(1, 0)``. The bearings' forces are evaluated with the
+"shaft angle" ``theta2 / (Z kappa)``, which puts their cages at ``theta2 / Z``;
+everything else about them (speed, damping) is as in the periodic analysis.
 """
 
 from __future__ import annotations
@@ -28,7 +27,7 @@ from numpy.typing import NDArray
 
 from rotorsim.analyses.statics.static_start import static_start
 from rotorsim.analyses.varying_compliance import vc_orders
-from rotorsim.assembly.loads import gravity_load, unbalance_amplitudes
+from rotorsim.assembly.loads import gravity_load, nodal_load, unbalance_amplitudes
 from rotorsim.assembly.nonlinear import NonlinearAssembly
 from rotorsim.assembly.system import RotorSystem
 from rotorsim.errors import ModelError
@@ -118,6 +117,7 @@ def common_vc_order(system: RotorSystem) -> float:
 def build_quasi_problem(system: RotorSystem, speed: float, harmonics: TorusHarmonics, *,
                         unbalance: Sequence[tuple[int, float, float]],
                         gravity: float | None, direction: Any,
+                        loads: Sequence[tuple[int, str, float]] = (),
                         stats: Stats) -> RotorQuasiProblem:
     """The quasi-periodic problem of ``system`` at ``speed`` [rad/s] (module docstring)."""
     if not (np.isfinite(speed) and speed > 0):
@@ -128,6 +128,9 @@ def build_quasi_problem(system: RotorSystem, speed: float, harmonics: TorusHarmo
     f_const = np.zeros(system.n_free)
     if gravity is not None:
         f_const += gravity_load(system, gravity, direction)
+    for i, (node, dof, value) in enumerate(loads):
+        f_const += nodal_load(system, int(node), str(dof), float(value),
+                              where=f"{WHERE}.excitation.loads[{i}]")
     static, held = static_start(system, mats.K, f_const, speed, 0.0, stats)
     active = np.setdiff1d(np.arange(system.n_free), held).astype(np.int64)
     ix = np.ix_(active, active)
