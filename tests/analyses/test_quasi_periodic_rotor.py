@@ -92,3 +92,40 @@ def test_without_unbalance_only_the_vc_tones_remain() -> None:
     assert point.amplitude(0, "uy", 0, 0) > 10e-6  # the 50 N load pushes through the clearance
     for k1, k2 in k[k[:, 0] != 0]:
         assert point.amplitude(0, "uy", int(k1), int(k2)) < 1e-12 * vc_tone
+
+
+@pytest.mark.validation
+def test_an_unstable_torus_is_flagged_and_perturbations_grow_at_its_exponent() -> None:
+    """The textbook rigid rotor (50 N on an 8-ball bearing with 10 um clearance) with
+    proportional contact damping (``beta_c = 20 us``) and 2e-6 kg m of unbalance at 1000
+    rad/s: the HB torus exists but is unstable. Its largest Lyapunov exponent (measured
+    426 1/s) and the growth of the deviation of ``rs.transient`` started on it, from one
+    revolution to the next while it is still small (measured 412 1/s), agree within 10 %."""
+    import dataclasses
+
+    sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "validation"))
+    from test_rigid_rotor_vc import textbook
+
+    rotor, _ = textbook()
+    damped = dataclasses.replace(rotor.nonlinear_elements[0], contact_damping="proportional",
+                                 damping_factor=2e-5)
+    rotor = rotor.with_nonlinear((damped,))
+    ex = rs.Excitation(gravity=None, loads=[(0, "uy", -50.0)])
+    speed, unbalance = 1000.0, [(0, 2e-6, 0.0)]
+    point = rs.quasi_periodic_point(rotor, speed, unbalance=unbalance, harmonics=(8, 3),
+                                    truncation="box", excitation=ex)
+    estimate = point.stability(periods=16)
+    assert not estimate.stable
+    revolution = 2 * np.pi / speed
+    q0, v0 = point.state(0.0)
+    run = rs.transient(rotor, 2.05 * revolution, speed=speed, unbalance=unbalance,
+                       excitation=ex, rtol=1e-6, initial=(q0, v0),
+                       output=rs.Output(times=np.linspace(0.0, 2.05 * revolution, 1001)))
+    deviation = np.hypot(run.q[:, 0] - point.response(run.t, 0, "ux"),
+                         run.q[:, 1] - point.response(run.t, 0, "uy"))
+    first = deviation[run.t < revolution].max()
+    second = deviation[(run.t >= revolution) & (run.t < 2 * revolution)].max()
+    growth = np.log(second / first) / revolution
+    print(f"exponent {estimate.exponent:.1f} 1/s, transient's growth {growth:.1f} 1/s")
+    assert second < 0.05 * np.ptp(point.response(run.t, 0, "ux"))  # still linear
+    assert growth == pytest.approx(estimate.exponent, rel=0.1)

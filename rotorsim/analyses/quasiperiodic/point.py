@@ -26,6 +26,7 @@ from rotorsim.assembly.system import RotorSystem, assemble
 from rotorsim.errors import ConvergenceError, ModelError
 from rotorsim.harmonic_balance.quasi import QuasiSolution, TorusAFT, TorusHarmonics
 from rotorsim.harmonic_balance.quasi import solve_quasi as solve_torus
+from rotorsim.harmonic_balance.quasi.lyapunov import LyapunovEstimate, largest_lyapunov_exponent
 from rotorsim.model.rotor import Rotor
 from rotorsim.options import Excitation
 from rotorsim.solvers.stats import Stats
@@ -73,6 +74,13 @@ class QuasiPeriodicPoint:
         col = self._column(node, dof)
         t = np.asarray(t, dtype=float)
         return np.zeros(t.shape) if col is None else self.solution.evaluate(t, [col])[:, 0]
+
+    def stability(self, periods: int = 40, steps_per_period: int = 128) -> LyapunovEstimate:
+        """The largest Lyapunov exponent of the torus (negative: stable), from its
+        variational equation over ``periods`` shaft revolutions
+        (:func:`~rotorsim.harmonic_balance.quasi.lyapunov.largest_lyapunov_exponent`)."""
+        return largest_lyapunov_exponent(self.rotor_problem.problem, self.solution,
+                                         periods=periods, steps_per_period=steps_per_period)
 
     def state(self, t: float = 0.0) -> tuple[FloatArray, FloatArray]:
         """Displacements and velocities on ALL DOFs (``6 n_nodes``) at time ``t`` [s]: the
