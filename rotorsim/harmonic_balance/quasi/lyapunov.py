@@ -30,6 +30,7 @@ for smooth dynamical systems...", *Meccanica* 15 (1980) 9-20 and 21-30; issue 17
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 import scipy.linalg as sl
@@ -93,7 +94,7 @@ def largest_lyapunov_exponent(problem: QuasiProblem, solution: QuasiSolution, *,
     dt = 2 * np.pi / (steps_per_period * max(w1, w2))
     per_period = int(np.ceil(2 * np.pi / w1 / dt))
     n_steps = periods * per_period
-    t = dt * np.arange(1, n_steps + 1)
+    t = dt * np.arange(1, n_steps + 1, dtype=np.float64)
     Kt, Ct = _tangents(problem, solution, t)
     M, D, K = (_dense(A) for A in (problem.M, problem.damping(w1), problem.K))
     nl = np.asarray(problem.nl_dofs, dtype=np.int64)
@@ -147,8 +148,8 @@ def _tangents(problem: QuasiProblem, solution: QuasiSolution, t: FloatArray
     return np.asarray(dfdq), None if dfdv is None else np.asarray(dfdv)
 
 
-def _dense(A: object) -> FloatArray:
-    return np.asarray(A.toarray() if sp.issparse(A) else A, dtype=float)  # type: ignore[union-attr]
+def _dense(A: Any) -> FloatArray:
+    return np.asarray(A.toarray() if sp.issparse(A) else A, dtype=float)
 
 
 def _norm(y: FloatArray, v: FloatArray, w: float) -> float:
