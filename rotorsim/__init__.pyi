@@ -12,7 +12,12 @@ from .analyses.periodic.excitation import HarmonicBase
 from .analyses.periodic.parameter import periodic_parameter
 from .analyses.periodic.periodic import periodic
 from .analyses.periodic.switching import switch_branch
-from .analyses.quasiperiodic import QuasiPeriodicPoint, quasi_periodic_point
+from .analyses.quasiperiodic import (
+    QuasiPeriodicBranch,
+    QuasiPeriodicPoint,
+    quasi_periodic,
+    quasi_periodic_point,
+)
 from .analyses.standards.api_formulas import (
     anticipated_cross_coupling,
     level1_screening,
@@ -177,6 +182,7 @@ __all__ = [
     "PointMass",
     "PulsatingTorque",
     "QuadraticTorque",
+    "QuasiPeriodicBranch",
     "QuasiPeriodicPoint",
     "RatingOptions",
     "ResultsFileError",
@@ -233,6 +239,7 @@ __all__ = [
     "periodic_life",
     "periodic_parameter",
     "plot",
+    "quasi_periodic",
     "quasi_periodic_point",
     "required_separation_margin",
     "residual_unbalance",

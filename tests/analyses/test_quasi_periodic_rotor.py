@@ -129,3 +129,26 @@ def test_an_unstable_torus_is_flagged_and_perturbations_grow_at_its_exponent() -
     print(f"exponent {estimate.exponent:.1f} 1/s, transient's growth {growth:.1f} 1/s")
     assert second < 0.05 * np.ptp(point.response(run.t, 0, "ux"))  # still linear
     assert growth == pytest.approx(estimate.exponent, rel=0.1)
+
+
+def test_a_branch_over_speed_follows_the_tori() -> None:
+    """``rs.quasi_periodic`` steps the speed, each torus started from the previous one: it
+    reaches the same torus as a cold start at 800 rad/s (checked against ``rs.transient`` in
+    the first test), and flags its stability."""
+    rotor = jeffcott("rotating")
+    branch = rs.quasi_periodic(rotor, start=760.0, stop=840.0, step=40.0,
+                               unbalance=UNBALANCE, harmonics=(6, 2), stability=False)
+    assert branch.status == "ok" and branch.reason == ""
+    np.testing.assert_allclose(branch.speeds, [760.0, 800.0, 840.0])
+    cold = rs.quasi_periodic_point(rotor, SPEED, unbalance=UNBALANCE, harmonics=(6, 2),
+                                   truncation="box")
+    # two Newton solves of the same equations to 1e-9 of the load
+    np.testing.assert_allclose(branch.points[1].solution.X, cold.solution.X,
+                               atol=1e-6 * np.abs(cold.solution.X).max())
+    one_x = branch.amplitude(1, "uy", 1, 0)
+    assert np.all(np.diff(one_x) > 0)  # below the first critical speed the 1X grows
+    assert np.isnan(branch.exponents).all() and not branch.stable.any()
+    with pytest.raises(ModelError, match="step"):
+        rs.quasi_periodic(rotor, start=760.0, stop=840.0, step=100.0, unbalance=UNBALANCE)
+    with pytest.raises(ModelError, match="start"):
+        rs.quasi_periodic(rotor, start=0.0, stop=840.0, unbalance=UNBALANCE)

@@ -129,18 +129,28 @@ def quasi_periodic_point(model: Any, speed: float, *,
     ConvergenceError
         Newton fails even with the unbalance brought in by steps of 1/64.
     """
-    system = _system(model, nonlinear)
-    torus = _torus(harmonics, truncation)
+    system = system_of(model, nonlinear)
+    torus = torus_of(harmonics, truncation)
     ex = excitation if excitation is not None else Excitation()
     if not unbalance and ex.unbalance:
         unbalance = tuple(ex.unbalance)
-    stats = Stats()
+    return solve_at(system, float(speed), torus, TorusAFT(torus, samples), ex, unbalance, tol)
+
+
+def solve_at(system: RotorSystem, speed: float, torus: TorusHarmonics, aft: TorusAFT,
+             ex: Excitation, unbalance: Sequence[tuple[int, float, float]], tol: float,
+             start: FloatArray | None = None) -> QuasiPeriodicPoint:
+    """The point at ``speed`` [rad/s], Newton from ``start`` (coefficients of the nonlinear
+    DOFs, e.g. the previous point of a branch) or, without it, from the static state with
+    the unbalance homotopy."""
     rotor_problem = build_quasi_problem(system, float(speed), torus, unbalance=unbalance,
                                         gravity=ex.gravity, direction=ex.direction,
-                                        loads=tuple(ex.loads), stats=stats)
-    aft = TorusAFT(torus, samples)
+                                        loads=tuple(ex.loads), stats=Stats())
     w1, w2 = float(speed), rotor_problem.vc_order * float(speed)
-    solution = _homotopy(rotor_problem, aft, w1, w2, tol)
+    if start is None:
+        solution = _homotopy(rotor_problem, aft, w1, w2, tol)
+    else:
+        solution = solve_torus(rotor_problem.problem, aft, w1, w2, start=start, tol=tol)
     return QuasiPeriodicPoint(float(speed), w2, solution, rotor_problem, system)
 
 
@@ -181,7 +191,7 @@ def _homotopy(rp: RotorQuasiProblem, aft: TorusAFT, w1: float, w2: float, tol: f
     return last
 
 
-def _system(model: Any, nonlinear: Sequence[Any]) -> RotorSystem:
+def system_of(model: Any, nonlinear: Sequence[Any]) -> RotorSystem:
     if isinstance(model, RotorSystem):
         if nonlinear:
             raise ModelError("give the nonlinear elements to assemble(), or a Rotor here",
@@ -195,7 +205,7 @@ def _system(model: Any, nonlinear: Sequence[Any]) -> RotorSystem:
     return assemble(model, nonlinear=tuple(nonlinear))
 
 
-def _torus(harmonics: int | tuple[int, int], truncation: str) -> TorusHarmonics:
+def torus_of(harmonics: int | tuple[int, int], truncation: str) -> TorusHarmonics:
     if truncation == "diamond" and not isinstance(harmonics, tuple):
         return TorusHarmonics.diamond(harmonics)
     if truncation == "box" and isinstance(harmonics, tuple) and len(harmonics) == 2:
