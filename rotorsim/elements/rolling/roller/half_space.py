@@ -23,7 +23,7 @@ factorisations of the contact set, about ``(K M)^3 / 3`` flops each (``K = 40``,
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from functools import cached_property
 
 import numpy as np
@@ -118,7 +118,7 @@ class HalfSpaceLineContact:
     reduced_radius: float
     e_star: float
     half_width: float
-    profile: RollerProfile = StraightProfile()
+    profile: RollerProfile = field(default_factory=StraightProfile)
     n_slices: int = 40
     n_strips: int = 12
 
@@ -151,7 +151,8 @@ class HalfSpaceLineContact:
     @cached_property
     def x(self) -> FloatArray:
         """Strip centres (M,) [m] on ``x >= 0``."""
-        return (np.arange(self.n_strips) + 0.5) * (self.half_width / self.n_strips)
+        return np.asarray((np.arange(self.n_strips) + 0.5) * (self.half_width / self.n_strips),
+                          dtype=float)
 
     @cached_property
     def area(self) -> float:
@@ -167,7 +168,7 @@ class HalfSpaceLineContact:
         dy = yy[:, None] - yy[None, :]
         d = (rectangle_influence(xx[:, None] - xx[None, :], dy, hx, hy)
              + rectangle_influence(xx[:, None] + xx[None, :], dy, hx, hy))
-        c = d / (math.pi * self.e_star)
+        c = np.asarray(d / (math.pi * self.e_star), dtype=float)
         c.flags.writeable = False
         return c
 
