@@ -25,10 +25,16 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 from functools import cached_property
+from typing import Any
 
 import numpy as np
-from numpy.typing import NDArray
+from numpy.typing import ArrayLike, NDArray
 
+from rotorsim.elements.rolling.contact.hertz_point import (
+    BEARING_STEEL_E,
+    BEARING_STEEL_NU,
+    effective_modulus,
+)
 from rotorsim.elements.rolling.contact.influence import (
     check_positive,
     rectangle_influence,
@@ -219,3 +225,62 @@ class HalfSpaceLineContact:
             line_load=q / (self.length / self.n_slices), peak=pressure.max(axis=1),
             load=float(q.sum()), moment=float(self.y @ q), approach=approach, tilt=tilt,
             iterations=it, truncated=bool((pressure[:, -1] > 0.0).any()))
+
+
+def roller_pressure_field(bearing: Any, delta: ArrayLike, psi: ArrayLike, roller: int,
+                          race: str = "inner", e_star: float | None = None,
+                          n_strips: int = 12) -> LineContactSolution:
+    """Pressure field of one roller of a ``RollerBearing`` on one race, on a half-space.
+
+    The roller's load ``Q_j`` (the bearing's own ``Kn`` law) and its tilt
+    ``omega_j`` (the slope of its slice deflections) are put on a
+    :class:`HalfSpaceLineContact` of the bearing's profile, length and ``n_slices``, with
+    the reduced radius ``D (1 -+ gamma) / 2`` of the race (``gamma = D cos a0 / d_m``):
+    the edge peak of the roller at the resolution of its slices.
+
+    Parameters
+    ----------
+    bearing : RollerBearing
+    delta : array (5,)
+        Relative displacement ``[x, y, z, rx, ry]`` [m, rad].
+    psi : array (Z,)
+        Roller angles [rad].
+    roller : int
+        Index ``j`` of the roller.
+    race : {"inner", "outer"}
+    e_star : float
+        Contact modulus [Pa]; default bearing steel on steel (``E = 208 GPa``,
+        ``nu = 0.3``: 114.3 GPa).
+    n_strips : int
+        Strips across the contact (``x >= 0``).
+
+    Examples
+    --------
+    >>> from rotorsim.elements.rolling.roller.bearing import RollerBearing
+    >>> b = RollerBearing(14, 0.0425, 0.0075, 0.0075, Kn=3e8, model="slices", n_slices=10)
+    >>> s = roller_pressure_field(b, [20e-6, 0, 0, 0, 0], b.element_angles()[0], 0)
+    >>> bool(s.peak[0] > s.peak[5] > 0), round(s.load, 3)
+    (True, 1803.198)
+    """
+    where = f"roller_pressure_field of {bearing._where}"
+    if race not in ("inner", "outer"):
+        raise TypeError(f"{where}: unknown race {race!r}; valid: ('inner', 'outer')")
+    dk = bearing.slice_deflections(np.asarray(delta, dtype=float)[None],
+                                   np.asarray(psi, dtype=float)[None])[0]
+    if not 0 <= roller < dk.shape[0]:
+        raise ModelError(f"roller index {roller} outside 0..{dk.shape[0] - 1}", where)
+    load = float(bearing.kn / bearing.n_slices * (np.maximum(dk[roller], 0.0)
+                                                   ** bearing.exponent).sum())
+    if load <= 0.0:
+        raise ModelError(f"roller {roller} carries no load", where)
+    length = bearing.effective_length
+    slope = float(np.polyfit(np.arange(dk.shape[1]), dk[roller] + bearing.profile.drop(
+        bearing._line.xi, length), 1)[0]) * bearing.n_slices / length  # omega_j [rad]
+    gamma = bearing.roller_diameter * math.cos(bearing.contact_angle) / bearing.pitch_diameter
+    radius = 0.5 * bearing.roller_diameter * (1.0 - gamma if race == "inner" else 1.0 + gamma)
+    if e_star is None:
+        e_star = effective_modulus(BEARING_STEEL_E, BEARING_STEEL_NU, BEARING_STEEL_E,
+                                   BEARING_STEEL_NU)
+    contact = HalfSpaceLineContact.for_load(load, length, radius, e_star, bearing.profile,
+                                            int(bearing.n_slices), n_strips)
+    return contact.solve_load(load, tilt=slope)

@@ -15,7 +15,10 @@ from rotorsim.elements.rolling.rating.iso16281 import lamina_loads
 from rotorsim.elements.rolling.rating.options import RatingOptions
 from rotorsim.elements.rolling.rating.rated_bearing import RatedBearing
 from rotorsim.elements.rolling.roller.bearing import RollerBearing
-from rotorsim.elements.rolling.roller.half_space import HalfSpaceLineContact
+from rotorsim.elements.rolling.roller.half_space import (
+    HalfSpaceLineContact,
+    roller_pressure_field,
+)
 from rotorsim.elements.rolling.roller.profile import LogarithmicProfile
 from rotorsim.elements.rolling.roller.slice_influence import influence_slice_loads
 from rotorsim.io.model_file import load_model, model_from_dict, save_model
@@ -97,3 +100,18 @@ def test_model_file_key_round_trips(tmp_path):
     assert model.rolling_bearings[1].bearing.bearing.slice_model == "independent"
     again = load_model(save_model(model, tmp_path / "copy.toml"))
     assert again.rolling_bearings[0].bearing.slice_model == "influence"
+
+
+def test_pressure_field_of_a_tilted_roller():
+    crowned = dataclasses.replace(BASE, profile=LogarithmicProfile.lundberg(
+        2000.0, BASE.effective_length, 2 * E_STAR))
+    tilt = np.array([20e-6, 0.0, 0.0, 0.0, 4e-4])  # ry: roller 0 at psi = 0 tilted
+    dk = crowned.slice_deflections(tilt[None], PSI[:1])[0, 0]
+    s = roller_pressure_field(crowned, tilt, PSI[0], 0, race="outer")
+    assert s.load == pytest.approx(crowned.roller_loads(tilt[None], PSI[:1]).load[0, 0],
+                                   rel=1e-12)
+    assert s.tilt == pytest.approx((dk[-1] - dk[0]) / (crowned.effective_length * 19 / 20),
+                                   rel=1e-9)  # the fit of the linear part is exact
+    assert np.argmax(s.peak) == crowned.n_slices - 1 and not s.truncated
+    with pytest.raises(TypeError, match="race"):
+        roller_pressure_field(crowned, tilt, PSI[0], 0, race="middle")
