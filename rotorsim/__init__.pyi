@@ -73,6 +73,7 @@ from .elements.rolling.large_rotation import LargeRotationBearing
 from .elements.rolling.rating.hertz_pressure import contact_pressures
 from .elements.rolling.rating.iso281 import BearingRating
 from .elements.rolling.rating.options import RatingOptions
+from .elements.rolling.roller.half_space import HalfSpaceLineContact, roller_pressure_field
 from .elements.shaft import ShaftElement, cowper_shear_coefficient
 from .errors import (
     ConvergenceError,
@@ -155,6 +156,7 @@ __all__ = [
     "Foundation",
     "FrequencyResponseResult",
     "Grid",
+    "HalfSpaceLineContact",
     "HarmonicBase",
     "Harmonics",
     "InconsistentModelError",
@@ -233,6 +235,7 @@ __all__ = [
     "plot",
     "required_separation_margin",
     "residual_unbalance",
+    "roller_pressure_field",
     "run_analysis",
     "save",
     "save_model",
