@@ -15,9 +15,9 @@ Limits: frictionless half-space (no ``mu`` term of eq 2.26), both bodies elastic
 half-spaces (the roller end is not a free surface: quarter-space effects are not
 modelled), so the approach is the half-space approach relative to points far away.
 
-Cost: the matrix ``(K M)^2`` is built once per geometry; a solve is a few dense
-factorisations of the contact set, about ``(K M)^3 / 3`` flops each (``K = 40``,
-``M = 12``: a few ms each).
+Cost: the matrix ``(K M)^2`` is built once per geometry (block Toeplitz: ``K M^2``
+influence coefficients); a solve is a few dense factorisations of the contact set, about
+``(K M)^3 / 3`` flops each (``K = 40``, ``M = 12``: a few ms each).
 """
 
 from __future__ import annotations
@@ -168,13 +168,18 @@ class HalfSpaceLineContact:
     @cached_property
     def compliance(self) -> FloatArray:
         """``C`` (K M, K M) [m/Pa]: displacement at each centre per unit pressure on each
-        rectangle and its mirror image ``x -> -x`` (read-only)."""
+        rectangle and its mirror image ``x -> -x`` (read-only). Equal slices: the blocks
+        depend on ``|i - k|`` only (block Toeplitz), so ``K M^2`` coefficients are
+        computed and gathered."""
         hx, hy = 0.5 * self.half_width / self.n_strips, 0.5 * self.length / self.n_slices
-        yy, xx = (a.ravel() for a in np.meshgrid(self.y, self.x, indexing="ij"))
-        dy = yy[:, None] - yy[None, :]
-        d = (rectangle_influence(xx[:, None] - xx[None, :], dy, hx, hy)
-             + rectangle_influence(xx[:, None] + xx[None, :], dy, hx, hy))
-        c = np.asarray(d / (math.pi * self.e_star), dtype=float)
+        x, dy = self.x, (self.y - self.y[0])[:, None, None]  # (K, 1, 1) slice offsets
+        d = (rectangle_influence(x[:, None] - x[None, :], dy, hx, hy)
+             + rectangle_influence(x[:, None] + x[None, :], dy, hx, hy))  # (K, M, M)
+        k = np.arange(self.n_slices)
+        blocks = d[np.abs(k[:, None] - k[None, :])]  # (K, K, M, M)
+        n = self.n_slices * self.n_strips
+        c = np.asarray(blocks.transpose(0, 2, 1, 3).reshape(n, n) / (math.pi * self.e_star),
+                       dtype=float)
         c.flags.writeable = False
         return c
 
