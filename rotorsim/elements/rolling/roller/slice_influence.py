@@ -54,7 +54,7 @@ def slice_compliance(y: FloatArray, slice_width: float, half_width: FloatArray,
 
 
 def influence_slice_loads(deflection: FloatArray, kn: float, exponent: float, length: float,
-                          radii: tuple[float, float], e_star: float) -> FloatArray:
+                          radii: tuple[float, ...], e_star: float) -> FloatArray:
     """Slice loads (..., K) [N] of rollers with slice deflections ``deflection`` (..., K)
     [m] (module docstring).
 
@@ -66,8 +66,9 @@ def influence_slice_loads(deflection: FloatArray, kn: float, exponent: float, le
         Whole-roller constant ``Kn`` [N/m^n] and exponent ``n`` of the bearing.
     length : float
         Effective length ``L`` [m].
-    radii : (float, float)
-        Reduced radii of the inner and outer contact across the rolling direction [m].
+    radii : tuple of float
+        Reduced radii of the contacts in series across the rolling direction [m] (inner
+        and outer race; one for a single contact).
     e_star : float
         Contact modulus ``E*`` [Pa].
 
