@@ -67,3 +67,12 @@ def test_batched_equals_one_by_one_and_open_contacts_carry_nothing():
         np.testing.assert_allclose(solve_contact(c, d[k])[0], p[k], rtol=1e-12,
                                    atol=1e-14)
     assert not solve_contact(c, -np.abs(d))[0].any()
+
+
+def test_nnls_fallback_when_the_active_set_has_not_settled():
+    c, d = _problem(3)
+    settled, _ = solve_contact(c, d)
+    fallback, iterations = solve_contact(c, d, max_iter=1)  # NNLS for the unsettled ones
+    assert iterations == 1
+    # 1e-9: two exact solvers of the same small, well-conditioned problem
+    np.testing.assert_allclose(fallback, settled, rtol=1e-9, atol=1e-9 * settled.max())
