@@ -12,6 +12,12 @@ from .analyses.periodic.excitation import HarmonicBase
 from .analyses.periodic.parameter import periodic_parameter
 from .analyses.periodic.periodic import periodic
 from .analyses.periodic.switching import switch_branch
+from .analyses.quasiperiodic import (
+    QuasiPeriodicBranch,
+    QuasiPeriodicPoint,
+    quasi_periodic,
+    quasi_periodic_point,
+)
 from .analyses.standards.api_formulas import (
     anticipated_cross_coupling,
     level1_screening,
@@ -178,6 +184,8 @@ __all__ = [
     "PointMass",
     "PulsatingTorque",
     "QuadraticTorque",
+    "QuasiPeriodicBranch",
+    "QuasiPeriodicPoint",
     "RatingOptions",
     "ResultsFileError",
     "ReversedBearing",
@@ -233,6 +241,8 @@ __all__ = [
     "periodic_life",
     "periodic_parameter",
     "plot",
+    "quasi_periodic",
+    "quasi_periodic_point",
     "required_separation_margin",
     "residual_unbalance",
     "roller_pressure_field",

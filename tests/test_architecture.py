@@ -25,7 +25,8 @@ ROLLING = "rotorsim.elements.rolling"
 NUMERICS = ("rotorsim.solvers", "rotorsim.time_integration", "rotorsim.harmonic_balance",
             "rotorsim.hb")
 FAMILIES = tuple(f"rotorsim.analyses.{f}"
-                 for f in ("linear", "statics", "transient", "periodic", "sweep", "standards"))
+                 for f in ("linear", "statics", "transient", "periodic", "sweep", "standards",
+                           "quasiperiodic"))
 ROLLING_SHARED = tuple(f"{ROLLING}.{m}"
                        for m in ("geometry", "state", "element_equilibrium", "condensation"))
 NOT_AT_IMPORT = (
@@ -71,9 +72,11 @@ RULES = (
     Rule("analyses-transient", "transient imports only statics and linear",
          (FAMILIES[2],), FAMILIES[3:]),
     Rule("analyses-periodic", "periodic imports only statics and linear",
-         (FAMILIES[3],), (FAMILIES[2], FAMILIES[4])),
+         (FAMILIES[3],), (FAMILIES[2], FAMILIES[4], FAMILIES[6])),
+    Rule("analyses-quasiperiodic", "quasiperiodic imports only statics and linear",
+         (FAMILIES[6],), FAMILIES[2:6]),
     Rule("analyses-standards", "standards (the API checks) imports only linear and statics",
-         (FAMILIES[5],), FAMILIES[2:5]),
+         (FAMILIES[5],), (*FAMILIES[2:5], FAMILIES[6])),
     Rule("analyses-no-front-ends", "no analysis imports the command line or the figures",
          ("rotorsim.analyses",), ("rotorsim.cli", "rotorsim.plotting", "matplotlib")),
     Rule("analyses-shared", "the shared top-level analyses modules (system_input, "
@@ -319,6 +322,10 @@ PLANTED = {
         "rotorsim.analyses.standards.api_stability",
         "from rotorsim.analyses.transient.start import x\n",
         "rotorsim.analyses.transient.start"),
+    "analyses-quasiperiodic": (
+        "rotorsim.analyses.quasiperiodic.problem",
+        "from rotorsim.analyses.periodic.excitation import vc_orders\n",
+        "rotorsim.analyses.periodic.excitation"),
     "analyses-no-front-ends": (
         "rotorsim.analyses.transient.transient",
         "def run():\n    from rotorsim.plotting import plot\n", "rotorsim.plotting"),

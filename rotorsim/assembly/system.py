@@ -5,6 +5,7 @@ from __future__ import annotations
 import dataclasses
 from collections.abc import Sequence
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 import scipy.sparse as sp
@@ -69,6 +70,12 @@ class RotorSystem:
     @property
     def n_free(self) -> int:
         return self.dof_map.n_free
+
+    @cached_property
+    def mass_diagonal(self) -> FloatArray:
+        """Diagonal of the structural mass on all DOFs (``(n_dof,)``, kg or kg m^2), formed
+        once: modal analyses classify the modes of every speed with it."""
+        return self.dof_map.expand(self.pattern.matrix(self.structural_mass).diagonal())
 
     def matrices(self, speed: float = 0.0) -> SystemMatrices:
         """Global ``M, C, G, K`` at spin speed ``speed`` [rad/s]."""

@@ -3,7 +3,9 @@
 A :class:`System` is ``M, C, K`` (dense or sparse, optional gyroscopic ``G`` with spin)
 plus nonlinear elements and harmonic forcing; :func:`frequency_response` continues its
 periodic response over a frequency range with Floquet stability and located bifurcations;
-:func:`solve` gives one frequency. The Duffing oscillator of NLvib's example 01::
+:func:`solve` gives one frequency; :func:`solve_quasi` the quasi-periodic response to two
+incommensurate frequencies (:mod:`rotorsim.hb.quasi`). The Duffing oscillator of NLvib's
+example 01::
 
     import rotorsim as rs
     duffing = rs.hb.System(mass=1, stiffness=1, damping=0.05, forcing=[0.18],
@@ -31,6 +33,7 @@ from rotorsim.hb.elements import (
     UnilateralSpring,
 )
 from rotorsim.hb.measures import amplitude
+from rotorsim.hb.quasi import ToneForcing, solve_quasi
 from rotorsim.hb.response import frequency_response, solve
 from rotorsim.hb.result import Bifurcation, FrequencyResponse, Peak, Point
 from rotorsim.hb.system import Forcing, System
@@ -47,9 +50,11 @@ __all__ = [
     "Peak",
     "Point",
     "System",
+    "ToneForcing",
     "UnilateralSpring",
     "amplitude",
     "check_tangents",
     "frequency_response",
     "solve",
+    "solve_quasi",
 ]

@@ -23,7 +23,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from rotorsim.errors import ConvergenceError, ModelError
-from rotorsim.solvers.linear import factorize
+from rotorsim.solvers.linear import DENSE_THRESHOLD, factorize
 from rotorsim.solvers.stats import Stats
 
 FloatArray = NDArray[np.float64]
@@ -95,6 +95,10 @@ class Newton:
         Trial points per iteration before the line search is declared failed.
     where : str
         Label used in error messages.
+    dense : bool
+        Factorise every Jacobian with dense LU whatever its size (for Jacobians that are
+        dense, such as those of harmonic balance on a torus); otherwise above
+        :data:`~rotorsim.solvers.linear.DENSE_THRESHOLD` unknowns SuperLU is used.
 
     Examples
     --------
@@ -111,6 +115,7 @@ class Newton:
     armijo: float = 1e-4
     max_backtracks: int = 40
     where: str = "newton"
+    dense: bool = False
 
     def __post_init__(self) -> None:
         if not (self.tol > 0 and self.max_step > 0 and 0 < self.armijo < 0.5):
@@ -198,7 +203,8 @@ class Newton:
                    stats: Stats | None) -> FloatArray:
         """Newton step in scaled variables; Levenberg-regularised if ``J`` is singular."""
         try:
-            return -factorize(j_hat, stats=stats, where=self.where).solve(r_hat)
+            return -factorize(j_hat, stats=stats, where=self.where,
+                              dense_threshold=self._threshold(j_hat)).solve(r_hat)
         except ConvergenceError:
             pass
         normal = j_hat.T @ j_hat
@@ -208,7 +214,11 @@ class Newton:
                                    "unknowns here", self.where, iteration=state.iteration,
                                    residual=state.residual)
         regularised = normal + 1e-10 * size * np.eye(normal.shape[0])
-        return -factorize(regularised, stats=stats, where=self.where).solve(j_hat.T @ r_hat)
+        return -factorize(regularised, stats=stats, where=self.where,
+                          dense_threshold=self._threshold(j_hat)).solve(j_hat.T @ r_hat)
+
+    def _threshold(self, j_hat: FloatArray) -> int:
+        return j_hat.shape[0] if self.dense else DENSE_THRESHOLD
 
 
 def _backtrack(alpha: float, merit0: float, slope: float, merit: float) -> float:

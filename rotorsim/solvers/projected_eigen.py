@@ -111,6 +111,54 @@ def projected_quadratic_eigen(Mr: FloatArray, Dr: FloatArray, Kr: FloatArray, si
     >>> np.sort(lam.imag).round(12).tolist()
     [-2.0, 2.0]
     """
+    T = _shift_inverted_form(Mr, Dr, Kr, sigma)
+    mu, vectors = np.linalg.eig(T)  # measured 15 % faster than scipy.linalg.eig at 2m = 112
+    resolved = np.abs(mu) > RESOLUTION * np.abs(T).sum(axis=0).max()
+    lam = sigma + 1.0 / mu[resolved]
+    order = np.argsort(np.abs(lam - sigma), kind="stable")
+    return lam[order], vectors[:Mr.shape[0], resolved][:, order]
+
+
+def projected_quadratic_values(Mr: FloatArray, Dr: FloatArray, Kr: FloatArray, sigma: float
+                               ) -> ComplexArray:
+    """The eigenvalues of :func:`projected_quadratic_eigen`, without eigenvectors [rad/s].
+
+    LAPACK's Hessenberg QR without the Schur vectors costs about half of ``geev`` with them
+    (measured 2.3 against 5.0 ms at ``2m = 120``); :func:`inverse_iteration` then gives the
+    few eigenvectors that are wanted.
+    """
+    T = _shift_inverted_form(Mr, Dr, Kr, sigma)
+    mu = np.linalg.eigvals(T)
+    lam = sigma + 1.0 / mu[np.abs(mu) > RESOLUTION * np.abs(T).sum(axis=0).max()]
+    return lam[np.argsort(np.abs(lam - sigma), kind="stable")]
+
+
+def inverse_iteration(Mr: FloatArray, Dr: FloatArray, Kr: FloatArray, lam: ComplexArray
+                      ) -> ComplexArray:
+    """Eigenvectors ``(m, k)`` of ``(lam^2 Mr + lam Dr + Kr) y = 0`` for known simple
+    eigenvalues ``lam`` (``k,``), by one step of inverse iteration each.
+
+    For ``lam`` exact to rounding, one solve of the nearly singular matrix from a generic
+    right-hand side leaves the other eigenvectors' parts at about ``eps |lam| / gap``
+    (Golub & Van Loan, *Matrix Computations*, 4th ed., section 7.6.1), so the eigenvalues
+    must be separated: the caller keeps close ones to a full eigensolve. The vectors are
+    scaled to unit norm.
+    """
+    m = Mr.shape[0]
+    if lam.size == 0:
+        return np.zeros((m, 0), dtype=complex)
+    L = lam[:, None, None]
+    A = L**2 * Mr + L * Dr + Kr
+    b = 1.0 + np.arange(m) / m  # generic: no eigenvector of a physical model is orthogonal to it
+    b = np.broadcast_to(b.astype(complex)[:, None], (lam.size, m, 1))
+    with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
+        Y = np.linalg.solve(A, b)[:, :, 0].T
+    return Y / np.linalg.norm(Y, axis=0)
+
+
+def _shift_inverted_form(Mr: FloatArray, Dr: FloatArray, Kr: FloatArray, sigma: float
+                         ) -> FloatArray:
+    """``T`` (``2m x 2m``) whose eigenvalues are ``1 / (lam - sigma)``."""
     m = Mr.shape[0]
     P = Kr + sigma * Dr + sigma**2 * Mr
     X = -np.linalg.solve(P, np.hstack([Dr + sigma * Mr, Mr]))
@@ -118,12 +166,7 @@ def projected_quadratic_eigen(Mr: FloatArray, Dr: FloatArray, Kr: FloatArray, si
     T[:m] = X
     T[m:] = sigma * X
     T[m:, :m] += np.eye(m)
-    norm_1 = np.abs(T).sum(axis=0).max()
-    mu, vectors = np.linalg.eig(T)  # measured 15 % faster than scipy.linalg.eig at 2m = 112
-    resolved = np.abs(mu) > RESOLUTION * norm_1
-    lam = sigma + 1.0 / mu[resolved]
-    order = np.argsort(np.abs(lam - sigma), kind="stable")
-    return lam[order], vectors[:m, resolved][:, order]
+    return T
 
 
 def shift_inverted_residuals(lu: Factorization, M: sp.spmatrix, D: sp.spmatrix,

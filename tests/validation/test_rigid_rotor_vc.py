@@ -20,8 +20,8 @@ import pytest
 from scipy.optimize import brentq
 
 import rotorsim as rs
-from rotorsim.analyses.periodic.problem import static_start
 from rotorsim.analyses.statics.nonlinear_static import nonlinear_equilibrium
+from rotorsim.analyses.statics.static_start import static_start
 from rotorsim.assembly.loads import nodal_load
 from rotorsim.assembly.system import assemble
 from rotorsim.solvers.stats import Stats

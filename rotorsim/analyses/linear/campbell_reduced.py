@@ -11,11 +11,14 @@ every speed, the projected dense problem (:mod:`rotorsim.solvers.projected_eigen
 2. DOFs that no matrix entry couples (lateral, axial and torsional motions of a straight
    rotor on radial bearings) form separate blocks, each with its own basis and its own
    projected problem: the dense solves, cubic in size, are then cheaper;
-3. at every speed the Ritz pairs of the projected problems are computed and the
-   ``n_wanted`` lowest elastic ones kept. Every kept pair's relative residual
-   ``||P^-1 (lam^2 M + lam (C + W G) + K) x|| / ||x||`` is evaluated with the full matrices
-   at that speed (``P`` the shifted stiffness of the solve,
-   :func:`~rotorsim.solvers.projected_eigen.shift_inverted_residuals`). Pairs above
+3. at every speed the eigenvalues of the projected problems are computed and the
+   ``n_wanted`` lowest elastic ones kept; only their eigenvectors are formed, by inverse
+   iteration (:class:`_Spectrum`; a block whose projected ``G`` is zero is solved once).
+   Every kept pair's relative residual ``||P^-1 (lam^2 M + lam (C + W G) + K) x|| / ||x||``
+   is evaluated in the full space at that speed (``P`` the shifted stiffness of the solve,
+   :func:`~rotorsim.solvers.projected_eigen.shift_inverted_residuals`; with constant
+   matrices from ``P^-1 M V``, ``P^-1 C V``, ``P^-1 G V`` and ``P^-1 K V`` formed once per
+   basis, :func:`_reduced_residuals`). Pairs above
    ``tol`` add their preconditioned residuals to the basis and the speed is solved again;
 4. a speed whose kept modes reach above the modes the samples on both sides put in the
    basis, or that is not converged after :data:`MAX_REFINEMENTS` refinements, is solved in
@@ -26,22 +29,19 @@ Every returned mode therefore has a residual in the full space below ``tol``.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import numpy as np
 import scipy.sparse as sp
 from numpy.typing import NDArray
 
+from rotorsim.analyses.linear.campbell_ritz import Block, RitzPairs, ritz_pairs
 from rotorsim.analyses.linear.modal import _elastic_indices, _rigid
 from rotorsim.assembly.system import RotorSystem, SystemMatrices
 from rotorsim.errors import ConvergenceError
-from rotorsim.solvers.eigen import RIGID_ROUNDING, default_shift, quadratic_eigen
+from rotorsim.solvers.eigen import default_shift, quadratic_eigen
 from rotorsim.solvers.linear import Factorization, factorize
-from rotorsim.solvers.projected_eigen import (
-    extend_basis,
-    projected_quadratic_eigen,
-    shift_inverted_residuals,
-)
+from rotorsim.solvers.projected_eigen import extend_basis, shift_inverted_residuals
 from rotorsim.solvers.stats import Stats
 
 FloatArray = NDArray[np.float64]
@@ -53,9 +53,12 @@ RESIDUAL_TOL = 1e-6
 solve returns (``tol = 1e-11`` on the shift-inverted operator) measure 1e-11 to 2e-7 in this
 norm on the 606-DOF benchmark rotor (the higher modes the larger); a Ritz pair at 1e-6 has
 its eigenvalue within about 1e-10 relative of ARPACK's (measured, docs/benchmarks.md)."""
-SVD_TOL = 1e-9
+SVD_TOL = 3e-8
 """Directions of the sample modes with singular values below this fraction of the largest
-are left out of the starting basis (refinement adds back what a speed needs)."""
+are left out of the starting basis (refinement adds back what a speed needs). Measured on
+the three 100-element benchmark rotors: 1e-9 kept 56-66 directions, 3e-8 keeps 52-62 with
+no refinement and the same frequencies to 1e-11; 1e-6 needs refinements that add back more
+than they saved."""
 SAMPLE_MARGIN = 0.0
 """Sample solves ask for this fraction of the wanted modes beyond them, and at least 2 more
 (measured on the three 100-element benchmark rotors: a quarter more gave 4-5 more basis
@@ -75,17 +78,8 @@ class SpeedModes:
 
 
 @dataclass
-class _Block:
-    """DOFs of one uncoupled block, its basis and the projected constant matrices."""
-
-    dofs: IntArray
-    V: FloatArray
-    reduced: dict[str, FloatArray] = field(default_factory=dict)
-
-
-@dataclass
 class _State:
-    blocks: list[_Block]
+    blocks: list[Block]
     samples: dict[int, float]  # speed index -> |lam| up to which the sample holds all modes
     abs_k: sp.csr_matrix | None = None
     n_rigid: int = 0
@@ -111,14 +105,14 @@ def reduced_modes(system: RotorSystem, grid: FloatArray, n_wanted: int, *,
     shift = default_shift(first.M, first.K) if sigma is None else float(sigma)
     lu = factorize(first.K + shift * (first.C + float(grid[0]) * first.G) + shift**2 * first.M,
                    stats=stats, where=f"campbell shift (sigma = {shift:.6g} rad/s)")
-    state = _State([_Block(d, np.zeros((d.size, 0))) for d in uncoupled_blocks(system)], {},
+    state = _State([Block(d, np.zeros((d.size, 0))) for d in uncoupled_blocks(system)], {},
                    abs_k=None if constant is None else abs(constant.K))
     sample_wanted = n_wanted + max(2, int(np.ceil(SAMPLE_MARGIN * n_wanted)))
     ends = sorted({0, grid.size - 1})
     first_modes = {i: _sample(state, i, at(float(grid[i])), float(grid[i]), sample_wanted,
                               shift, sparse, stats, svd=True) for i in ends}
     if constant is not None:
-        _project_constant(state, constant)
+        _project_constant(state, constant, lu)
     out: list[SpeedModes | Exception] = []
     worst = 0.0
     for i, speed in enumerate(grid):
@@ -172,7 +166,9 @@ def _sample(state: _State, i: int, mats: SystemMatrices, speed: float, wanted: i
             U, s, _ = np.linalg.svd(np.hstack([block.V, part.real, part.imag]),
                                     full_matrices=False)
             block.V = U[:, s > SVD_TOL * s[0]]
-            block.reduced = {}
+            block.reduced, block.solved, block.pairs = {}, {}, None
+            block.solved_stack = block.rigid_bound = None
+            block.rigid_known = {}
         elif part.size:
             block.V = extend_basis(block.V, part)
     rigid, _ = _rigid(values, vectors, mats.M, mats.K, None)
@@ -200,21 +196,50 @@ def _full_modes(mats: SystemMatrices, speed: float, wanted: int, shift: float,
         extra *= 2
 
 
-def _project_constant(state: _State, mats: SystemMatrices) -> None:
+def _project_constant(state: _State, mats: SystemMatrices, lu: Factorization) -> None:
+    """Projected matrices and ``P^-1 A V`` of every block whose basis changed."""
     for block in state.blocks:
-        if len(block.reduced) and next(iter(block.reduced.values())).shape[0] == \
-                block.V.shape[1]:
+        if block.reduced and block.reduced["M"].shape[0] == block.V.shape[1]:
             continue
-        block.reduced = _projected(block, mats)
+        _set_reduced(block, mats)
+        block.solved = _solved(block, mats, lu)
+        block.solved_stack = np.hstack([block.solved[key] for key in "MCGK"])
 
 
-def _projected(block: _Block, mats: SystemMatrices) -> dict[str, FloatArray]:
+def _set_reduced(block: Block, mats: SystemMatrices) -> None:
+    block.reduced = _projected(block, mats)
+    block.pairs, block.rigid_bound, block.rigid_known = None, None, {}
+
+
+def _projected(block: Block, mats: SystemMatrices) -> dict[str, FloatArray]:
     out = {}
     d, V = block.dofs, block.V
     for key in "MCGK":
         A = getattr(mats, key)[d][:, d]
         out[key] = np.asarray(V.T @ (A @ V))
     return out
+
+
+def _solved(block: Block, mats: SystemMatrices, lu: Factorization) -> dict[str, FloatArray]:
+    """``P^-1 A V`` restricted to the block's DOFs, for the basis columns not yet solved.
+
+    ``P`` couples no two blocks (the blocks are what no matrix couples), so ``P^-1 A V`` is
+    zero outside the block and a Ritz vector's residual ``P^-1 (lam^2 M + lam D + K) V y``
+    is ``(P^-1 M V) y lam^2 + (P^-1 D V) y lam + (P^-1 K V) y`` on the block.
+    """
+    d, V = block.dofs, block.V
+    done = block.solved["M"].shape[1] if block.solved else 0
+    new = V[:, done:]
+    c = new.shape[1]
+    if c == 0:
+        return block.solved
+    rhs = np.zeros((mats.M.shape[0], 4 * c), order="F")
+    for k, key in enumerate("MCGK"):
+        rhs[d, k * c:(k + 1) * c] = getattr(mats, key)[d][:, d] @ new
+    solution = np.asarray(lu.solve(rhs))[d]
+    return {key: np.hstack([block.solved[key], solution[:, k * c:(k + 1) * c]])
+            if block.solved else solution[:, k * c:(k + 1) * c]
+            for k, key in enumerate("MCGK")}
 
 
 def _solve_speed(state: _State, mats: SystemMatrices, speed: float, i: int, n_wanted: int,
@@ -224,15 +249,19 @@ def _solve_speed(state: _State, mats: SystemMatrices, speed: float, i: int, n_wa
     for _ in range(MAX_REFINEMENTS + 1):
         if speed_dependent:
             for block in state.blocks:
-                block.reduced = _projected(block, mats)
+                _set_reduced(block, mats)
         else:
-            _project_constant(state, mats)
-        values, X = _ritz(state.blocks, speed, n_wanted, shift, mats, state.abs_k,
-                          state.n_rigid)
+            _project_constant(state, mats, lu)
+        ritz = ritz_pairs(state.blocks, speed, n_wanted, shift, mats, state.abs_k, state.n_rigid,
+                     rigid_test=speed_dependent or state.n_rigid > 0)
+        values, X = ritz.values, ritz.vectors
         state.projected_solves += 1
         if values.size < n_wanted or np.abs(values).max() > _reach(state.samples, i):
             break  # modes above those the basis is known to hold: solve in full
-        res, Z = shift_inverted_residuals(lu, mats.M, D, mats.K, values, X)
+        if speed_dependent:
+            res, Z = shift_inverted_residuals(lu, mats.M, D, mats.K, values, X)
+        else:
+            res, Z = _reduced_residuals(state.blocks, ritz, speed)
         stats.residual_evaluations += 1
         if np.all(res <= tol):
             return SpeedModes(values, X, res)
@@ -246,6 +275,21 @@ def _solve_speed(state: _State, mats: SystemMatrices, speed: float, i: int, n_wa
     return _sample(state, i, mats, speed, sample_wanted, shift, sparse, stats)
 
 
+def _reduced_residuals(blocks: list[Block], ritz: RitzPairs, speed: float
+                       ) -> tuple[FloatArray, ComplexArray]:
+    """:func:`~rotorsim.solvers.projected_eigen.shift_inverted_residuals` of the Ritz pairs
+    from each block's ``P^-1 A V`` (constant matrices): the same numbers, from dense
+    products of the basis size instead of sparse products and a solve of the model's."""
+    Z = np.zeros(ritz.vectors.shape, dtype=complex)
+    for k in np.unique(ritz.block):
+        mine = np.flatnonzero(ritz.block == k)
+        Y, lam = ritz.coordinates[k], ritz.values[mine]
+        stacked = np.vstack([Y * lam**2, Y * lam, speed * (Y * lam), Y])
+        S = blocks[k].solved_stack
+        Z[np.ix_(blocks[k].dofs, mine)] = S @ stacked.real + 1j * (S @ stacked.imag)
+    return np.linalg.norm(Z, axis=0) / np.linalg.norm(ritz.vectors, axis=0), Z
+
+
 def _reach(samples: dict[int, float], i: int) -> float:
     """|lam| up to which the nearest samples on either side of speed index ``i`` hold all
     modes."""
@@ -253,47 +297,3 @@ def _reach(samples: dict[int, float], i: int) -> float:
     above = [j for j in samples if j >= i]
     near = ([samples[max(below)]] if below else []) + ([samples[min(above)]] if above else [])
     return min(near) if near else np.inf
-
-
-def _ritz(blocks: list[_Block], speed: float, n_wanted: int, shift: float,
-          mats: SystemMatrices, abs_k: sp.csr_matrix | None, n_rigid: int
-          ) -> tuple[ComplexArray, ComplexArray]:
-    """The ``n_wanted`` lowest elastic Ritz pairs of all blocks, on the free DOFs.
-
-    Only the ``2 (n_wanted + n_rigid) + 8`` pairs nearest the shift over all blocks are
-    lifted to the full space and tested for rigid-body motion (``n_rigid``: the most
-    rigid-body modes a sample had), the cost of the rest is saved.
-    """
-    n = mats.M.shape[0]
-    values, vectors, owner = [], [], []
-    for k, block in enumerate(blocks):
-        r = block.reduced
-        if block.V.shape[1] == 0:
-            continue
-        lam, Y = projected_quadratic_eigen(r["M"], r["C"] + speed * r["G"], r["K"], shift)
-        values.append(lam)
-        vectors.append(Y)
-        owner.append(np.full(lam.size, k))
-    lam = np.concatenate(values)
-    which = np.concatenate(owner)
-    column = np.concatenate([np.arange(v.size) for v in values])
-    order = np.argsort(np.abs(lam - shift), kind="stable")[:2 * (n_wanted + n_rigid) + 8]
-    X = np.zeros((n, order.size), dtype=complex)
-    for k, Y in zip(np.unique(which), vectors, strict=True):
-        mine = np.flatnonzero(which[order] == k)
-        X[np.ix_(blocks[k].dofs, mine)] = blocks[k].V @ Y[:, column[order[mine]]]
-    lam = lam[order]
-    elastic = _elastic_indices(lam, _rigid_mask(lam, X, mats, abs_k))[:n_wanted]
-    return lam[elastic], X[:, elastic]
-
-
-def _rigid_mask(lam: ComplexArray, X: ComplexArray, mats: SystemMatrices,
-                abs_k: sp.csr_matrix | None) -> NDArray[np.bool_]:
-    """The rigid-body test of :func:`~rotorsim.analyses.linear.modal.modal` (elastic energy
-    at the rounding level of ``K x``), with ``|K|`` formed once."""
-    abs_k = abs(mats.K) if abs_k is None else abs_k
-    size = np.abs(X)
-    rounding = RIGID_ROUNDING * np.finfo(float).eps * np.einsum("ij,ij->j", size,
-                                                                abs_k @ size)
-    kinetic = np.real(np.einsum("ij,ij->j", X.conj(), mats.M @ X))
-    return np.asarray(np.abs(lam) <= np.sqrt(rounding / kinetic))

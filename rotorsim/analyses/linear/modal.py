@@ -9,7 +9,13 @@ from numpy.typing import NDArray
 
 from rotorsim.analyses.keyword_check import checked_keywords
 from rotorsim.analyses.linear.argument_checks import check_num_modes, check_sparse, check_speed
-from rotorsim.analyses.linear.mode_shapes import circularize, clusters, mode_kind, whirl_of
+from rotorsim.analyses.linear.mode_shapes import (
+    PURE_TILT,
+    circularize,
+    clusters,
+    mode_kind,
+    whirl_of,
+)
 from rotorsim.analyses.system_input import as_system
 from rotorsim.assembly.system import RotorSystem
 from rotorsim.elements.base import as_float_array
@@ -189,19 +195,21 @@ def _elastic_indices(values: NDArray[np.complex128], rigid: NDArray[np.bool_]) -
 
 
 def _normalise(shapes: NDArray[np.complex128]) -> NDArray[np.complex128]:
-    out = shapes.copy()
+    """Each shape divided by its largest translation (by its largest entry when it has no
+    translation beyond rounding, :data:`~rotorsim.analyses.linear.mode_shapes.PURE_TILT`),
+    so that entry is 1."""
     n_nodes = shapes.shape[0] // 6
     trans = shapes.reshape(n_nodes, 6, -1)[:, :3, :].reshape(n_nodes * 3, -1)
-    for j in range(shapes.shape[1]):
-        col = trans[:, j] if np.abs(trans[:, j]).max() > 0 else shapes[:, j]
-        ref = col[np.argmax(np.abs(col))]
-        out[:, j] = shapes[:, j] / ref
-    return out
+    columns = np.arange(shapes.shape[1])
+    ref_trans = trans[np.argmax(np.abs(trans), axis=0), columns]
+    ref_all = shapes[np.argmax(np.abs(shapes), axis=0), columns]
+    has_trans = np.abs(trans).max(axis=0, initial=0.0) > PURE_TILT * np.abs(shapes).max(
+        axis=0, initial=0.0)
+    return shapes / np.where(has_trans, ref_trans, ref_all)
 
 
 def _classify(system: RotorSystem, shapes: NDArray[np.complex128]):
-    mass = system.dof_map.expand(system.pattern.matrix(system.structural_mass).diagonal())
-    kind = mode_kind(mass, shapes)
+    kind = mode_kind(system.mass_diagonal, shapes)
     whirl, ratio = whirl_of(shapes)
     whirl = np.where(kind == "lateral", whirl, "none")
     return tuple(str(w) for w in whirl), ratio, tuple(str(k) for k in kind)

@@ -67,12 +67,21 @@ def mac(a: ArrayLike, b: ArrayLike) -> FloatArray:
     return np.asarray(num / np.maximum(den, 1e-300))
 
 
+PURE_TILT = 1e-9
+"""A lateral mode whose largest translation orbit [m] is below this times its largest tilt
+orbit [rad] has no translation to working precision (a ratio of mixed units, used only to
+tell rounding from motion: any real translation of a tilting mode is many orders larger)."""
+
+
 def whirl_of(shapes: ArrayLike) -> tuple[NDArray[np.str_], FloatArray]:
     """Whirl direction of lateral mode shapes from their orbit ellipses.
 
     Nodes whose orbit is larger than 1e-3 of the largest one are significant; a mode is
     ``"forward"`` (``"backward"``) if every significant orbit whirls forward (backward),
-    ``"mixed"`` otherwise; ``"none"`` without lateral motion.
+    ``"mixed"`` otherwise; ``"none"`` without lateral motion. A mode with no translation
+    (all orbits below :data:`PURE_TILT` of its largest tilt, e.g. the conical whirl of a
+    disk held at its centre) takes the orbits of its tilts ``(ry, -rx)``, which turn the
+    way ``(ux, uy)`` do (``ry = dux/dz``, ``rx = -duy/dz``).
 
     Parameters
     ----------
@@ -94,11 +103,15 @@ def whirl_of(shapes: ArrayLike) -> tuple[NDArray[np.str_], FloatArray]:
     """
     nodes = np.asarray(shapes, dtype=complex).reshape(-1, 6, np.shape(shapes)[1])
     orbit = ellipse(nodes[:, 0, :], nodes[:, 1, :])
-    size = orbit.major
+    tilt = ellipse(nodes[:, 4, :], -nodes[:, 3, :])  # (ry, -rx) turns as (ux, uy) does
+    pure_tilt = orbit.major.max(axis=0, initial=0.0) <= PURE_TILT * tilt.major.max(
+        axis=0, initial=0.0)
+    size = np.where(pure_tilt, tilt.major, orbit.major)
+    whirl_ratio = np.where(pure_tilt, tilt.whirl_ratio, orbit.whirl_ratio)
     significant = size > 1e-3 * np.maximum(size.max(axis=0, keepdims=True), 1e-300)
     weight = np.where(significant, size, 0.0)
-    ratio = (weight * orbit.whirl_ratio).sum(axis=0) / np.maximum(weight.sum(axis=0), 1e-300)
-    r = np.where(significant, orbit.whirl_ratio, np.nan)
+    ratio = (weight * whirl_ratio).sum(axis=0) / np.maximum(weight.sum(axis=0), 1e-300)
+    r = np.where(significant, whirl_ratio, np.nan)
     forward = np.all(~significant | (r > 1e-6), axis=0)
     backward = np.all(~significant | (r < -1e-6), axis=0)
     whirl = np.where(forward, "forward", np.where(backward, "backward", "mixed"))

@@ -36,6 +36,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike
 
+from rotorsim.analyses.varying_compliance import vc_orders
 from rotorsim.assembly.loads import unit_direction
 from rotorsim.errors import ModelError
 
@@ -118,19 +119,6 @@ class ExcitationPlan:
     base_harmonic: int
     approximation: str = ""
     unbalance_ratio: float = 1.0
-
-
-def vc_orders(elements: Sequence[Any]) -> list[float]:
-    """Varying-compliance orders ``Z kappa`` of the rolling bearings whose cages turn."""
-    out = []
-    for el in elements:
-        bearing = getattr(el, "bearing", None)
-        z, kappa = getattr(bearing, "n_elements", 0), getattr(bearing, "kappa", 0.0)
-        # with both rings turning (an inter-shaft bearing) the cage's own speed ratio
-        kappa = abs(float(getattr(el, "cage_speed_ratio", kappa)))
-        if z and kappa:
-            out.append(float(z) * float(kappa))
-    return out
 
 
 def fundamental_order(orders: Sequence[float]) -> float | None:

@@ -37,8 +37,7 @@ from rotorsim.analyses.periodic.excitation import (
     HarmonicBase,
     rotating_coefficients,
 )
-from rotorsim.analyses.rigid_motions import free_rigid_motions, held_dofs
-from rotorsim.analyses.statics.nonlinear_static import nominal_tangent, nonlinear_equilibrium
+from rotorsim.analyses.statics.static_start import static_start
 from rotorsim.assembly.loads import (
     gravity_load,
     nodal_load,
@@ -53,7 +52,6 @@ from rotorsim.errors import ModelError
 from rotorsim.harmonic_balance.fourier import default_samples, whole
 from rotorsim.harmonic_balance.memory import check_memory
 from rotorsim.harmonic_balance.problem import HBProblem
-from rotorsim.solvers.linear import factorize
 from rotorsim.solvers.stats import Stats
 
 IntArray = NDArray[np.int64]
@@ -292,26 +290,3 @@ def _uses_speed(element: Any) -> bool:
     if not hasattr(element, "contact_damping"):
         return True
     return bool(getattr(element, "centrifugal", False)) or element.contact_damping == "ehl"
-
-
-def static_start(system: RotorSystem, K: Any, f: FloatArray, speed: float, phi: float,
-                 stats: Stats, x0: FloatArray | None = None) -> tuple[FloatArray, IntArray]:
-    """Static equilibrium ``K q + r(q) = f`` (n_free,) and the held free DOFs, one per free
-    rigid motion of ``K`` plus the nominal bearing tangent; the nonlinear solve starts from
-    ``x0`` (n_free,) when given
-    (:func:`~rotorsim.analyses.statics.nonlinear_static.start_point`)."""
-    if system.nonlinear is None:
-        rigid = free_rigid_motions(system, sp.csr_matrix(K))
-        held = np.asarray(held_dofs(rigid), dtype=np.int64)
-        keep = np.setdiff1d(np.arange(system.n_free), held)
-        q = np.zeros(system.n_free)
-        if np.any(f):
-            q[keep] = factorize(sp.csr_matrix(K)[keep][:, keep], stats=stats,
-                                where="periodic: static start").solve(f[keep])
-        return q, held
-    nominal = nominal_tangent(system)
-    rigid = free_rigid_motions(system, sp.csr_matrix(K + nominal))
-    held = np.asarray(held_dofs(rigid), dtype=np.int64)
-    eq = nonlinear_equilibrium(system, f, speed=speed, phi=phi, q0=x0, held=held.tolist(),
-                               nominal=nominal, stats=stats)
-    return eq.q, held

@@ -34,8 +34,8 @@ from typing import Any
 
 import numpy as np
 
-from rotorsim.analyses.periodic.excitation import vc_orders
 from rotorsim.analyses.periodic.problem import RotorForce, RotorPeriodicProblem
+from rotorsim.analyses.varying_compliance import vc_orders
 from rotorsim.assembly.loads import nodal_load
 from rotorsim.assembly.nonlinear import NonlinearAssembly
 from rotorsim.assembly.system import RotorSystem, assemble

@@ -9,6 +9,7 @@ import rotorsim as rs
 from rotorsim.analyses.linear.critical_speed_map import critical_speed_map
 from rotorsim.analyses.linear.critical_speeds import critical_speeds
 from rotorsim.errors import ModelError
+from rotorsim.model.lines import ShaftLine
 
 STEEL = rs.Material(name="steel", E=211e9, G_s=81.2e9, rho=7810)
 
@@ -143,3 +144,29 @@ def test_sparse_flag_must_be_a_bool_or_none(verb):
              "critical_speeds": lambda: critical_speeds(small_rotor(), 1, 2, sparse="no")}
     with pytest.raises(ModelError, match=f"{verb}: sparse must be None, True or False"):
         calls[verb]()
+
+
+def test_pure_tilt_modes_get_their_whirl_from_the_tilt_orbits():
+    """A rigid disk on one node (no beam): translation and tilt decouple exactly, so the
+    conical modes have no translation at all. Their whirl comes from the tilt orbits, and
+    must match the closed form: the forward tilt mode stiffens with speed,
+    ``lam^2 Id - lam W Ip - kr = 0`` (Friswell et al. 2010, section 3.5), the backward one
+    softens."""
+    Id, Ip, kr, k, m, speed = 0.9, 0.5, 2e5, 4e6, 30.0, 600.0
+    rotor = rs.Rotor([], [rs.DiskElement(n=0, m=m, Id=Id, Ip=Ip)],
+                     [rs.BearingElement(n=0, kxx=k, krr=kr, kzz=1e10)],
+                     lines=[ShaftLine("rotor", [])])
+    modes = rs.modal(rotor, speed, num_modes=4)
+    tilt = np.flatnonzero(np.abs(modes.wd - np.sqrt(k / m)) > 1.0)
+    assert tilt.size == 2
+    forward = (Ip * speed + np.sqrt((Ip * speed) ** 2 + 4 * Id * kr)) / (2 * Id)
+    backward = (-Ip * speed + np.sqrt((Ip * speed) ** 2 + 4 * Id * kr)) / (2 * Id)
+    whirl = np.asarray(modes.whirl)
+    got = dict(zip(whirl[tilt], modes.wd[tilt], strict=True))
+    assert set(got) == {"forward", "backward"}
+    # a 12-DOF dense problem: eigenvalues to ~1e-13 relative
+    np.testing.assert_allclose([got["forward"], got["backward"]], [forward, backward],
+                               rtol=1e-9)
+    # normalised by the largest entry (a tilt), not by a translation at rounding level
+    np.testing.assert_allclose(np.abs(modes.mode_shapes[:, tilt]).max(axis=0), 1.0,
+                               rtol=1e-12)

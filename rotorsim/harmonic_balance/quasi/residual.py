@@ -1,0 +1,199 @@
+"""The quasi-periodic harmonic-balance residual, condensed exactly onto the nonlinear DOFs.
+
+The equation of motion (rotor-agnostic, as :class:`~rotorsim.harmonic_balance.problem.
+HBProblem`, DESIGN section 1):
+
+    M q'' + (C + W G) q' + K q + f(q_N, q_N', theta) = p(theta),
+    theta = (w1 t, w2 t) + theta_0,      W = spin + spin_ratio w1,
+
+where the nonlinear force ``f`` acts on the DOFs ``N`` and may depend on the torus angles
+(a rolling-element bearing's cage angle is ``theta2 / N_b`` when ``w2`` is its
+varying-compliance frequency), and ``p`` holds combination tones of the two frequencies.
+
+For a tone of frequency ``Omega_j = k_j . (w1, w2)`` with complex amplitude
+``X_j = c_j - i s_j``, the linear part is the dynamic stiffness
+``Z(Omega) = K - Omega^2 M + i Omega (C + W G)``. Eliminating the linear DOFs ``L``
+tone by tone (as :mod:`rotorsim.harmonic_balance.condensation` does for one frequency)
+leaves, on ``N``,
+
+    S_j X_N,j + F_nl,j - (F_N,j - Z_NL Z_LL^-1 F_L,j) = 0,
+    S_j = Z_NN - Z_NL Z_LL^-1 Z_LN,
+
+which has exactly the solution of the full system. The nonlinear coefficients come from
+the 2-D AFT (:class:`~rotorsim.harmonic_balance.quasi.aft.TorusAFT`) with its exact
+Jacobian.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+import scipy.sparse as sp
+from numpy.typing import NDArray
+
+from rotorsim.errors import ModelError
+from rotorsim.harmonic_balance.quasi.aft import TorusAFT
+from rotorsim.solvers.linear import factorize
+
+FloatArray = NDArray[np.float64]
+ComplexArray = NDArray[np.complex128]
+IntArray = NDArray[np.int64]
+
+TorusForce = Callable[[FloatArray, FloatArray, FloatArray, FloatArray],
+                      tuple[FloatArray, FloatArray, FloatArray | None]]
+"""``force(q (S, d), v (S, d), theta1 (S,), theta2 (S,)) -> (f (S, d), df/dq (S, d, d),
+df/dv (S, d, d) or None)`` on the nonlinear DOFs, batched over ``S`` torus samples."""
+
+
+@dataclass(frozen=True, eq=False)
+class QuasiProblem:
+    """Matrices, nonlinear force and forcing of a quasi-periodic problem.
+
+    Parameters
+    ----------
+    M, C, K : dense or sparse (n, n)
+        Mass [kg], damping [N s/m] and stiffness [N/m].
+    G : dense or sparse (n, n) or None
+        Gyroscopic matrix per unit spin [N s/m per rad/s].
+    nl_dofs : int array (d,)
+        DOFs the nonlinear force acts on (sorted, distinct).
+    force : TorusForce or None
+    excitation : array (rows, n)
+        Coefficients of ``p(theta)`` in the layout of the harmonic set used.
+    spin, spin_ratio : float
+        ``W = spin + spin_ratio w1`` [rad/s].
+    """
+
+    M: Any
+    C: Any
+    K: Any
+    G: Any = None
+    nl_dofs: IntArray = field(default_factory=lambda: np.zeros(0, dtype=np.int64))
+    force: TorusForce | None = None
+    excitation: FloatArray | None = None
+    spin: float = 0.0
+    spin_ratio: float = 0.0
+
+    @property
+    def n(self) -> int:
+        return int(self.M.shape[0])
+
+    def damping(self, w1: float) -> Any:
+        """``C + W G`` at ``W = spin + spin_ratio w1``."""
+        if self.G is None:
+            return self.C
+        return self.C + (self.spin + self.spin_ratio * w1) * self.G
+
+
+@dataclass(eq=False)
+class CondensedTones:
+    """Per-tone Schur complements ``S (rows, d, d)`` (complex; the mean's is real), loads on
+    ``N`` and the factors needed to recover the linear DOFs."""
+
+    frequencies: FloatArray
+    S: ComplexArray
+    load: ComplexArray
+    linear: list[ComplexArray]
+    """Per tone ``[Z_LL^-1 Z_LN, Z_LL^-1 F_L]`` (``(n_L, d + 1)``): ``X_L = Z_LL^-1 F_L -
+    Z_LL^-1 Z_LN X_N``."""
+
+
+def condense(problem: QuasiProblem, aft: TorusAFT, w1: float, w2: float) -> CondensedTones:
+    """Schur complements and condensed loads of every tone at ``(w1, w2)``."""
+    n, N = problem.n, np.asarray(problem.nl_dofs, dtype=np.int64)
+    L = np.setdiff1d(np.arange(n), N)
+    omega = np.concatenate([[0.0], aft.harmonics.frequencies(w1, w2)])
+    F = _complex_excitation(problem, aft)
+    D = problem.damping(w1)
+    S = np.empty((omega.size, N.size, N.size), dtype=complex)
+    load = np.empty((omega.size, N.size), dtype=complex)
+    linear = []
+    for j, w in enumerate(omega):
+        Z = problem.K - w**2 * problem.M + 1j * w * D
+        Z = sp.csc_matrix(Z) if sp.issparse(Z) else np.asarray(Z, dtype=complex)
+        ZNN, ZNL = _block(Z, N, N), _block(Z, N, L)
+        if L.size == 0:
+            S[j], load[j] = ZNN, F[j, N]
+            linear.append(np.zeros((0, N.size + 1), dtype=complex))
+            continue
+        ZLL = Z[L][:, L] if sp.issparse(Z) else Z[np.ix_(L, L)]
+        lu = factorize(ZLL, where=f"quasi-periodic HB, linear DOFs at tone {j} "
+                             f"(Omega = {w:.6g} rad/s)")
+        ZLN = _block(Z, L, N)
+        Y = lu.solve(np.column_stack([ZLN, F[j, L]]))
+        S[j] = ZNN - ZNL @ Y[:, :-1]
+        load[j] = F[j, N] - ZNL @ Y[:, -1]
+        linear.append(Y)
+    return CondensedTones(omega, S, load, linear)
+
+
+def residual(problem: QuasiProblem, aft: TorusAFT, tones: CondensedTones, w1: float,
+             w2: float, Y: FloatArray) -> tuple[FloatArray, FloatArray]:
+    """Condensed residual ``(rows d,)`` and its Jacobian at nonlinear coefficients
+    ``Y (rows, d)`` (ordering harmonic-major, as :meth:`TorusAFT.jacobian`)."""
+    rows, d = Y.shape
+    Zc = np.concatenate([Y[:1].astype(complex), Y[1::2] - 1j * Y[2::2]])
+    lin = np.einsum("jab,jb->ja", tones.S, Zc) - tones.load
+    R = np.empty((rows, d))
+    R[0] = lin[0].real
+    R[1::2] = lin[1:].real
+    R[2::2] = -lin[1:].imag
+    blocks = np.zeros((rows, d, rows, d))
+    blocks[0, :, 0, :] = tones.S[0].real
+    j = np.arange(1, rows // 2 + 1)
+    Sr, Si = tones.S[1:].real, tones.S[1:].imag
+    blocks[2 * j - 1, :, 2 * j - 1, :] = Sr
+    blocks[2 * j - 1, :, 2 * j, :] = Si
+    blocks[2 * j, :, 2 * j - 1, :] = -Si
+    blocks[2 * j, :, 2 * j, :] = Sr
+    J = blocks.reshape(rows * d, rows * d)
+    if problem.force is not None:
+        q = aft.to_samples(Y)
+        Dm = aft.derivative_matrix(w1, w2)
+        v = aft.to_samples(Dm @ Y)
+        theta1, theta2 = aft.angles
+        f, dfdq, dfdv = problem.force(q, v, theta1, theta2)
+        R += aft.to_coefficients(f)
+        J += aft.jacobian(dfdq)
+        if dfdv is not None:
+            J += aft.jacobian(dfdv) @ np.kron(Dm, np.eye(d))
+    return R.ravel(), J
+
+
+def full_coefficients(problem: QuasiProblem, tones: CondensedTones, Y: FloatArray
+                      ) -> FloatArray:
+    """Coefficients ``(rows, n)`` of all DOFs from those of the nonlinear DOFs."""
+    rows = Y.shape[0]
+    N = np.asarray(problem.nl_dofs, dtype=np.int64)
+    L = np.setdiff1d(np.arange(problem.n), N)
+    out = np.zeros((rows, problem.n))
+    out[:, N] = Y
+    Zc = np.concatenate([Y[:1].astype(complex), Y[1::2] - 1j * Y[2::2]])
+    for j in range(Zc.shape[0]):
+        XL = tones.linear[j][:, -1] - tones.linear[j][:, :-1] @ Zc[j]
+        if j == 0:
+            out[0, L] = XL.real
+        else:
+            out[2 * j - 1, L] = XL.real
+            out[2 * j, L] = -XL.imag
+    return out
+
+
+def _complex_excitation(problem: QuasiProblem, aft: TorusAFT) -> ComplexArray:
+    rows = aft.harmonics.rows
+    P = np.zeros((rows, problem.n)) if problem.excitation is None else np.asarray(
+        problem.excitation, dtype=float)
+    if P.shape != (rows, problem.n):
+        raise ModelError(f"excitation has shape {P.shape}, expected {(rows, problem.n)} "
+                         "(rows of the harmonic set, DOFs)", "QuasiProblem.excitation")
+    return np.concatenate([P[:1].astype(complex), P[1::2] - 1j * P[2::2]])
+
+
+def _block(Z: Any, rows: IntArray, cols: IntArray) -> ComplexArray:
+    """A dense block of ``Z`` (one of its dimensions is the few nonlinear DOFs)."""
+    if sp.issparse(Z):
+        return np.asarray(Z[rows][:, cols].toarray())
+    return np.asarray(Z[np.ix_(rows, cols)])
