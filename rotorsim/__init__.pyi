@@ -79,6 +79,7 @@ from .elements.rolling.large_rotation import LargeRotationBearing
 from .elements.rolling.rating.hertz_pressure import contact_pressures
 from .elements.rolling.rating.iso281 import BearingRating
 from .elements.rolling.rating.options import RatingOptions
+from .elements.rolling.roller.half_space import HalfSpaceLineContact, roller_pressure_field
 from .elements.shaft import ShaftElement, cowper_shear_coefficient
 from .errors import (
     ConvergenceError,
@@ -161,6 +162,7 @@ __all__ = [
     "Foundation",
     "FrequencyResponseResult",
     "Grid",
+    "HalfSpaceLineContact",
     "HarmonicBase",
     "Harmonics",
     "InconsistentModelError",
@@ -243,6 +245,7 @@ __all__ = [
     "quasi_periodic_point",
     "required_separation_margin",
     "residual_unbalance",
+    "roller_pressure_field",
     "run_analysis",
     "save",
     "save_model",

@@ -341,7 +341,7 @@ def _rolling_model(t: RollingTable) -> BallBearing | RollerBearing:
     return RollerBearing(n_rollers=t.n_rollers, roller_diameter=t.roller_diameter,
                          effective_length=t.effective_length, Kn=t.Kn,
                          profile=_profile(t.profile), model=t.model, n_slices=t.n_slices,
-                         tag=t.tag or "", **keys)
+                         slice_model=t.slice_model, tag=t.tag or "", **keys)
 
 
 def _profile(p: ProfileTable | None) -> Any:

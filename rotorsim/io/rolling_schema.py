@@ -131,6 +131,7 @@ class RollerTable(RollingTable):
     profile: ProfileTable | None = None
     model: Literal["tilt_integral", "slices"] = "tilt_integral"
     n_slices: Annotated[int, Field(ge=1, le=10_000)] = 20
+    slice_model: Literal["independent", "influence"] = "independent"
 
     @model_validator(mode="after")
     def _interference(self) -> "RollerTable":

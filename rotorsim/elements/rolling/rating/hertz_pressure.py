@@ -29,8 +29,9 @@ from the radial direction. The ellipse is truncated when ``|alpha_j| + a / r > t
 
 The line load of slice ``k`` is ``q_k = Kn delta_k^n / L`` (the roller model's line load,
 :mod:`~rotorsim.elements.rolling.roller.line_load`); the end slices carry the edge load
-of independent slices. The stress concentration at a roller end beyond that (half-space
-influence coefficients, seed 002 ch. 2) is not modelled here.
+of independent slices; with ``slice_model="influence"`` the slice loads of the half-space
+influence coefficients (seed 002 ch. 2; :mod:`~rotorsim.elements.rolling.roller.
+slice_influence`), whose end slices carry the edge stress.
 """
 
 from __future__ import annotations
@@ -320,8 +321,12 @@ def contact_pressures(bearing: Any, delta: ArrayLike, psi: ArrayLike | None = No
                               outer_contact_angle=st.outer_contact_angle,
                               shoulder_heights=shoulder_heights, **materials)
     if hasattr(bearing, "slice_deflections"):
-        deflection = np.maximum(bearing.slice_deflections(delta, psi_arr), 0.0)
-        line = bearing.kn * deflection**bearing.exponent / bearing.effective_length
+        if getattr(bearing, "slice_model", "independent") == "influence":
+            line = bearing.slice_loads(delta, psi_arr) * (bearing.n_slices
+                                                          / bearing.effective_length)
+        else:
+            deflection = np.maximum(bearing.slice_deflections(delta, psi_arr), 0.0)
+            line = bearing.kn * deflection**bearing.exponent / bearing.effective_length
         return roller_pressures(bearing.roller_diameter, bearing.pitch_diameter,
                                 bearing.contact_angle, line, bearing._line.xi, **materials)
     raise ModelError(f"contact pressures are implemented for BallBearing and RollerBearing, "

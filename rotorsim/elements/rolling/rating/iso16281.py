@@ -322,7 +322,10 @@ def reference_rating(bearing: Any, rating: BearingRating, n_laminae: int | None 
 
 def lamina_loads(bearing: Any, delta: ArrayLike, psi: ArrayLike) -> FloatArray:
     """Lamina loads ``(Kn / K) max(delta_k, 0)^n`` (S, Z, K) [N] of a ``RollerBearing``
-    at its ``n_slices`` slice centres (both contact models)."""
+    at its ``n_slices`` slice centres (both contact models), or its half-space slice
+    loads with ``slice_model="influence"`` (``RollerBearing.slice_loads``)."""
+    if getattr(bearing, "slice_model", "independent") == "influence":
+        return np.asarray(bearing.slice_loads(delta, psi))
     deflection = np.maximum(bearing.slice_deflections(delta, psi), 0.0)
     return np.asarray(bearing.kn / bearing.n_slices * deflection**bearing.exponent)
 

@@ -141,6 +141,9 @@ class RatedBearing:
         if self.kind == "roller":
             b = self.base
             cap = self.reference.capacities()
+            if getattr(b, "slice_model", "independent") == "influence":  # half-space laminae
+                density = (b.slice_loads(self._delta(delta), psi) / cap[0]) ** p
+                return density.sum(axis=-1), density, (1.0, float((cap[0] / cap[1]) ** p))
             deflection = b.slice_deflections(self._delta(delta), psi)
             loaded = deflection > 0.0
             values = deflection[loaded]  # the power only where loaded: the costly step

@@ -20,6 +20,9 @@ from rotorsim.errors import ModelError
 
 ROLLER_MODELS = ("tilt_integral", "slices")
 """Names of the roller contact models."""
+
+SLICE_MODELS = ("independent", "influence")
+"""Slice load laws of the post-processing (:meth:`RollerBearing.slice_loads`)."""
 CAGE_LAWS = ("rotating", "fixed")
 """Cage laws: ``"rotating"`` (inner ring turns, outer fixed) or ``"fixed"`` rollers."""
 
@@ -68,6 +71,9 @@ def check_options(b: Any, where: str) -> None:
     """Model, cage law, profile, slices and ``psi0``."""
     if b.model not in ROLLER_MODELS:
         raise TypeError(f"{where}: unknown model {b.model!r}; valid: {ROLLER_MODELS}")
+    if getattr(b, "slice_model", "independent") not in SLICE_MODELS:
+        raise TypeError(f"{where}: unknown slice_model {b.slice_model!r}; valid: "
+                        f"{SLICE_MODELS}")
     if b.cage not in CAGE_LAWS:
         raise TypeError(f"{where}: unknown cage {b.cage!r}; valid: {CAGE_LAWS}")
     if not isinstance(b.profile, StraightProfile | CircularCrown | LogarithmicProfile):
