@@ -10,6 +10,7 @@ from pathlib import Path
 from typing import Any
 
 from rotorsim.report import page
+from rotorsim.report.bearing_life import history_lives, static_lives
 
 HDF5_NAME = "report.h5"
 HTML_NAME = "report.html"
@@ -114,8 +115,7 @@ def _rolling_section(model: Any, results: dict[str, Any], plots: bool) -> str:
                   page.preformatted(bearing_summary(equilibrium, tag))]
         if plots:
             parts.append(page.figure(plot(equilibrium), f"load distribution of bearing {tag}"))
-    parts.append(page.paragraph("Bearing life is not computed: rotorsim has no rating-life "
-                                "model yet.", "warn"))
+    parts.append(static_lives(model, linear, results))
     return "".join(parts)
 
 
@@ -146,6 +146,7 @@ def _analysis_section(model: Any, name: str, folder: Path, fast: bool, units: st
     figures = figures_of(result, name, units, figure_options) if plots else {}
     for file_name, fig in figures.items():
         parts.append(page.figure(fig, file_name.removesuffix(".png").replace("_", " ")))
+    parts.append(history_lives(model, name, result, results))
     return "".join(parts)
 
 
