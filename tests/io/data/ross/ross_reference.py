@@ -8,19 +8,19 @@ Run with a Python that has ROSS installed (not part of rotorsim's test suite):
 then prints the damped natural frequencies and log decrements ROSS computes
 (``Rotor.run_modal``), and those of the compressor with its mass-only sleeves lumped on
 their nodes as rotorsim's importer lumps them. tests/io/test_ross_import.py records the
-numbers printed by ROSS 3.1.0.
+numbers printed by ROSS 3.1.0. ROSS is imported inside the functions, so that pytest's
+doctest collection can import this file without it.
 """
 
 import warnings
 
 import numpy as np
-import ross as rs
-from ross.materials import steel
-
-warnings.filterwarnings("ignore")
 
 
 def pedestal_example():
+    import ross as rs
+    from ross.materials import steel
+
     shaft = [rs.ShaftElement(0.2, 0.0, 0.06, material=steel) for _ in range(5)]
     disk = rs.DiskElement.from_geometry(n=3, material=steel, width=0.05, i_d=0.06, o_d=0.3)
     b0 = rs.BearingElement(n=0, n_link=6, kxx=2e7, kyy=3e7, cxx=500.0, tag="B0")
@@ -36,6 +36,8 @@ def pedestal_example():
 
 def lumped(rotor):
     """The rotor with each mass-only sleeve (material shaft_mat_2) lumped on its nodes."""
+    import ross as rs
+
     core, disks = [], list(rotor.disk_elements)
     for el in rotor.shaft_elements:
         if el.material.name != "shaft_mat_2":
@@ -58,7 +60,10 @@ def show(name, rotor, speeds):
                                                     max_line_width=400))
 
 
-if __name__ == "__main__":
+def main():
+    import ross as rs
+
+    warnings.filterwarnings("ignore")
     print("ROSS", rs.__version__)
     rotors = {"rotor_example": rs.rotor_example(), "rotor_example_6dof": rs.rotor_example_6dof(),
               "rotor_example_with_damping": rs.rotor_example_with_damping(),
@@ -70,3 +75,7 @@ if __name__ == "__main__":
              (628.3185307179587, 900.0, 1250.0) if name == "compressor_example" else (500.0,))
     show("compressor_lumped", lumped(rotors["compressor_example"]),
          (628.3185307179587, 900.0, 1250.0))
+
+
+if __name__ == "__main__":
+    main()
