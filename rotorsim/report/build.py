@@ -95,9 +95,29 @@ def _model_section(model: Any, plots: bool) -> str:
              for rb in model.rolling_bearings]  # drawn as supports
     drawn = model.rotor.with_bearings([*model.rotor.bearing_elements, *extra])
     return "".join([page.heading(2, "Model", "model"),
-                    page.table(rows, ("quantity", "value")),
+                    page.table(rows, ("quantity", "value")), _lines_table(model.rotor),
                     page.figure(plot(drawn), "layout of the rotor (to scale)") if plots
                     else ""])
+
+
+def _lines_table(rotor: Any) -> str:
+    """The shaft lines of a machine (spools and casing): speed ratio, nodes, mass and
+    where their API unbalance checks are (one per spool, ``spool = "<line>"``)."""
+    layout = rotor.layout
+    if len(layout.lines) < 2:
+        return ""
+    rows = []
+    for i, line in enumerate(layout.lines):
+        first = int(layout.first_node[i])
+        on = range(first, first + line.n_nodes)
+        mass = sum(el.mass for el in line.elements) + sum(
+            d.m for d in rotor.disk_elements if d.n in on)
+        rows.append((line.name, f"{line.speed_ratio:g}", f"{first}-{on[-1]}",
+                     f"{mass:.4g}", "spool" if line.speed_ratio else "not rotating"))
+    return (page.paragraph("A machine of several shaft lines; speeds are the reference "
+                           "speed unless a section names a spool (API checks are made per "
+                           "spool, in its own speeds).")
+            + page.table(rows, ("line", "speed ratio", "nodes", "mass [kg]", "kind")))
 
 
 def _rolling_section(model: Any, results: dict[str, Any], plots: bool) -> str:
