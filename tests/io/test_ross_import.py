@@ -184,3 +184,18 @@ def test_a_mass_only_layer_is_lumped_with_its_mass():
     assert sum(d.m for d in lumps) == pytest.approx(mass, rel=1e-12)
     assert sum(d.Ip for d in lumps) == pytest.approx(mass * (0.05**2 + 0.025**2) / 2,
                                                      rel=1e-12)
+
+
+def test_json_files_and_non_ross_files(tmp_path):
+    """ROSS saves .json with the same tables; a file without ROSS elements is refused."""
+    import json
+    import tomllib
+
+    data = tomllib.loads((DATA / "rotor_example.toml").read_text())
+    path = tmp_path / "rotor_example.json"
+    path.write_text(json.dumps({"_note": "written by ROSS", **data}))
+    wd, _ = _modes(from_ross(path), 500.0, 10)
+    np.testing.assert_allclose(wd, ROSS_3_1_0[("rotor_example", 500.0)][0], rtol=REL_EXACT)
+    model_file = Path(__file__).resolve().parents[2] / "models" / "default.toml"
+    with pytest.raises(rs.ModelError, match="no ROSS elements"):
+        from_ross(model_file)
