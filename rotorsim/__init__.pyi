@@ -90,6 +90,7 @@ from .errors import (
 )
 from .io.hdf5 import ResultsFileError, load, save
 from .io.model_file import Model, load_model, run_analysis, save_model
+from .io.ross_import import RossImportError, from_ross, import_ross
 from .io.sweep_store import load_sweep
 from .io.vtk import export_vtk
 from .model.damping import SystemDamping
@@ -191,6 +192,7 @@ __all__ = [
     "ReversedBearing",
     "RollerBearing",
     "RollingBearing",
+    "RossImportError",
     "Rotor",
     "RotorSystem",
     "RotorsimError",
@@ -228,7 +230,9 @@ __all__ = [
     "ellipse",
     "export_vtk",
     "frequency_response",
+    "from_ross",
     "hb",
+    "import_ross",
     "kn_for_exponent",
     "level1_screening",
     "linearize_at_load",

@@ -56,6 +56,15 @@ def _dispatch(args: argparse.Namespace) -> int:
     from rotorsim.cli.preflight import transient_notes
     from rotorsim.io.model_file import load_model
 
+    if args.command == "import-ross":
+        from rotorsim.io.ross_import import from_ross, import_ross, table_note
+
+        speeds = None if args.speed_range is None else tuple(args.speed_range)
+        print(f"model file: {import_ross(args.model, args.out, speed_range=speeds)}")
+        note = table_note(from_ross(args.model, speed_range=speeds))
+        if note:
+            print(f"note: {note}")
+        return 0
     model = load_model(args.model)
     if args.command == "info":
         print(_info(model))

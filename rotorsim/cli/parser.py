@@ -138,6 +138,15 @@ def build_parser() -> argparse.ArgumentParser:
                         help="leave the figures out (tables and summaries only)")
     report.add_argument("--fast", action="store_true", help="coarse grids (smoke runs)")
 
+    ross = sub.add_parser("import-ross", help="write the rotorsim model file of a ROSS rotor "
+                          "file (ross.Rotor.save, .toml or .json)")
+    ross.add_argument("model", type=Path, help="the ROSS file")
+    ross.add_argument("--out", type=Path, help="model file to write (default: "
+                      "<name>_rotorsim.toml beside the ROSS file)")
+    ross.add_argument("--speed-range", nargs=2, type=float, metavar=("MIN", "MAX"),
+                      help="speeds [rad/s] the bearing tables must cover (extended by "
+                      "ROSS's linear extrapolation)")
+
     bearing = sub.add_parser("bearing", help=_BEARING_HELP)
     bearing.add_argument("model", type=Path)
     bearing.add_argument("--tag", help="only the rolling bearing with this tag (or index)")

@@ -221,7 +221,7 @@ def _api_unbalance(rotor: Rotor, model: Model, spec: Any, fast: bool, progress: 
                          num_modes=spec.num_modes, probes=spec.probes,
                          clearances=[Clearance(c.node, c.clearance, c.tag or "")
                                      for c in spec.clearances],
-                         plane_mass=spec.plane_mass, factor=spec.factor)
+                         plane_mass=spec.plane_mass, factor=spec.factor, spool=spec.spool)
 
 
 RUNNERS: dict[type[AnalysisSpec], Callable[..., Any]] = {

@@ -295,6 +295,7 @@ class ApiUnbalanceTable(AnalysisTable):
     probes: list[NodeIndex] | None = None
     plane_mass: Mass | None = None
     factor: PositiveRatio = 1.0
+    spool: str | None = None
 
 
 TABLES: dict[str, type[AnalysisTable]] = {

@@ -77,6 +77,7 @@ class ApiUnbalanceSpec(AnalysisSpec):
     probes: tuple[int, ...] | None = None
     plane_mass: float | None = None
     factor: float = 1.0
+    spool: str | None = None
 
     def to_toml(self) -> dict[str, Any]:
         out = super().to_toml()

@@ -10,6 +10,7 @@ from pathlib import Path
 from typing import Any
 
 from rotorsim.report import page
+from rotorsim.report.bearing_life import history_lives, static_lives
 
 HDF5_NAME = "report.h5"
 HTML_NAME = "report.html"
@@ -94,9 +95,29 @@ def _model_section(model: Any, plots: bool) -> str:
              for rb in model.rolling_bearings]  # drawn as supports
     drawn = model.rotor.with_bearings([*model.rotor.bearing_elements, *extra])
     return "".join([page.heading(2, "Model", "model"),
-                    page.table(rows, ("quantity", "value")),
+                    page.table(rows, ("quantity", "value")), _lines_table(model.rotor),
                     page.figure(plot(drawn), "layout of the rotor (to scale)") if plots
                     else ""])
+
+
+def _lines_table(rotor: Any) -> str:
+    """The shaft lines of a machine (spools and casing): speed ratio, nodes, mass and
+    where their API unbalance checks are (one per spool, ``spool = "<line>"``)."""
+    layout = rotor.layout
+    if len(layout.lines) < 2:
+        return ""
+    rows = []
+    for i, line in enumerate(layout.lines):
+        first = int(layout.first_node[i])
+        on = range(first, first + line.n_nodes)
+        mass = sum(el.mass for el in line.elements) + sum(
+            d.m for d in rotor.disk_elements if d.n in on)
+        rows.append((line.name, f"{line.speed_ratio:g}", f"{first}-{on[-1]}",
+                     f"{mass:.4g}", "spool" if line.speed_ratio else "not rotating"))
+    return (page.paragraph("A machine of several shaft lines; speeds are the reference "
+                           "speed unless a section names a spool (API checks are made per "
+                           "spool, in its own speeds).")
+            + page.table(rows, ("line", "speed ratio", "nodes", "mass [kg]", "kind")))
 
 
 def _rolling_section(model: Any, results: dict[str, Any], plots: bool) -> str:
@@ -114,8 +135,7 @@ def _rolling_section(model: Any, results: dict[str, Any], plots: bool) -> str:
                   page.preformatted(bearing_summary(equilibrium, tag))]
         if plots:
             parts.append(page.figure(plot(equilibrium), f"load distribution of bearing {tag}"))
-    parts.append(page.paragraph("Bearing life is not computed: rotorsim has no rating-life "
-                                "model yet.", "warn"))
+    parts.append(static_lives(model, linear, results))
     return "".join(parts)
 
 
@@ -146,6 +166,7 @@ def _analysis_section(model: Any, name: str, folder: Path, fast: bool, units: st
     figures = figures_of(result, name, units, figure_options) if plots else {}
     for file_name, fig in figures.items():
         parts.append(page.figure(fig, file_name.removesuffix(".png").replace("_", " ")))
+    parts.append(history_lives(model, name, result, results))
     return "".join(parts)
 
 

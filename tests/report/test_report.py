@@ -127,3 +127,33 @@ def test_renders_in_a_headless_browser(report, tmp_path):
     # non-blank: text and figures make dark pixels and a spread of grey levels
     assert (pixels.mean(axis=2) < 0.5).mean() > 0.005
     assert pixels.std() > 0.05
+
+
+def test_bearing_lives_are_traceable_to_the_hdf5_results(report):
+    """Every rolling bearing gets its life at the static load, over the transient and along
+    the periodic branch over speed, each stored in its own HDF5 group; the table shows the
+    stored numbers (4 significant digits, as the page writes them)."""
+    from rotorsim.report.bearing_life import life_row
+
+    name, html, h5 = report
+    model = rs.load_model(MODELS / f"{name}.toml")
+    results = rs.load(h5)
+    if not model.rolling_bearings:  # the compressor: journal bearings, no lives
+        assert not [k for k in results if "life" in k]
+        return
+    sections = _sections(_tree(html))
+    kinds = {"life": "rolling-bearings", **{
+        f"{a}_life": a for a, spec in model.analyses.items()
+        if spec.type in ("transient", "periodic")}}
+    assert len(kinds) == 3  # the default model has one transient and one periodic branch
+    for prefix, section in kinds.items():
+        rows = [tuple(td.text or "" for td in tr.iter("td"))
+                for e in sections[section] for tr in e.iter("tr")]
+        for rolling in model.rolling_bearings:
+            key = f"{prefix}_{rolling.tag}"
+            life = results[key]
+            assert isinstance(life, rs.BearingLifeResult)
+            assert 0 < life.L10r < np.inf
+            assert life_row(life, rolling.tag, key) in rows
+    static = results[f"life_{model.rolling_bearings[0].tag}"]
+    assert static.L10r == pytest.approx(static.L10, rel=0.5)  # ISO/TS 16281 near ISO 281

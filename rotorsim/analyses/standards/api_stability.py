@@ -201,8 +201,11 @@ def check_one_line(rotor: Rotor, where: str) -> None:
         raise ModelError(f"expected a Rotor, got {type(rotor).__name__}", where)
     lines = rotor.layout.lines
     if len(lines) > 1:
-        raise ModelError(f"the API checks take a rotor of one shaft line; this machine has "
-                         f"{len(lines)} ({', '.join(line.name for line in lines)})", where)
+        raise ModelError(
+            f"API 617 Level I takes a rotor of one shaft line; this machine has {len(lines)} "
+            f"({', '.join(line.name for line in lines)}), whose first forward mode, bearing "
+            "mid-span and rigid-support critical speed mix the spools and the casing: check "
+            "each spool as its own Rotor on its bearings", where)
 
 
 def _stations(rotor: Rotor, stages: Sequence[ApiStage], stage_q: NDArray[np.float64],

@@ -12,6 +12,7 @@ at each speed); each mode's shape is the complex mode at its critical speed.
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass
@@ -30,8 +31,8 @@ from rotorsim.analyses.standards.api_formulas import (
     residual_unbalance,
     vibration_limit,
 )
-from rotorsim.analyses.standards.api_stability import check_one_line
 from rotorsim.analyses.standards.half_power import HalfPower, half_power
+from rotorsim.analyses.standards.spool import Spool, spool_of
 from rotorsim.elements.base import as_float_array
 from rotorsim.errors import ModelError
 from rotorsim.model.rotor import Rotor
@@ -84,6 +85,7 @@ def api_unbalance(
     probes: Sequence[int] | None = None,
     plane_mass: float | None = None,
     factor: float = 1.0,
+    spool: str | None = None,
 ) -> ApiUnbalanceResult:
     """API 617 unbalance response analysis of the modes in the analysed speed range.
 
@@ -92,12 +94,12 @@ def api_unbalance(
     rotor : Rotor
         The rotor on its bearings.
     speeds : array (F,)
-        Increasing spin speeds [rad/s]; they must cover the operating range (API: from 0
-        to the trip speed) and resolve each resonance peak (a few points within its
+        Increasing spin speeds of the spool [rad/s]; they must cover the operating range
+        (API: from 0 to the trip speed) and resolve each resonance peak (a few points within its
         half-power band): the peak and the band are refined on the response, but a peak
         the grid misses (e.g. one of two close peaks on anisotropic supports) is not.
     min_speed, mcs : float
-        Minimum operating and maximum continuous speeds [rad/s].
+        Minimum operating and maximum continuous speeds of the spool [rad/s].
     num_modes : int
         At most this many modes (the lowest critical speeds in the range).
     clearances : list of Clearance
@@ -105,11 +107,17 @@ def api_unbalance(
     probes : list of int, optional
         Nodes of the vibration probes for the scale factor (default: the bearing nodes).
     plane_mass : float, optional
-        W of ``U = 6350 W / N`` for each plane [kg]; default the rotor mass over the
-        number of planes of the mode (the sum of the journal loads for a one-plane mode,
-        each journal's load for two planes of a symmetric rotor).
+        W of ``U = 6350 W / N`` for each plane [kg]; default the rotor (spool) mass over
+        the number of planes of the mode (the sum of the journal loads for a one-plane
+        mode, each journal's load for two planes of a symmetric rotor).
     factor : float
         Multiple of U applied (API 617 editions and purchasers differ: 1 or 2).
+    spool : str, optional
+        On a machine of several lines (required there): the line checked. Its speeds,
+        critical speeds and margins are its own (``r W`` for the reference speed ``W``),
+        its unbalance goes to the anti-nodes of each mode on it, and the default probes
+        are its bearing nodes (inter-shaft bearings included)
+        (:mod:`~rotorsim.analyses.standards.spool`).
 
     Returns
     -------
@@ -120,7 +128,8 @@ def api_unbalance(
     ModelError
         Speeds not covering ``min_speed .. mcs`` (the MCS outside the analysed range),
         ``min_speed > mcs``, non-positive speeds, factor or plane mass, a node out of
-        range, no mode in the range, or a rotor of several shaft lines.
+        range, no mode in the range, or on a machine of several lines a missing, unknown,
+        non-rotating or counter-rotating ``spool``.
 
     References
     ----------
@@ -137,41 +146,46 @@ def api_unbalance(
     >>> round(float(r.af[0]), 2), bool(r.margin_ok[0])   # zeta = 0.05: AF ~ 1/(2 zeta)
     (9.9, True)
     """
+    sp = spool_of(rotor, spool, "api_unbalance")
     w, probes_arr = _check(rotor, speeds, min_speed, mcs, factor, plane_mass, probes,
-                           clearances)
-    crit, crit_log_dec = _critical_speeds(rotor, w, num_modes)
+                           clearances, sp)
+    crit, crit_log_dec = _critical_speeds(rotor, w, num_modes, sp)
     mcs_rpm = mcs * RPM
     av1 = vibration_limit(mcs_rpm)
     rows: list[tuple[int, FloatArray, HalfPower]] = []
     planes: list[tuple[int, int, float, float]] = []
-    notes: list[str] = []
+    notes: list[str] = [] if not sp.machine else [
+        f"spool {sp.name} (speed ratio {sp.ratio:g}): speeds, critical speeds and margins "
+        f"are the spool's own ({sp.ratio:g} times the reference speed); unbalance on the "
+        "spool only"]
     for m, wc in enumerate(crit):
-        nodes, phases, response_node = _antinodes(rotor, wc, num_modes)
-        mass = rotor.m / nodes.size if plane_mass is None else plane_mass
+        nodes, phases, response_node = _antinodes(rotor, wc, num_modes, sp)
+        mass = sp.mass / nodes.size if plane_mass is None else plane_mass
         u = factor * residual_unbalance(mass, mcs_rpm)[0]
         plan = [(int(n), float(u), float(a)) for n, a in zip(nodes, phases, strict=True)]
         planes += [(m, *p) for p in plan]
-        major_pp, hp = _mode_response(rotor, w, plan, response_node, wc)
+        major_pp, hp = _mode_response(rotor, w, plan, response_node, wc, sp.ratio)
         if math.isnan(hp.af):  # no band: the resonance is taken at the crossing
             near = int(np.argmin(np.abs(w - wc)))
             hp = HalfPower(float(wc), float(major_pp[near, response_node]), hp.low, hp.high)
             notes.append(_no_band_note(m, wc, crit_log_dec[m], w))
         rows.append((response_node, major_pp, hp))
     return _result(rotor, w, min_speed, mcs, (crit, crit_log_dec), planes, rows, av1,
-                   probes_arr, clearances, notes, factor)
+                   probes_arr, clearances, notes, factor, sp)
 
 
 def _mode_response(rotor: Rotor, w: FloatArray, plan: list[tuple[int, float, float]],
-                   node: int, wc: float) -> tuple[FloatArray, HalfPower]:
-    """Peak-to-peak major axes (F, N) of the response to the unbalance ``plan`` and the
-    half-power band of the peak nearest ``wc`` at ``node`` (refined on the response)."""
-    major_pp = _major_pp(unbalance_response(rotor, w, plan))
+                   node: int, wc: float, ratio: float) -> tuple[FloatArray, HalfPower]:
+    """Peak-to-peak major axes (F, N) of the response to the unbalance ``plan`` over the
+    spool speeds ``w`` (reference speeds ``w / ratio``) and the half-power band of the peak
+    nearest ``wc`` at ``node`` (refined on the response)."""
+    major_pp = _major_pp(unbalance_response(rotor, w / ratio, plan))
     index = _peak_index(w, major_pp[:, node], wc)
     if index in (0, w.size - 1):  # no resonance peak inside the speeds
         return major_pp, HalfPower(float(wc), math.nan, math.nan, math.nan)
 
     def response(speed: float) -> float:
-        return float(_major_pp(unbalance_response(rotor, [speed], plan))[0, node])
+        return float(_major_pp(unbalance_response(rotor, [speed / ratio], plan))[0, node])
 
     return major_pp, half_power(w, major_pp[:, node], index, response)
 
@@ -188,9 +202,8 @@ def _no_band_note(m: int, wc: float, log_dec: float, w: FloatArray) -> str:
 
 def _check(rotor: Rotor, speeds: ArrayLike, min_speed: float, mcs: float, factor: float,
            plane_mass: float | None, probes: Sequence[int] | None,
-           clearances: Sequence[Clearance]) -> tuple[FloatArray, NDArray[np.int64]]:
+           clearances: Sequence[Clearance], sp: Spool) -> tuple[FloatArray, NDArray[np.int64]]:
     where = "api_unbalance"
-    check_one_line(rotor, where)
     w = np.atleast_1d(as_float_array(speeds, "speeds", where))
     if w.ndim != 1 or w.size < 3 or not np.all(np.isfinite(w)) or np.any(w < 0) \
             or np.any(np.diff(w) <= 0):
@@ -209,7 +222,8 @@ def _check(rotor: Rotor, speeds: ArrayLike, min_speed: float, mcs: float, factor
             f"the analysed speeds {w[0] * RPM:.6g}-{w[-1] * RPM:.6g} rpm do not cover the "
             f"operating range {min_speed * RPM:.6g}-{mcs * RPM:.6g} rpm (MCS outside the "
             "analysed range)", where)
-    default = sorted({b.n for b in rotor.bearing_elements})
+    default = sp.bearing_nodes(rotor) if sp.machine else sorted(
+        {b.n for b in rotor.bearing_elements})
     probe_nodes = np.array(default if probes is None else list(probes), dtype=np.int64)
     for n in (*probe_nodes.tolist(), *(c.node for c in clearances)):
         if not 0 <= n < rotor.n_nodes:
@@ -219,12 +233,15 @@ def _check(rotor: Rotor, speeds: ArrayLike, min_speed: float, mcs: float, factor
     return w, probe_nodes
 
 
-def _critical_speeds(rotor: Rotor, w: FloatArray, num_modes: int
+def _critical_speeds(rotor: Rotor, w: FloatArray, num_modes: int, sp: Spool
                      ) -> tuple[FloatArray, FloatArray]:
-    """Forward lateral 1X crossings within the speeds, lowest first, and their log
-    decrements."""
-    grid = np.linspace(w[0], w[-1], CAMPBELL_POINTS)
-    cs = campbell(rotor, grid, num_modes=num_modes + 4).critical_speeds(harmonic=1)
+    """Forward lateral crossings of the spool's 1X line within its speeds ``w``, lowest
+    first (in spool speed), and their log decrements."""
+    grid = np.linspace(w[0], w[-1], CAMPBELL_POINTS) / sp.ratio
+    extra = 4 * len(rotor.layout.lines)  # a machine's other lines add modes below
+    diagram = campbell(rotor, grid, num_modes=num_modes + extra)
+    cs = diagram.critical_speeds(harmonic=1, spool=sp.name if sp.machine else None)
+    cs = dataclasses.replace(cs, speed=cs.speed * sp.ratio) if sp.machine else cs
     keep = np.flatnonzero((cs.kind == "lateral") & (cs.whirl != "backward"))
     if keep.size == 0:
         raise ModelError(f"no forward critical speed between {w[0] * RPM:.6g} and "
@@ -233,23 +250,25 @@ def _critical_speeds(rotor: Rotor, w: FloatArray, num_modes: int
     return cs.speed[order], cs.log_dec[order]
 
 
-def _antinodes(rotor: Rotor, wc: float, num_modes: int
+def _antinodes(rotor: Rotor, wc: float, num_modes: int, sp: Spool
                ) -> tuple[NDArray[np.int64], FloatArray, int]:
-    """Unbalance planes of the mode at its critical speed ``wc``: the local maxima of the
-    orbit size along the shaft (at least :data:`ANTINODE_FRACTION` of the largest), with
-    the angle of the forward component there; and the node of the largest."""
-    m = modal(rotor, speed=wc, num_modes=num_modes + 4)
+    """Unbalance planes of the mode at the spool's critical speed ``wc`` (the mode whirls
+    at ``wc``; the machine turns at ``wc / ratio``): the local maxima of the orbit size
+    along the spool (at least :data:`ANTINODE_FRACTION` of the largest), with the angle of
+    the forward component there; and the node of the largest."""
+    extra = 4 * len(rotor.layout.lines)
+    m = modal(rotor, speed=wc / sp.ratio, num_modes=num_modes + extra)
     lateral = [j for j in range(m.num_modes) if m.kind[j] == "lateral"
                and m.whirl_ratio[j] > 0]
     j = min(lateral, key=lambda i: abs(m.wd[i] - wc))
-    ux, uy = m.lateral_shape(j)
-    n = max(rotor.n_shaft_nodes, 1)
-    size = ellipse(ux[:n], uy[:n]).major
+    ux, uy = (u[sp.nodes] for u in m.lateral_shape(j))
+    size = ellipse(ux, uy).major
     padded = np.concatenate([[-np.inf], size, [-np.inf]])
     peaks = np.flatnonzero((size >= padded[:-2]) & (size > padded[2:])
                            & (size >= ANTINODE_FRACTION * size.max()))
     phases = np.angle(ux[peaks] + 1j * uy[peaks])
-    return peaks.astype(np.int64), phases, int(peaks[np.argmax(size[peaks])])
+    nodes = sp.nodes[peaks]
+    return nodes, phases, int(nodes[np.argmax(size[peaks])])
 
 
 def _major_pp(result: FrequencyResponseResult) -> FloatArray:
@@ -289,7 +308,7 @@ def _result(rotor: Rotor, w: FloatArray, min_speed: float, mcs: float,
             planes: list[tuple[int, int, float, float]],
             rows: list[tuple[int, FloatArray, HalfPower]], av1: float,
             probes: NDArray[np.int64], clearances: Sequence[Clearance], notes: list[str],
-            factor: float) -> ApiUnbalanceResult:
+            factor: float, sp: Spool) -> ApiUnbalanceResult:
     major = np.stack([r[1] for r in rows])                       # (M, F, N)
     hps = [r[2] for r in rows]
     peak = np.array([h.peak_speed for h in hps])
@@ -319,5 +338,6 @@ def _result(rotor: Rotor, w: FloatArray, min_speed: float, mcs: float,
         clearance=c_values, clearance_tags=tuple(c.tag or str(c.node) for c in clearances),
         clearance_ratio=ratio, clearance_ok=c_ok,
         passed=bool(margin_ok.all() and c_ok.all()), nodes_pos=rotor.nodes_pos,
-        options={"factor": factor, "antinode_fraction": ANTINODE_FRACTION},
+        options={"factor": factor, "antinode_fraction": ANTINODE_FRACTION,
+                 **({"spool": sp.name, "speed_ratio": sp.ratio} if sp.machine else {})},
         summary=rotor.summary(), notes=tuple(notes))
