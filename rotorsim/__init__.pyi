@@ -66,10 +66,12 @@ from .elements.rolling import (
     RollerBearing,
 )
 from .elements.rolling.contact.exponent_fit import kn_for_exponent
+from .elements.rolling.double_row import DoubleRowBearing
 from .elements.rolling.element import RollingBearing
 from .elements.rolling.flexible_ring.bearing import FlexibleRingRollerBearing
 from .elements.rolling.flexible_ring.element import FlexibleRingBearingElement
 from .elements.rolling.large_rotation import LargeRotationBearing
+from .elements.rolling.rating.double_row import DoubleRowRating
 from .elements.rolling.rating.hertz_pressure import contact_pressures
 from .elements.rolling.rating.iso281 import BearingRating
 from .elements.rolling.rating.options import RatingOptions
@@ -145,6 +147,8 @@ __all__ = [
     "CriticalSpeeds",
     "DiskElement",
     "DofMap",
+    "DoubleRowBearing",
+    "DoubleRowRating",
     "ElementMatrices",
     "Ellipse",
     "EventCheck",

@@ -20,6 +20,7 @@ from rotorsim.elements.disk import DiskElement, PointMass
 from rotorsim.elements.foundation import Foundation, read_matrix
 from rotorsim.elements.linear_bearing import BearingElement
 from rotorsim.elements.rolling.ball.bearing import BallBearing
+from rotorsim.elements.rolling.double_row import DoubleRowBearing
 from rotorsim.elements.rolling.element import RollingBearing
 from rotorsim.elements.rolling.reversed import ReversedBearing
 from rotorsim.elements.rolling.roller.bearing import RollerBearing
@@ -313,6 +314,10 @@ def build_rolling(tables: list[RollingTable], nodes: Nodes
         link = nodes.link(t, n, where)
         try:
             model = _rolling_model(t)
+            if t.rows == 2:
+                assert t.row_spacing is not None
+                model = DoubleRowBearing(model, t.row_spacing, t.arrangement,
+                                         t.axial_interference, tag=t.tag)
             element = RollingBearing(
                 ReversedBearing(model) if t.axial_direction == "-z" else model, n=n,
                 n_link=link, tag=t.tag, contact_damping=t.contact_damping,
