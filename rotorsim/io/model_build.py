@@ -313,7 +313,7 @@ def build_rolling(tables: list[RollingTable], nodes: Nodes
         n = nodes.any_node(t, where)
         link = nodes.link(t, n, where)
         try:
-            model = _rolling_model(t)
+            model: Any = _rolling_model(t)
             if t.rows == 2:
                 assert t.row_spacing is not None
                 model = DoubleRowBearing(model, t.row_spacing, t.arrangement,
