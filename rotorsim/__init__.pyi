@@ -71,6 +71,11 @@ from .elements.rolling.element import RollingBearing
 from .elements.rolling.flexible_ring.bearing import FlexibleRingRollerBearing
 from .elements.rolling.flexible_ring.element import FlexibleRingBearingElement
 from .elements.rolling.large_rotation import LargeRotationBearing
+from .elements.rolling.rating.clearance import (
+    MountingConditions,
+    operating_clearance,
+    with_operating_clearance,
+)
 from .elements.rolling.rating.double_row import DoubleRowRating
 from .elements.rolling.rating.hertz_pressure import contact_pressures
 from .elements.rolling.rating.iso281 import BearingRating
@@ -171,6 +176,7 @@ __all__ = [
     "ModalResult",
     "Model",
     "ModelError",
+    "MountingConditions",
     "Newmark",
     "Normal",
     "Output",
@@ -231,6 +237,7 @@ __all__ = [
     "load_model",
     "load_sweep",
     "modal",
+    "operating_clearance",
     "periodic",
     "periodic_life",
     "periodic_parameter",
@@ -248,5 +255,6 @@ __all__ = [
     "transient_life",
     "unbalance_response",
     "verify_events",
+    "with_operating_clearance",
     "write_report",
 ]

@@ -9,7 +9,7 @@ from pydantic import Field, model_validator
 
 from rotorsim.elements.rolling.geometry import interference_problem
 from rotorsim.errors import ModelError
-from rotorsim.io.rating_schema import RatingTable
+from rotorsim.io.rating_schema import MountingTable, RatingTable
 from rotorsim.io.schema_types import (
     Angle,
     Length,
@@ -79,6 +79,7 @@ class RollingTable(Linked):
     axial_direction: Literal["+z", "-z"] = "+z"
     linearize: LinearizationValue = ("static", None)
     rating: RatingTable | None = None
+    mounting: MountingTable | None = None
     rows: Literal[1, 2] = 1
     row_spacing: Length | None = None
     arrangement: Literal["back_to_back", "face_to_face", "tandem"] = "back_to_back"
