@@ -77,6 +77,7 @@ from .elements.rolling.rating.clearance import (
     with_operating_clearance,
 )
 from .elements.rolling.rating.double_row import DoubleRowRating
+from .elements.rolling.rating.friction import PalmgrenFriction, friction_torque
 from .elements.rolling.rating.hertz_pressure import contact_pressures
 from .elements.rolling.rating.iso281 import BearingRating
 from .elements.rolling.rating.options import RatingOptions
@@ -180,6 +181,7 @@ __all__ = [
     "Newmark",
     "Normal",
     "Output",
+    "PalmgrenFriction",
     "PeriodicBifurcation",
     "PeriodicPeak",
     "PeriodicResult",
@@ -228,6 +230,7 @@ __all__ = [
     "ellipse",
     "export_vtk",
     "frequency_response",
+    "friction_torque",
     "hb",
     "kn_for_exponent",
     "level1_screening",
