@@ -186,6 +186,10 @@ def test_iso281_double_row_rating_is_two_to_the_point_seven_times_a_row():
         "ball", n_elements=12, element_diameter=0.008, pitch_diameter=0.05,
         contact_angle=math.radians(30.0), rows=2)
     assert r.rating.C == pytest.approx(single, rel=1e-12)  # ISO 281 with i = 2
+    # SKF, matched pairs of deep-groove ball bearings: C = 1.62 C_single, C0 = 2 C0_single
+    # (printed to 3 digits)
+    assert r.rating.C / r.row.rating.C == pytest.approx(1.62, abs=0.005)
+    assert r.rating.C0 == pytest.approx(2 * r.row.rating.C0, rel=1e-14)
     cat = DoubleRowRating(DoubleRowBearing(TAPERED, 0.1), rs.RatingOptions(C=500e3, C0=900e3))
     assert cat.rating.C == pytest.approx(500e3) and cat.row.rating.C == pytest.approx(
         500e3 / 2 ** (7 / 9))
