@@ -81,6 +81,7 @@ from .elements.rolling.rating.friction import PalmgrenFriction, friction_torque
 from .elements.rolling.rating.hertz_pressure import contact_pressures
 from .elements.rolling.rating.iso281 import BearingRating
 from .elements.rolling.rating.options import RatingOptions
+from .elements.rolling.rating.spring_constant import iso16281_ball_constant
 from .elements.shaft import ShaftElement, cowper_shear_coefficient
 from .errors import (
     ConvergenceError,
@@ -232,6 +233,7 @@ __all__ = [
     "frequency_response",
     "friction_torque",
     "hb",
+    "iso16281_ball_constant",
     "kn_for_exponent",
     "level1_screening",
     "linearize_at_load",
