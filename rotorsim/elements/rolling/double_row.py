@@ -38,6 +38,11 @@ pressure centre lies at ``z_k - r_p tan(a0)``, on the ``-z`` side of the row):
 
 The elements of row 0 come first in every per-element array (``(S, 2 N)``).
 
+Not yet: rows with the centrifugal force of their elements (``CentrifugalBearing``), EHL
+contact damping (``RollingBearing(contact_damping="ehl")``), writing a double-row bearing
+back to a model file (``rs.save_model``) and ``rs.bearing_life`` (rate it with
+:class:`~rotorsim.elements.rolling.rating.double_row.DoubleRowRating`).
+
 References
 ----------
 Seed 002 (Zhu 2017) eqs 2.14-2.17 and Fig. 2.6; Bercea, Nelias & Cavallaro (2003), *A
