@@ -72,13 +72,22 @@ from .elements.rolling import (
     RollerBearing,
 )
 from .elements.rolling.contact.exponent_fit import kn_for_exponent
+from .elements.rolling.double_row import DoubleRowBearing
 from .elements.rolling.element import RollingBearing
 from .elements.rolling.flexible_ring.bearing import FlexibleRingRollerBearing
 from .elements.rolling.flexible_ring.element import FlexibleRingBearingElement
 from .elements.rolling.large_rotation import LargeRotationBearing
+from .elements.rolling.rating.clearance import (
+    MountingConditions,
+    operating_clearance,
+    with_operating_clearance,
+)
+from .elements.rolling.rating.double_row import DoubleRowRating
+from .elements.rolling.rating.friction import PalmgrenFriction, friction_torque
 from .elements.rolling.rating.hertz_pressure import contact_pressures
 from .elements.rolling.rating.iso281 import BearingRating
 from .elements.rolling.rating.options import RatingOptions
+from .elements.rolling.rating.spring_constant import iso16281_ball_constant
 from .elements.rolling.roller.half_space import HalfSpaceLineContact, roller_pressure_field
 from .elements.shaft import ShaftElement, cowper_shear_coefficient
 from .errors import (
@@ -153,6 +162,8 @@ __all__ = [
     "CriticalSpeeds",
     "DiskElement",
     "DofMap",
+    "DoubleRowBearing",
+    "DoubleRowRating",
     "ElementMatrices",
     "Ellipse",
     "EventCheck",
@@ -176,9 +187,11 @@ __all__ = [
     "ModalResult",
     "Model",
     "ModelError",
+    "MountingConditions",
     "Newmark",
     "Normal",
     "Output",
+    "PalmgrenFriction",
     "PeriodicBifurcation",
     "PeriodicPeak",
     "PeriodicResult",
@@ -230,9 +243,11 @@ __all__ = [
     "ellipse",
     "export_vtk",
     "frequency_response",
+    "friction_torque",
     "from_ross",
     "hb",
     "import_ross",
+    "iso16281_ball_constant",
     "kn_for_exponent",
     "level1_screening",
     "linearize_at_load",
@@ -241,6 +256,7 @@ __all__ = [
     "load_model",
     "load_sweep",
     "modal",
+    "operating_clearance",
     "periodic",
     "periodic_life",
     "periodic_parameter",
@@ -261,5 +277,6 @@ __all__ = [
     "transient_life",
     "unbalance_response",
     "verify_events",
+    "with_operating_clearance",
     "write_report",
 ]

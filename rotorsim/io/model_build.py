@@ -20,6 +20,7 @@ from rotorsim.elements.disk import DiskElement, PointMass
 from rotorsim.elements.foundation import Foundation, read_matrix
 from rotorsim.elements.linear_bearing import BearingElement
 from rotorsim.elements.rolling.ball.bearing import BallBearing
+from rotorsim.elements.rolling.double_row import DoubleRowBearing
 from rotorsim.elements.rolling.element import RollingBearing
 from rotorsim.elements.rolling.reversed import ReversedBearing
 from rotorsim.elements.rolling.roller.bearing import RollerBearing
@@ -35,6 +36,7 @@ from rotorsim.io.api_specs import api_options
 from rotorsim.io.drive_schema import drive_spec
 from rotorsim.io.model_nodes import Nodes
 from rotorsim.io.model_schema import BearingTable, CouplingTable, ModelTable, ShaftSegment
+from rotorsim.io.rating_build import mounted_model
 from rotorsim.io.rolling_schema import BallTable, ProfileTable, RollerTable, RollingTable
 from rotorsim.io.schema_types import format_path
 from rotorsim.io.spec_registry import SPEC_TYPES
@@ -312,7 +314,11 @@ def build_rolling(tables: list[RollingTable], nodes: Nodes
         n = nodes.any_node(t, where)
         link = nodes.link(t, n, where)
         try:
-            model = _rolling_model(t)
+            model: Any = mounted_model(_rolling_model(t), t.mounting)
+            if t.rows == 2:
+                assert t.row_spacing is not None
+                model = DoubleRowBearing(model, t.row_spacing, t.arrangement,
+                                         t.axial_interference, tag=t.tag)
             element = RollingBearing(
                 ReversedBearing(model) if t.axial_direction == "-z" else model, n=n,
                 n_link=link, tag=t.tag, contact_damping=t.contact_damping,

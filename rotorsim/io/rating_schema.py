@@ -1,12 +1,24 @@
 """Pydantic schema of ``[rolling_bearings.rating]`` (ratings and life inputs of a rolling
-bearing: ISO 281, ISO/TS 16281), a key of the tables of :mod:`rotorsim.io.rolling_schema`.
+bearing: ISO 281, ISO/TS 16281) and ``[rolling_bearings.mounting]`` (fits, temperatures and
+speed of the operating clearance), keys of the tables of :mod:`rotorsim.io.rolling_schema`.
 """
 
 from typing import Annotated, Literal
 
 from pydantic import Field, model_validator
 
-from rotorsim.io.schema_types import Force, Length, PositiveRatio, Ratio, Table, fail
+from rotorsim.io.schema_types import (
+    Force,
+    Length,
+    Modulus,
+    NonNegLength,
+    PositiveRatio,
+    Ratio,
+    SignedLength,
+    Speed,
+    Table,
+    fail,
+)
 
 
 class RatingTable(Table):
@@ -41,3 +53,28 @@ class RatingTable(Table):
         if self.shoulder_heights is not None and len(self.shoulder_heights) != 2:
             raise fail("give two heights [inner, outer]", ".shoulder_heights")
         return self
+
+
+class MountingTable(Table):
+    """``[rolling_bearings.mounting]``: fits, temperatures [K above mounting] and speed that
+    turn the bearing's clearance into its operating clearance
+    (:mod:`rotorsim.elements.rolling.rating.clearance`)."""
+
+    bore: Length
+    outside_diameter: Length
+    shaft_interference: SignedLength = 0.0
+    housing_interference: SignedLength = 0.0
+    shaft_bore: NonNegLength = 0.0
+    housing_outside_diameter: Length | None = None
+    inner_temperature: Ratio = 0.0
+    outer_temperature: Ratio = 0.0
+    element_temperature: Ratio | None = None
+    shaft_temperature: Ratio | None = None
+    housing_temperature: Ratio | None = None
+    speed: Speed = 0.0
+    E_shaft: Modulus | None = None
+    nu_shaft: Ratio | None = None
+    E_housing: Modulus | None = None
+    nu_housing: Ratio | None = None
+    expansion_shaft: Ratio | None = None
+    expansion_housing: Ratio | None = None

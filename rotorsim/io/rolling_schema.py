@@ -9,7 +9,7 @@ from pydantic import Field, model_validator
 
 from rotorsim.elements.rolling.geometry import interference_problem
 from rotorsim.errors import ModelError
-from rotorsim.io.rating_schema import RatingTable
+from rotorsim.io.rating_schema import MountingTable, RatingTable
 from rotorsim.io.schema_types import (
     Angle,
     Length,
@@ -79,9 +79,15 @@ class RollingTable(Linked):
     axial_direction: Literal["+z", "-z"] = "+z"
     linearize: LinearizationValue = ("static", None)
     rating: RatingTable | None = None
+    mounting: MountingTable | None = None
+    rows: Literal[1, 2] = 1
+    row_spacing: Length | None = None
+    arrangement: Literal["back_to_back", "face_to_face", "tandem"] = "back_to_back"
+    axial_interference: SignedLength = 0.0
 
     @model_validator(mode="after")
     def _common(self) -> "RollingTable":
+        self._check_rows()
         if not 0.0 <= self.contact_angle <= 0.5 * math.pi:
             raise fail(f"must be in [0, 90] deg, got {math.degrees(self.contact_angle):.6g} "
                        "deg", ".contact_angle")
@@ -93,6 +99,20 @@ class RollingTable(Linked):
             exponent = default if self.exponent is None else self.exponent
             object.__setattr__(self, "Kn", load_deflection_constant(self.Kn, exponent, ".Kn"))
         return self
+
+    def _check_rows(self) -> None:
+        """Double-row keys (rotorsim.elements.rolling.double_row) only with ``rows = 2``."""
+        if self.rows == 2:
+            if self.row_spacing is None:
+                raise fail("field required with rows = 2", ".row_spacing")
+            if self.rating is not None:
+                raise fail("[rolling_bearings.rating] is not read for double-row bearings "
+                           "yet (use rotorsim.DoubleRowRating)", ".rating")
+            return
+        for key, default in (("row_spacing", None), ("arrangement", "back_to_back"),
+                             ("axial_interference", 0.0)):
+            if getattr(self, key) != default:
+                raise fail("is a key of double-row bearings (rows = 2)", f".{key}")
 
     def _check_interference(self, diameter: float, element: str) -> None:
         """Refuse an absurd interference (negative clearance) on the key given."""

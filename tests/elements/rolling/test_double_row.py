@@ -1,0 +1,296 @@
+"""Double-row bearings as one element (issue 18 item 4): the rigid limit of two single-row
+bearings on a shaft, closed forms of the load split and the tilt stiffness, exact tangents,
+and the ISO 281 / ISO/TS 16281 ratings of the unit."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+import rotorsim as rs
+from rotorsim.elements.rolling.double_row import DoubleRowBearing, row_transform
+from rotorsim.elements.rolling.element import RollingBearing
+from rotorsim.elements.rolling.rating.double_row import (
+    DoubleRowRating,
+    double_row_equivalent_load,
+    double_row_factors,
+)
+from rotorsim.elements.rolling.rating.rated_bearing import RatedBearing
+from rotorsim.elements.rolling.reversed import ReversedBearing
+from rotorsim.errors import ModelError
+
+BALL = rs.BallBearing.from_geometry(n_balls=12, pitch_diameter=0.05, ball_diameter=0.008,
+                                    f_i=0.52, f_o=0.53, contact_angle=math.radians(30.0),
+                                    radial_clearance=-2e-6)
+TAPERED = rs.RollerBearing(n_rollers=20, pitch_diameter=0.2, roller_diameter=0.02,
+                           effective_length=0.03, contact_angle=math.radians(10.0),
+                           radial_clearance=-3e-6, model="slices", n_slices=10)
+DOFS = ("ux", "uy", "uz", "rx", "ry")
+
+
+def _two_bearing_rotor(row, spacing, mirrored, stiffness_factor):
+    """Two single-row bearings at -s/2 and +s/2 on a shaft of ``stiffness_factor`` x steel;
+    the load acts at the middle node 1."""
+    mat = rs.Material(name="stiff", E=211e9 * stiffness_factor, G_s=81.2e9 * stiffness_factor,
+                      rho=7810.0)
+    shaft = [rs.ShaftElement(L=spacing / 2, idl=0.0, odl=0.1, material=mat) for _ in range(2)]
+    rows = [ReversedBearing(row) if m else row for m in mirrored]
+    return rs.Rotor(shaft, [], [rs.RollingBearing(rows[0], n=0, tag="L"),
+                                rs.RollingBearing(rows[1], n=2, tag="R")])
+
+
+def _rigid_start(d, spacing):
+    """Node displacements of the shaft moving rigidly with the bearing centre ``d``."""
+    x0 = np.zeros(18)
+    for k, z in enumerate((-spacing / 2, 0.0, spacing / 2)):
+        x0[6 * k:6 * k + 5] = [d[0] + z * d[4], d[1] - z * d[3], d[2], d[3], d[4]]
+    return x0
+
+
+@pytest.mark.parametrize(("row", "spacing", "arrangement", "load"), [
+    (BALL, 0.03, "back_to_back", [3000.0, -1000.0, 800.0, 20.0, -50.0]),
+    (TAPERED, 0.1, "face_to_face", [60000.0, -20000.0, 8000.0, 200.0, -900.0]),
+], ids=["ball O", "tapered X"])
+def test_two_single_rows_on_a_stiffening_shaft_converge_to_the_double_row(row, spacing,
+                                                                          arrangement, load):
+    # the issue's rigid limit: the rotor solver (independent assembly and Newton) with two
+    # single-row bearings and a shaft 1e3 and 1e4 times steel; the difference falls as
+    # 1/stiffness, and its Richardson limit must be the double-row equilibrium
+    unit = DoubleRowBearing(row, spacing, arrangement=arrangement)
+    d = rs.bearing_equilibrium(unit, load).displacement
+    mirrored = unit.mirrored
+    got = []
+    for factor in (1e3, 1e4):
+        rotor = _two_bearing_rotor(row, spacing, mirrored, factor)
+        s = rs.static(rotor, gravity=None, loads=list(zip([1] * 5, DOFS, load, strict=True)),
+                      x0=_rigid_start(d, spacing))
+        got.append(s.displacement[6:11])
+    err = [np.abs(g - d).max() / np.abs(d).max() for g in got]
+    assert err[1] < 1e-4 and err[0] / err[1] == pytest.approx(10.0, rel=2e-2)
+    limit = got[1] + (got[1] - got[0]) / 9.0  # first-order Richardson extrapolation
+    # O(1/E^2) remainder ~ err^2 and the 1e-10 static residuals
+    assert np.abs(limit - d).max() < 1e-7 * np.abs(d).max()
+
+
+@pytest.mark.parametrize("arrangement", ["back_to_back", "face_to_face"])
+@pytest.mark.parametrize("row", [BALL, TAPERED], ids=["ball", "tapered"])
+def test_a_pure_radial_load_splits_equally_between_the_rows(row, arrangement):
+    unit = DoubleRowBearing(row, 0.04, arrangement=arrangement)
+    fr = 2000.0
+    eq = rs.bearing_equilibrium(unit, [fr, 0.0, 0.0, 0.0, 0.0])
+    assert np.abs(eq.displacement[2:]).max() < 1e-14  # no axial or tilt motion
+    f0, f1 = (st.force[0] for st in unit.row_states(eq.displacement[None],
+                                                      eq.element_angles[None]))
+    # radial halves; equal axial forces (each in its own frame) that cancel in the unit
+    assert f0[0] == pytest.approx(fr / 2, rel=1e-9) and f1[0] == pytest.approx(fr / 2,
+                                                                                  rel=1e-9)
+    assert f0[2] == pytest.approx(f1[2], rel=1e-9) and f0[2] > 0
+
+
+def test_tilt_stiffness_of_preloaded_linear_cylindrical_rows_is_the_closed_form():
+    # n = 1, a0 = 0, all rollers in contact (interference): every roller slice is a linear
+    # spring, so K_xx = N Kn, K_ryry = Kn N/2 (s^2/2 + L^2/6) (row stiffness x s^2/4 per
+    # row plus each row's own tilt stiffness Kn N L^2/24)
+    n, kn, length, s = 16, 2e8, 0.02, 0.06
+    row = rs.RollerBearing(n_rollers=n, pitch_diameter=0.1, roller_diameter=0.012,
+                           effective_length=length, Kn=kn, exponent=1.0,
+                           radial_clearance=-1e-5)
+    unit = DoubleRowBearing(row, s)
+    k = unit.state([[0.0, 0.0, 0.0, 1e-6, -2e-6]], unit.element_angles()).stiffness[0]
+    assert k[0, 0] == pytest.approx(n * kn, rel=1e-12)
+    assert k[4, 4] == pytest.approx(kn * n / 2 * (s**2 / 2 + length**2 / 6), rel=1e-12)
+    assert k[3, 3] == pytest.approx(k[4, 4], rel=1e-12)
+    assert abs(k[0, 4]) < 1e-9 * k[0, 0] * s  # symmetric rows: no x-tilt coupling
+
+
+@pytest.mark.parametrize("arrangement", ["back_to_back", "face_to_face", "tandem"])
+def test_force_and_tangent_are_the_exact_derivatives(arrangement):
+    unit = DoubleRowBearing(BALL, 0.03, arrangement=arrangement, axial_interference=1e-6)
+    psi = unit.element_angles(0.3)
+    d0 = np.array([8e-6, -3e-6, 2e-6, 1e-4, -2e-4])
+    st = unit.state(d0[None], psi)
+    h = np.array([1e-9, 1e-9, 1e-9, 1e-8, 1e-8])
+    grad = np.empty(5)
+    jac = np.empty((5, 5))
+    for i in range(5):
+        step = np.zeros(5)
+        step[i] = h[i]
+        plus, minus = unit.state((d0 + step)[None], psi), unit.state((d0 - step)[None], psi)
+        grad[i] = (plus.energy[0] - minus.energy[0]) / (2 * h[i])
+        jac[:, i] = (plus.force[0] - minus.force[0]) / (2 * h[i])
+    # central differences: truncation ~ h^2 U''' (relative ~1e-6 here)
+    assert grad == pytest.approx(st.force[0], rel=1e-5, abs=1e-6 * np.abs(st.force).max())
+    assert np.abs(jac - st.stiffness[0]).max() < 1e-5 * np.abs(st.stiffness[0]).max()
+    # contact directions reproduce the force: F = sum_j Q_j g_j
+    g = st.contact_direction[0]
+    assert st.element_load[0] @ g == pytest.approx(st.force[0], rel=1e-12, abs=1e-9)
+
+
+def test_the_element_hot_path_equals_the_state():
+    unit = DoubleRowBearing(TAPERED, 0.1, arrangement="face_to_face")
+    element = RollingBearing(unit, n=0)
+    u = np.zeros((2, 6))
+    u[:, :5] = [[2e-5, -1e-5, 4e-6, 5e-5, -1e-4], [1e-5, 2e-5, -3e-6, 0.0, 2e-5]]
+    phi = np.array([0.1, 1.3])
+    out = element.force(u, np.zeros((2, 6)), phi, 0.0)
+    st = unit.state(u[:, :5], unit.element_angles(phi))
+    np.testing.assert_allclose(out.f[:, :5], st.force, rtol=1e-12, atol=1e-9)
+    np.testing.assert_allclose(out.K[:, :5, :5], st.stiffness, rtol=1e-12,
+                               atol=1e-12 * np.abs(st.stiffness).max())
+
+
+def test_a_spacer_preload_loads_both_rows_as_one_row_at_the_interference():
+    e_a = 4e-6
+    unit = DoubleRowBearing(BALL, 0.03, axial_interference=e_a)
+    st = unit.state(np.zeros((1, 5)), unit.element_angles())
+    single = BALL.state([[0.0, 0.0, e_a, 0.0, 0.0]], BALL.element_angles())
+    np.testing.assert_allclose(st.force[0], 0.0, atol=1e-9 * single.force[0, 2])
+    np.testing.assert_allclose(st.element_load[0, :12], single.element_load[0], rtol=1e-12)
+    np.testing.assert_allclose(st.element_load[0, 12:], single.element_load[0], rtol=1e-12)
+    # end play: a negative interference leaves the unit free axially over 2 |e_a|
+    row = rs.BallBearing.from_geometry(n_balls=12, pitch_diameter=0.05, ball_diameter=0.008,
+                                       f_i=0.52, f_o=0.53, contact_angle=math.radians(30.0))
+    loose = DoubleRowBearing(row, 0.03, axial_interference=-e_a)
+    free = loose.state([[0.0, 0.0, 0.9 * e_a, 0.0, 0.0]], loose.element_angles())
+    assert np.abs(free.force).max() == 0.0
+    touching = loose.state([[0.0, 0.0, 1.1 * e_a, 0.0, 0.0]], loose.element_angles())
+    assert touching.force[0, 2] > 0.0
+
+
+def test_row_transform_moves_the_row_centre_with_the_tilt():
+    t = row_transform(0.1, False)
+    assert t @ np.array([0.0, 0.0, 0.0, 1e-3, 2e-3]) == pytest.approx(
+        [2e-4, -1e-4, 0.0, 1e-3, 2e-3])  # (rx, ry, 0) x (0, 0, 0.1)
+
+
+@pytest.mark.parametrize(("kwargs", "message"), [
+    ({"row_spacing": 0.0}, "row_spacing"),
+    ({"row_spacing": float("nan")}, "row_spacing"),
+    ({"row_spacing": 0.02, "axial_interference": float("inf")}, "axial_interference"),
+])
+def test_bad_double_rows_are_refused_by_name(kwargs, message):
+    with pytest.raises(ModelError, match=message):
+        DoubleRowBearing(BALL, **kwargs)
+    with pytest.raises(TypeError, match="arrangement"):
+        DoubleRowBearing(BALL, 0.02, arrangement="O")
+    with pytest.raises(ModelError, match="BallBearing or RollerBearing"):
+        DoubleRowBearing(ReversedBearing(BALL), 0.02)
+
+
+# ------------------------------------------------------------------ ratings
+def test_iso281_double_row_rating_is_two_to_the_point_seven_times_a_row():
+    r = DoubleRowRating(DoubleRowBearing(BALL, 0.03))
+    single = rs.elements.rolling.rating.iso281.dynamic_load_rating(
+        "ball", n_elements=12, element_diameter=0.008, pitch_diameter=0.05,
+        contact_angle=math.radians(30.0), rows=2)
+    assert r.rating.C == pytest.approx(single, rel=1e-12)  # ISO 281 with i = 2
+    # SKF, matched pairs of deep-groove ball bearings: C = 1.62 C_single, C0 = 2 C0_single
+    # (printed to 3 digits)
+    assert r.rating.C / r.row.rating.C == pytest.approx(1.62, abs=0.005)
+    assert r.rating.C0 == pytest.approx(2 * r.row.rating.C0, rel=1e-14)
+    cat = DoubleRowRating(DoubleRowBearing(TAPERED, 0.1), rs.RatingOptions(C=500e3, C0=900e3))
+    assert cat.rating.C == pytest.approx(500e3) and cat.row.rating.C == pytest.approx(
+        500e3 / 2 ** (7 / 9))
+    assert cat.row.rating.C0 == pytest.approx(450e3)
+
+
+def test_iso281_double_row_equivalent_load_matches_catalogue_factors():
+    # Koyo catalogue, double-row / paired angular contact, 30 and 40 deg:
+    # Fa/Fr <= e: P = Fr + Y1 Fa; above: X2 Fr + Y2 Fa
+    assert double_row_factors("ball", math.radians(30.0)) == (0.8, 0.78, 0.63, 1.24)
+    assert double_row_factors("ball", math.radians(40.0)) == (1.14, 0.55, 0.57, 0.93)
+    a = math.radians(30.0)
+    assert float(double_row_equivalent_load("ball", a, 1000.0, 700.0)) == pytest.approx(
+        1000.0 + 0.78 * 700.0)
+    assert float(double_row_equivalent_load("ball", a, 1000.0, 900.0)) == pytest.approx(
+        630.0 + 1.24 * 900.0)
+    t = math.tan(math.radians(12.0))  # ISO 281 Table 8, double-row tapered
+    e, y1, x2, y2 = double_row_factors("roller", math.radians(12.0))
+    assert (e, y1, x2, y2) == pytest.approx((1.5 * t, 0.45 / t, 0.67, 0.67 / t))
+    with pytest.raises(ModelError, match="20 to 45"):
+        double_row_factors("ball", math.radians(10.0))
+
+
+@pytest.mark.parametrize("row", [BALL, TAPERED], ids=["ball", "tapered"])
+def test_iso16281_rows_combined_reduce_to_the_iso281_unit_rating(row):
+    # two equal rows, pure radial load: L10r(unit) = 2^(-1/e) L10r(row), which with
+    # C_unit = 2^0.7 C_row (balls; 2^(7/9) rollers) gives the same P_ref / F_r as one row
+    # at half the load: ISO 281's rule for i rows follows from the per-row method exactly
+    unit = DoubleRowBearing(row, 0.04)
+    r = DoubleRowRating(unit)
+    fr = 0.05 * r.rating.C
+    eq = rs.bearing_equilibrium(unit, [fr, 0.0, 0.0, 0.0, 0.0])
+    life = r.life(eq.displacement, eq.element_angles)
+    assert life.row_life[0, 0] == pytest.approx(life.row_life[0, 1], rel=1e-12)
+    own = unit.row_displacements(eq.displacement[None])[0]
+    single = RatedBearing(row).life(own, eq.element_angles[None, :row.n_elements])
+    p_single = single.P_ref[0] / (fr / 2)
+    assert life.P_ref[0] / fr == pytest.approx(p_single, rel=1e-12)
+
+
+def test_a_one_sided_axial_load_rates_the_loaded_row_only():
+    unit = DoubleRowBearing(BALL.__class__.from_geometry(
+        n_balls=12, pitch_diameter=0.05, ball_diameter=0.008, f_i=0.52, f_o=0.53,
+        contact_angle=math.radians(30.0), radial_clearance=5e-6), 0.03)
+    r = DoubleRowRating(unit)
+    eq = rs.bearing_equilibrium(unit, [0.0, 0.0, 1500.0, 0.0, 0.0])
+    life = r.life(eq.displacement, eq.element_angles)
+    assert np.isinf(life.row_life[0, 1]) and life.L10r[0] == pytest.approx(
+        life.row_life[0, 0], rel=1e-12)
+    assert len(r.pressures(eq.displacement, eq.element_angles)) == 2
+
+
+# ------------------------------------------------------------------ model files
+_MODEL = """
+[model]
+name = "axlebox"
+
+[[disks]]
+node = 0
+m = "10 kg"
+Id = "0.1 kg*m^2"
+Ip = "0.2 kg*m^2"
+
+[[rolling_bearings]]
+tag = "AB"
+type = "roller"
+node = 0
+n_rollers = 20
+pitch_diameter = "200 mm"
+roller_diameter = "20 mm"
+effective_length = "30 mm"
+contact_angle = "10 deg"
+radial_clearance = "-3 um"
+model = "slices"
+n_slices = 10
+{extra}
+"""
+
+
+def test_a_model_file_double_row_is_the_api_one(tmp_path):
+    path = tmp_path / "m.toml"
+    path.write_text(_MODEL.format(extra='rows = 2\nrow_spacing = "100 mm"\n'
+                                        'arrangement = "face_to_face"\n'
+                                        'axial_interference = "1 um"'))
+    element = rs.load_model(path).rolling_bearings[0]
+    unit = element.bearing
+    assert isinstance(unit, DoubleRowBearing)
+    api = DoubleRowBearing(TAPERED, 0.1, arrangement="face_to_face", axial_interference=1e-6)
+    d = [[2e-5, -1e-5, 4e-6, 5e-5, -1e-4]]
+    np.testing.assert_allclose(unit.state(d, unit.element_angles()).force,
+                               api.state(d, api.element_angles()).force, rtol=1e-12)
+
+
+@pytest.mark.parametrize(("extra", "message"), [
+    ("rows = 2", "row_spacing"),
+    ('row_spacing = "10 mm"', "double-row"),
+    ('arrangement = "tandem"', "double-row"),
+    ("rows = 3", "rows"),
+])
+def test_bad_double_row_keys_are_refused_by_name(tmp_path, extra, message):
+    path = tmp_path / "m.toml"
+    path.write_text(_MODEL.format(extra=extra))
+    with pytest.raises(ModelError, match=message):
+        rs.load_model(path)
