@@ -143,13 +143,15 @@ MODELS = {
 
 
 def rotorsim_run(bench: BenchModel, t_end: float, dt: float | None, times: Any = None,
-                 initial: Any = "static", rtol: float | None = None):
+                 initial: Any = "static", rtol: float | None = None,
+                 velocities: bool = False):
     """rotorsim on ``bench``: fixed steps ``dt`` (average acceleration), or the automatic
-    path at ``rtol`` (``dt`` None)."""
+    path at ``rtol`` (``dt`` None); ``velocities`` keeps the velocities too."""
     rotor, bearings = bench.build()
     return transient(rotor, t_end, dt, nonlinear=bearings, speed=bench.speed,
                      unbalance=bench.unbalance, nodes=[bench.probe], initial=initial,
-                     rtol=rtol, output=rs.Output(times=[t_end] if times is None else times))
+                     rtol=rtol, output=rs.Output(times=[t_end] if times is None else times,
+                                                velocities=velocities))
 
 
 def steps(n_steps: int, dt: float = 2e-5) -> dict[str, float]:
@@ -234,7 +236,8 @@ def equal_accuracy(bench: BenchModel, reference_rtol: float = 1e-10,
     times = np.linspace(0.0, t_end, 41)
     # scales of the displacements and of the velocities, as a user knows them: the motion
     # and the velocity of the probe in a fine rotorsim run
-    scout = rotorsim_run(bench, t_end, min(bench.steps), times=times, initial=start)
+    scout = rotorsim_run(bench, t_end, min(bench.steps), times=times, initial=start,
+                         velocities=True)
     scales = (float(np.ptp(scout.displacement(bench.probe, "uy"))),
               float(np.ptp(scout.velocity(bench.probe, "uy"))))
     per_component = np.concatenate([np.full(n, scales[0]), np.full(n, scales[1])])
