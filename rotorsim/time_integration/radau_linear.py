@@ -41,12 +41,17 @@ from rotorsim.time_integration.problem import SecondOrderProblem, combine
 DENSE_LIMIT = 400
 """Up to this size the shifted matrices are factorised densely (the problem's matrices are
 dense there too: see ``equation.DENSE_STEPPING``)."""
+INVERSE_AFTER = 40
+"""Vector solves with a dense factor before its inverse is formed: forming it costs about
+as much as this many pairs of triangular solves saved against one matrix-vector product
+(n = 150, complex; measured)."""
 
 
 @dataclass(frozen=True, eq=False)
 class ShiftedFactors:
     """``S0(mu) = mu^2 M + mu D + K`` factorised (``D = C + s G``), with ``Z = S0^-1 P`` on
-    ``dofs``; ``damping`` is ``D`` itself."""
+    ``dofs``; ``damping`` is ``D`` itself and ``coupling`` is ``mu M + D``, the matrix
+    that takes ``b_q`` into the condensed right-hand side."""
 
     mu: complex
     lu: Any
@@ -54,6 +59,7 @@ class ShiftedFactors:
     Z: Any
     Zd: Any
     damping: Any
+    coupling: Any
 
     @classmethod
     def build(cls, problem: SecondOrderProblem, mu: complex, spin: float, dofs: IntArray,
@@ -65,37 +71,55 @@ class ShiftedFactors:
         D = combine(terms, n) if any(A is not None for _, A in terms) else None
         sparse = sp.issparse(problem.mass) or n > DENSE_LIMIT
         if sparse:
-            S0: Any = m * m * sp.csr_matrix(problem.mass) + sp.csr_matrix(problem.stiffness)
+            coupling: Any = m * sp.csr_matrix(problem.mass)
+            S0: Any = m * coupling + sp.csr_matrix(problem.stiffness)
             if D is not None:
                 D = sp.csr_matrix(D)
                 S0 = S0 + m * D
+                coupling = coupling + D
         else:
-            S0 = (m * m) * np.asarray(problem.mass) + np.asarray(problem.stiffness)
+            coupling = m * np.asarray(problem.mass)
+            S0 = m * coupling + np.asarray(problem.stiffness)
             if D is not None:
                 D = D.toarray() if sp.issparse(D) else np.asarray(D)
                 S0 = S0 + m * D
+                coupling = coupling + D
         lu = _factor(S0, where, sparse)
         P = np.zeros((n, dofs.size), dtype=S0.dtype)
         P[dofs, np.arange(dofs.size)] = 1.0
         Z = lu.solve(P) if dofs.size else P
-        return cls(complex(mu), lu, dofs, Z, Z[dofs], D)
+        return cls(complex(mu), lu, dofs, Z, Z[dofs], D, coupling)
 
 
 class _DenseLU:
-    """Dense ``S0^-1``: the shifted matrices of a small problem are well conditioned
+    """Dense LU of ``S0``. A factor serves a whole run of steps of one size, each needing a
+    few solves: after ``INVERSE_AFTER`` solves the inverse is formed from the factors
+    (LAPACK ``getri``), and one matrix-vector product then replaces each pair of
+    triangular solves. The shifted matrices of a small problem are well conditioned
     (``mu^2 M`` dominates) and only drive a simplified Newton iteration whose residual is
-    exact, so one matrix-vector product replaces each pair of triangular solves."""
+    exact, so either way of solving serves."""
 
     def __init__(self, A: Any, where: str) -> None:
         lu, piv = sl.lu_factor(A, check_finite=False)
         d = np.abs(np.diag(lu))
         if not np.all(np.isfinite(d)) or d.min() <= 1e-15 * d.max():
             raise ConvergenceError("shifted iteration matrix is singular", where)
-        self.inverse = sl.lu_solve((lu, piv), np.eye(A.shape[0], dtype=A.dtype),
-                                   check_finite=False)
+        self.factors = (lu, piv)
+        self.inverse: Any = None
+        self.uses = 0
 
     def solve(self, b: Any) -> Any:
-        return self.inverse @ b
+        if self.inverse is not None:
+            return self.inverse @ b
+        self.uses += 1 if b.ndim == 1 else b.shape[1]
+        if self.uses > INVERSE_AFTER:
+            lu, piv = self.factors
+            getri = sl.get_lapack_funcs("getri", (lu,))
+            inverse, info = getri(lu, piv)
+            if info == 0:
+                self.inverse = inverse
+                return inverse @ b
+        return sl.lu_solve(self.factors, b, check_finite=False)
 
 
 class _SparseLU:
