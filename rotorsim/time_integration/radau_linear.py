@@ -41,10 +41,6 @@ from rotorsim.time_integration.problem import SecondOrderProblem, combine
 DENSE_LIMIT = 400
 """Up to this size the shifted matrices are factorised densely (the problem's matrices are
 dense there too: see ``equation.DENSE_STEPPING``)."""
-INVERSE_AFTER = 40
-"""Vector solves with a dense factor before its inverse is formed: forming it costs about
-as much as this many pairs of triangular solves saved against one matrix-vector product
-(n = 150, complex; measured)."""
 
 
 @dataclass(frozen=True, eq=False)
@@ -92,34 +88,26 @@ class ShiftedFactors:
 
 
 class _DenseLU:
-    """Dense LU of ``S0``. A factor serves a whole run of steps of one size, each needing a
-    few solves: after ``INVERSE_AFTER`` solves the inverse is formed from the factors
-    (LAPACK ``getri``), and one matrix-vector product then replaces each pair of
-    triangular solves. The shifted matrices of a small problem are well conditioned
+    """Dense ``S0^-1``: the shifted matrices of a small problem are well conditioned
     (``mu^2 M`` dominates) and only drive a simplified Newton iteration whose residual is
-    exact, so either way of solving serves."""
+    exact, so one matrix-vector product replaces each pair of triangular solves. The
+    inverse comes from the LU factors by LAPACK ``getri`` with its optimal workspace (about
+    half the cost of solving for the identity at n = 150, real or complex)."""
 
     def __init__(self, A: Any, where: str) -> None:
         lu, piv = sl.lu_factor(A, check_finite=False)
         d = np.abs(np.diag(lu))
         if not np.all(np.isfinite(d)) or d.min() <= 1e-15 * d.max():
             raise ConvergenceError("shifted iteration matrix is singular", where)
-        self.factors = (lu, piv)
-        self.inverse: Any = None
-        self.uses = 0
+        getri, query = sl.get_lapack_funcs(("getri", "getri_lwork"), (lu,))
+        work, _ = query(lu.shape[0])  # the blocked inverse needs its optimal workspace
+        inverse, info = getri(lu, piv, lwork=int(np.real(work)))
+        if info != 0:
+            raise ConvergenceError("shifted iteration matrix is singular", where)
+        self.inverse = inverse
 
     def solve(self, b: Any) -> Any:
-        if self.inverse is not None:
-            return self.inverse @ b
-        self.uses += 1 if b.ndim == 1 else b.shape[1]
-        if self.uses > INVERSE_AFTER:
-            lu, piv = self.factors
-            getri = sl.get_lapack_funcs("getri", (lu,))
-            inverse, info = getri(lu, piv)
-            if info == 0:
-                self.inverse = inverse
-                return inverse @ b
-        return sl.lu_solve(self.factors, b, check_finite=False)
+        return self.inverse @ b
 
 
 class _SparseLU:
@@ -178,12 +166,3 @@ class ShiftedSolve:
         if self.U is None:
             return y
         return y - self.U @ y[self.base.dofs]
-
-
-def real_times(A: Any, x: Any) -> Any:
-    """``A @ x`` for a real dense or sparse ``A`` and a real or complex vector ``x``, without
-    casting ``A`` to complex."""
-    if not np.iscomplexobj(x) or not isinstance(A, np.ndarray):
-        return A @ x
-    pairs = np.ascontiguousarray(x, dtype=complex).view(float).reshape(-1, 2)
-    return np.ascontiguousarray(A @ pairs).reshape(-1).view(complex)

@@ -13,7 +13,7 @@ import scipy.sparse as sp
 from rotorsim.solvers.linear import Factorization, factorize
 from rotorsim.time_integration.base import FloatArray, IntArray, State
 from rotorsim.time_integration.local_tangent import LocalMatrix
-from rotorsim.time_integration.radau_linear import ShiftedFactors, ShiftedSolve, real_times
+from rotorsim.time_integration.radau_linear import ShiftedFactors, ShiftedSolve
 
 CACHED_STEPS = 8
 """Step sizes whose factors are kept (least recently used dropped)."""
@@ -147,8 +147,10 @@ class StageSystem:
 
     def loads(self, times: FloatArray) -> tuple[FloatArray, FloatArray]:
         """External loads (s, n) and schedule values (s,) at the stage times."""
-        return (np.stack([self.p.external(float(t)) for t in times]),
-                np.array([self.p.spin(float(t)) for t in times]))
+        many = getattr(self.p.load, "many", None)  # a rotor's loads: all stages at once
+        f = np.asarray(many(times)) if many is not None and times.size > 1 else \
+            np.stack([self.p.external(float(t)) for t in times])
+        return f, np.array([self.p.spin(float(t)) for t in times])
 
     def stage_forces(self, Q: FloatArray, V: FloatArray, times: FloatArray,
                      loads: tuple[FloatArray, FloatArray]) -> tuple[FloatArray, Tangent]:
