@@ -13,7 +13,7 @@ import scipy.sparse as sp
 from rotorsim.solvers.linear import Factorization, factorize
 from rotorsim.time_integration.base import FloatArray, IntArray, State
 from rotorsim.time_integration.local_tangent import LocalMatrix
-from rotorsim.time_integration.radau_linear import ShiftedFactors, ShiftedSolve, real_times
+from rotorsim.time_integration.radau_linear import ShiftedFactors, ShiftedSolve
 
 CACHED_STEPS = 8
 """Step sizes whose factors are kept (least recently used dropped)."""
@@ -147,8 +147,10 @@ class StageSystem:
 
     def loads(self, times: FloatArray) -> tuple[FloatArray, FloatArray]:
         """External loads (s, n) and schedule values (s,) at the stage times."""
-        return (np.stack([self.p.external(float(t)) for t in times]),
-                np.array([self.p.spin(float(t)) for t in times]))
+        many = getattr(self.p.load, "many", None)  # a rotor's loads: all stages at once
+        f = np.asarray(many(times)) if many is not None and times.size > 1 else \
+            np.stack([self.p.external(float(t)) for t in times])
+        return f, np.array([self.p.spin(float(t)) for t in times])
 
     def stage_forces(self, Q: FloatArray, V: FloatArray, times: FloatArray,
                      loads: tuple[FloatArray, FloatArray]) -> tuple[FloatArray, Tangent]:
@@ -238,14 +240,12 @@ class StepSolves:
 
     def _condensed(self, solve: ShiftedSolve, mu: Any, bq: Any, Mbv: Any) -> tuple[Any, Any]:
         """``(mu I - J)^-1 (b_q, b_v)`` given ``M b_v``, with the frozen
-        ``D_t = C + s_f G + dr/dv``."""
-        rhs = Mbv + mu * real_times(self.system.p.mass, bq)
-        D = solve.base.damping
-        if D is not None:
-            rhs = rhs + real_times(D, bq)
+        ``D_t = C + s_f G + dr/dv`` (``mu M + C + s_f G`` is the factors' ``coupling``)."""
+        rhs = solve.base.coupling @ bq + Mbv
         tg = self.tangent
         if tg.damping is not None:
-            rhs[tg.dofs] += tg.damping @ bq[tg.dofs]
+            d = tg.dofs
+            rhs[d] += tg.damping @ bq[d]
         xq = solve.solve(rhs)
         return xq, mu * xq - bq
 
@@ -256,17 +256,16 @@ class StepSolves:
         from rotorsim.time_integration.radau import ALPHA_BETA, GAMMA, TRANSFORM_INV
 
         n = V.shape[1]
-        M = self.system.p.mass
         TV, TG = TRANSFORM_INV @ V, TRANSFORM_INV @ g
+        MW = _apply(self.system.p.mass, W[:, n:])  # M W_v of the three stages
         out = np.empty_like(W)
         mu = GAMMA / h
         bq = TV[0] - mu * W[0, :n]
-        xq, xv = self._condensed(self.real, mu, bq, -TG[0] - mu * (M @ W[0, n:]))
-        out[0, :n], out[0, n:] = xq, xv
+        out[0, :n], out[0, n:] = self._condensed(self.real, mu, bq, -TG[0] - mu * MW[0])
         mc = ALPHA_BETA / h
-        wq, wv = W[1, :n] + 1j * W[2, :n], W[1, n:] + 1j * W[2, n:]
-        bqc = TV[1] + 1j * TV[2] - mc * wq
-        xq, xv = self._condensed(self.cplx, mc, bqc, -(TG[1] + 1j * TG[2]) - mc * real_times(M, wv))
+        bqc = (TV[1] + 1j * TV[2]) - mc * (W[1, :n] + 1j * W[2, :n])
+        xq, xv = self._condensed(self.cplx, mc, bqc,
+                                 -(TG[1] + 1j * TG[2]) - mc * (MW[1] + 1j * MW[2]))
         out[1, :n], out[2, :n] = xq.real, xq.imag
         out[1, n:], out[2, n:] = xv.real, xv.imag
         return out

@@ -148,6 +148,29 @@ class TransientLoads:
             f += user
         return f
 
+    def many(self, times: FloatArray) -> FloatArray:
+        """``f`` at several times (S,) as rows (S, n): the stages of a Runge-Kutta step.
+        The same numbers as :meth:`__call__` at each time, with the unbalance (the only
+        part that varies at every step of a plain run) in one vectorised pass."""
+        if self.torsion is not None or self.forces is not None or \
+                (self.base is not None and self.base_acceleration is not None):
+            return np.stack([self(float(t)) for t in times])
+        f = np.repeat(self.constant[None, :], len(times), axis=0)
+        if self.unbalance is not None:
+            sp = self.speed
+            w = np.array([sp.speed(float(t)) for t in times])
+            dw = np.array([sp.acceleration(float(t)) for t in times])
+            phi = np.array([sp.angle(float(t)) for t in times])
+            r = self.unbalance_ratio
+            if r is None:
+                rot = np.exp(1j * phi) * (w * w - 1j * dw)
+                f += (self.unbalance[None, :] * rot[:, None]).real
+            else:
+                rot = np.exp(1j * r[None, :] * phi[:, None]) * (
+                    r[None, :] * r[None, :] * (w * w)[:, None] - 1j * r[None, :] * dw[:, None])
+                f += (self.unbalance[None, :] * rot).real
+        return f
+
 
 @dataclass(eq=False)
 class RestoringForce:
