@@ -1,5 +1,5 @@
 """A published rotor-on-frame example: code_aster validation test SDLV132 (issue 15,
-docs/validation.md, case 31).
+docs/validation.md, case 39).
 
 Source: EDF, code_aster validation manual V2.04.132 (test case SDLV132, "rotor - bearings -
 massive support"); data and reference numbers as given in the test's input files
