@@ -2,6 +2,9 @@
 
 from __future__ import annotations
 
+from collections.abc import Sequence
+from typing import Any
+
 from rotorsim.assembly.system import RotorSystem, assemble
 from rotorsim.errors import ModelError
 from rotorsim.model.rotor import Rotor
@@ -36,3 +39,21 @@ def require_linear(rotor: Rotor) -> None:
     """Raise :class:`ModelError` when ``rotor`` has nonlinear elements."""
     if rotor.nonlinear_elements:
         raise ModelError(NONLINEAR_HINT.format(len(rotor.nonlinear_elements)), "model")
+
+
+def nonlinear_system(model: Any, nonlinear: Sequence[Any], where: str) -> RotorSystem:
+    """The assembled system of a Rotor (with ``nonlinear`` elements added), of a loaded
+    model file (its rotor with its rolling bearings), or an assembled RotorSystem as it is
+    (then ``nonlinear`` must be empty). Nonlinear analyses (periodic, quasiperiodic) call
+    it; errors name ``where``."""
+    if isinstance(model, RotorSystem):
+        if nonlinear:
+            raise ModelError("give the nonlinear elements to assemble(), or a Rotor here",
+                             where)
+        return model
+    if not isinstance(model, Rotor) and hasattr(model, "rotor"):
+        model = model.rotor.with_nonlinear(tuple(getattr(model, "rolling_bearings", ())))
+    if not isinstance(model, Rotor):
+        raise ModelError(f"expected a Rotor, RotorSystem or Model, got "
+                         f"{type(model).__name__}", where)
+    return assemble(model, nonlinear=tuple(nonlinear))

@@ -64,7 +64,8 @@ from rotorsim.analyses.periodic.resume import finished_result, resumed
 from rotorsim.analyses.periodic.stability import DEFAULT_TOL, stability_model
 from rotorsim.analyses.statics.linearized_rotor import rolling_start
 from rotorsim.analyses.statics.nonlinear_static import start_point
-from rotorsim.assembly.system import RotorSystem, assemble
+from rotorsim.analyses.system_input import nonlinear_system
+from rotorsim.assembly.system import RotorSystem
 from rotorsim.elements.base import NonlinearElement
 from rotorsim.errors import ModelError
 from rotorsim.harmonic_balance.bifurcation import BifurcationOptions, detect_bifurcations
@@ -301,17 +302,7 @@ def _fold_map(result: PeriodicResult, residual: Any, rp: RotorPeriodicProblem,
 
 
 def _system(model: Any, nonlinear: Sequence[NonlinearElement]) -> RotorSystem:
-    if isinstance(model, RotorSystem):
-        if nonlinear:
-            raise ModelError("give the nonlinear elements to assemble(), or a Rotor here",
-                             WHERE)
-        return model
-    if not isinstance(model, Rotor) and hasattr(model, "rotor"):
-        model = model.rotor.with_nonlinear(tuple(getattr(model, "rolling_bearings", ())))
-    if not isinstance(model, Rotor):
-        raise ModelError(f"expected a Rotor, RotorSystem or Model, got "
-                         f"{type(model).__name__}", WHERE)
-    return assemble(model, nonlinear=tuple(nonlinear))
+    return nonlinear_system(model, nonlinear, WHERE)
 
 
 def _static_guess(model: Any, nonlinear: Sequence[NonlinearElement], system: RotorSystem,

@@ -22,12 +22,12 @@ from rotorsim.analyses.quasiperiodic.problem import (
     RotorQuasiProblem,
     build_quasi_problem,
 )
-from rotorsim.assembly.system import RotorSystem, assemble
+from rotorsim.analyses.system_input import nonlinear_system
+from rotorsim.assembly.system import RotorSystem
 from rotorsim.errors import ConvergenceError, ModelError
 from rotorsim.harmonic_balance.quasi import QuasiSolution, TorusAFT, TorusHarmonics
 from rotorsim.harmonic_balance.quasi import solve_quasi as solve_torus
 from rotorsim.harmonic_balance.quasi.lyapunov import LyapunovEstimate, largest_lyapunov_exponent
-from rotorsim.model.rotor import Rotor
 from rotorsim.options import Excitation
 from rotorsim.solvers.stats import Stats
 
@@ -192,17 +192,8 @@ def _homotopy(rp: RotorQuasiProblem, aft: TorusAFT, w1: float, w2: float, tol: f
 
 
 def system_of(model: Any, nonlinear: Sequence[Any]) -> RotorSystem:
-    if isinstance(model, RotorSystem):
-        if nonlinear:
-            raise ModelError("give the nonlinear elements to assemble(), or a Rotor here",
-                             WHERE)
-        return model
-    if not isinstance(model, Rotor) and hasattr(model, "rotor"):
-        model = model.rotor.with_nonlinear(tuple(getattr(model, "rolling_bearings", ())))
-    if not isinstance(model, Rotor):
-        raise ModelError(f"expected a Rotor, RotorSystem or Model, got "
-                         f"{type(model).__name__}", WHERE)
-    return assemble(model, nonlinear=tuple(nonlinear))
+    """:func:`~rotorsim.analyses.system_input.nonlinear_system` with this analysis's name."""
+    return nonlinear_system(model, nonlinear, WHERE)
 
 
 def torus_of(harmonics: int | tuple[int, int], truncation: str) -> TorusHarmonics:
