@@ -152,6 +152,24 @@ class NonlinearAssembly:
         """Values on the nonlinear DOFs, ``x[..., dofs]``."""
         return np.asarray(x, dtype=float)[..., self.dofs]
 
+    def evaluate_on(self, positions: NDArray[np.int64], q: NDArray[np.float64],
+                    v: NDArray[np.float64], phi: ArrayLike, speed: ArrayLike, damped: bool
+                    ) -> tuple[NDArray[np.float64], NDArray[np.float64],
+                               NDArray[np.float64] | None]:
+        """:meth:`evaluate` with ``q, v (S, p)`` given on the nonlinear DOFs at
+        ``positions`` only (the others held at zero, their reactions dropped): force
+        ``(S, p)``, ``df/dq`` and ``df/dv`` ``(S, p, p)`` (``None`` when not ``damped``)."""
+        S = q.shape[0]
+        full = positions.size == self.k
+        qf, vf = (q, v) if full else (np.zeros((S, self.k)), np.zeros((S, self.k)))
+        if not full:
+            qf[:, positions], vf[:, positions] = q, v
+        out = self.evaluate(qf, vf, phi, speed)
+        if full:
+            return out.f, out.K, out.C if damped else None
+        ix = np.ix_(np.arange(S), positions, positions)
+        return out.f[:, positions], out.K[ix], out.C[ix] if damped else None
+
     def evaluate(self, q: ArrayLike, v: ArrayLike, phi: ArrayLike, speed: ArrayLike,
                  internal: Sequence[Any] | None = None) -> NonlinearForces:
         """Forces and tangents of all elements for ``S`` samples.

@@ -126,18 +126,8 @@ class RotorForce:
 
     def __call__(self, q: FloatArray, v: FloatArray, tau: FloatArray, omega: float,
                  param: float) -> tuple[FloatArray, FloatArray, FloatArray | None]:
-        a, pos = self.assembly, self.positions
-        S = q.shape[0]
-        full = pos.size == a.k
-        qf, vf = (q, v) if full else (np.zeros((S, a.k)), np.zeros((S, a.k)))
-        if not full:
-            qf[:, pos], vf[:, pos] = q, v
         phi, W = self.angle_speed(tau, omega)
-        out = a.evaluate(qf, vf, phi, W)
-        if full:
-            return out.f, out.K, out.C if self.damped else None
-        ix = np.ix_(np.arange(S), pos, pos)
-        return out.f[:, pos], out.K[ix], out.C[ix] if self.damped else None
+        return self.assembly.evaluate_on(self.positions, q, v, phi, W, self.damped)
 
 
 @dataclass(frozen=True, eq=False)

@@ -79,17 +79,8 @@ class TorusBearingForce:
 
     def __call__(self, q: FloatArray, v: FloatArray, theta1: FloatArray,
                  theta2: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray | None]:
-        a, pos = self.assembly, self.positions
-        S = q.shape[0]
-        full = pos.size == a.k
-        qf, vf = (q, v) if full else (np.zeros((S, a.k)), np.zeros((S, a.k)))
-        if not full:
-            qf[:, pos], vf[:, pos] = q, v
-        out = a.evaluate(qf, vf, theta2 / self.vc_order, self.speed)
-        if full:
-            return out.f, out.K, out.C if self.damped else None
-        ix = np.ix_(np.arange(S), pos, pos)
-        return out.f[:, pos], out.K[ix], out.C[ix] if self.damped else None
+        return self.assembly.evaluate_on(self.positions, q, v, theta2 / self.vc_order,
+                                         self.speed, self.damped)
 
 
 def common_vc_order(system: RotorSystem) -> float:
