@@ -67,11 +67,13 @@ def benchmark_rotor() -> rs.Rotor:
 
 
 def hb_branch(rotor: rs.Rotor, points: int, stability: str | None) -> PeriodicResult:
-    return periodic(rotor, start=200.0, stop=3000.0, harmonics=10, unbalance=UNBALANCE,
-                    continuation=rs.ContinuationOptions(max_points=points, max_step=0.05,
-                                                        tol=1e-8),
-                    stability=rs.StabilityOptions(stability, bifurcations=stability is not None),
-                    nodes=[5, 11])
+    res = periodic(rotor, start=200.0, stop=3000.0, harmonics=10, unbalance=UNBALANCE,
+                   continuation=rs.ContinuationOptions(max_points=points, max_step=0.05,
+                                                       tol=1e-8),
+                   stability=rs.StabilityOptions(stability, bifurcations=stability is not None),
+                   nodes=[5, 11])
+    assert isinstance(res, PeriodicResult)     # fixed cages: a periodic problem
+    return res
 
 
 def comparable_points(branch: PeriodicResult, count: int) -> np.ndarray:

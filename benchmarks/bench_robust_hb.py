@@ -43,6 +43,7 @@ def clearance_branch() -> dict[str, float]:
     res = rs.periodic(model, start=100.0, stop=400.0, harmonics=8,
                       unbalance=[(10, 1e-4, 0.0)], nodes=[10])
     wall = time.perf_counter() - clock
+    assert isinstance(res, rs.PeriodicResult)      # fixed cages: a periodic problem
     s = res.stats
     return {"wall_time": wall, "points": len(res), "reached": float(res.parameter[-1]),
             "floquet_time": s["floquet_time"], "event_time": s["bifurcation_time"],

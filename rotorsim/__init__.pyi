@@ -127,6 +127,7 @@ from .results.frequency_response import FrequencyResponseResult
 from .results.modal import ModalResult
 from .results.orbits import Ellipse, ellipse
 from .results.periodic import PeriodicBifurcation, PeriodicPeak, PeriodicResult
+from .results.quasi_periodic import QuasiPeriodicResult, TorusEvent
 from .results.static import StaticResult
 from .results.sweep import SweepResult
 from .results.transient import TransientResult
@@ -200,6 +201,7 @@ __all__ = [
     "QuadraticTorque",
     "QuasiPeriodicBranch",
     "QuasiPeriodicPoint",
+    "QuasiPeriodicResult",
     "RatingOptions",
     "ResultsFileError",
     "ReversedBearing",
@@ -225,6 +227,7 @@ __all__ = [
     "TorqueCurve",
     "TorqueDrive",
     "TorqueFunction",
+    "TorusEvent",
     "TransientResult",
     "Uniform",
     "ViscousTorque",

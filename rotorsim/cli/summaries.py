@@ -281,6 +281,44 @@ def transient_summary(result: Any, units: str = "rpm") -> str:
     return "\n".join(lines)
 
 
+def quasi_periodic_summary(result: Any, units: str = "rpm") -> str:
+    """Points, status, stability and stability changes of a branch of tori, and the largest
+    responses of the kept nodes with their 1X and VC tones."""
+    f = _factor(units)
+    head = (f"quasi-periodic branch: {len(result)} points, speed {result.speed[0] * f:.1f} "
+            f"-> {result.speed[-1] * f:.1f} {units}, VC order {result.vc_order:.6g}, "
+            f"{len(result.tones)} tones, status {result.status.name}"
+            + (f" ({result.reason})" if result.reason else ""))
+    lines = [head]
+    if result.has_stability:
+        lines.append(f"stable tori: {int(result.stable.sum())} of {len(result)} (largest "
+                     f"exponent {np.nanmax(result.exponents):.4g} 1/s; "
+                     f"{result.stability_method})")
+        if not result.exponents_converged.all():
+            lines.append(f"exponents not converged in the stability box at "
+                         f"{int((~result.exponents_converged).sum())} points")
+    rows = []
+    for node in sorted({int(i) // 6 for i in result.dofs}):
+        try:
+            amp = result.amplitude(node, "uy", "peak_to_peak")
+        except Exception:  # a node without uy kept
+            continue
+        k = int(np.argmax(amp))
+        rows.append((node, f"{amp[k] * 1e6:.3f}",
+                     f"{abs(result.tone(node, 'uy', 1, 0)[k]) * 1e6:.3f}",
+                     f"{abs(result.tone(node, 'uy', 0, 1)[k]) * 1e6:.4f}",
+                     f"{result.speed[k] * f:.6g}"))
+    rows.sort(key=lambda r: -float(r[1]))
+    lines.append(table(rows[:6], ("node", "max uy p-p [um]", "1X [um]", "VC [um]",
+                                  f"at speed [{units}]")))
+    if result.events:
+        lines.append(table([(e.kind, f"{e.parameter * f:.6g}",
+                             f"{e.exponents[0]:.4g} -> {e.exponents[1]:.4g}")
+                            for e in result.events],
+                           ("stability change", f"speed [{units}]", "exponent [1/s]")))
+    return "\n".join(lines)
+
+
 def periodic_summary(result: Any, units: str = "rpm") -> str:
     """Points, status, stability and bifurcations of a harmonic-balance branch, and the
     largest responses of the kept nodes (over the speed, or over the model parameter of
@@ -333,6 +371,7 @@ SUMMARIES: dict[str, Callable[..., str]] = {
     "StiffnessVariation": stiffness_variation_summary,
     "TransientResult": transient_summary,
     "PeriodicResult": periodic_summary,
+    "QuasiPeriodicResult": quasi_periodic_summary,
 }
 
 

@@ -18,6 +18,7 @@ from rotorsim.results.modal import ModalResult
 from rotorsim.results.orbits import Ellipse
 from rotorsim.results.order_tracking import OrderTrack, Waterfall
 from rotorsim.results.periodic import PeriodicBifurcation, PeriodicPeak, PeriodicResult
+from rotorsim.results.quasi_periodic import QuasiPeriodicResult, TorusEvent
 from rotorsim.results.spectra import HarmonicFit, Spectrum
 from rotorsim.results.static import StaticResult
 from rotorsim.results.transient import TransientResult
@@ -103,6 +104,13 @@ register_result_type(PeriodicResult, {
     "dofs": "1", "coefficients": "m, rad", "max_abs": "m, rad", "peak_to_peak": "m, rad",
     "multipliers": "1", "stability_tol": "1", "iterations": "1", "residuals": "1",
     "held_dofs": "1", "nodes_pos": "m"})
+register_result_type(TorusEvent, {"parameter": _ANGULAR, "exponents": "1/s",
+                                  "frequency": _ANGULAR})
+register_result_type(QuasiPeriodicResult, {
+    "speed": _ANGULAR, "vc_frequency": _ANGULAR, "vc_order": "1", "tones": "1", "dofs": "1",
+    "coefficients": "m, rad", "max_abs": "m, rad", "peak_to_peak": "m, rad",
+    "exponents": "1/s", "iterations": "1", "residuals": "1", "held_dofs": "1",
+    "nodes_pos": "m"})
 register_result_type(ApiLevel1Result, {
     "mcs": _ANGULAR, "stage_q": "N/m", "q_a": "N/m", "station_share": "1", "applied": "N/m",
     "log_dec": "1", "frequency": _ANGULAR, "log_dec_a": "1", "q0": "N/m", "q_ratio": "1",

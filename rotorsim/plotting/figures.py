@@ -16,6 +16,7 @@ from rotorsim.plotting.bearing_figures import (
 from rotorsim.plotting.layout import rotor_layout_figure
 from rotorsim.plotting.life_figures import bearing_life_figure
 from rotorsim.plotting.periodic_figures import periodic_figure
+from rotorsim.plotting.quasi_periodic_figures import quasi_periodic_figure
 from rotorsim.plotting.transient_figures import (
     order_track_figure,
     spectrum_figure,
@@ -235,6 +236,7 @@ DRAWERS: dict[str, Callable[..., Any]] = {
     "Waterfall": waterfall_figure,
     "OrderTrack": order_track_figure,
     "PeriodicResult": periodic_figure,
+    "QuasiPeriodicResult": quasi_periodic_figure,
     "ApiLevel1Result": level1_figure,
     "ApiUnbalanceResult": api_unbalance_figure,
 }

@@ -63,7 +63,8 @@ def history_lives(model: Any, name: str, result: Any, results: dict[str, Any]) -
         from rotorsim.analyses.periodic.bearing_life import periodic_life
 
         last = len(result) - 1
-        title = f"life along the orbit of branch point {last} (Palmgren-Miner)"
+        along = "torus" if hasattr(result, "vc_order") else "orbit"   # quasi-periodic or not
+        title = f"life along the {along} of branch point {last} (Palmgren-Miner)"
 
         def rate(i: int) -> Any:
             return periodic_life(result, model.rolling_bearings[i], last,

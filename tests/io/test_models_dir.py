@@ -24,6 +24,7 @@ from rotorsim.results.critical_speeds import CriticalSpeedMapResult, CriticalSpe
 from rotorsim.results.frequency_response import FrequencyResponseResult
 from rotorsim.results.modal import ModalResult
 from rotorsim.results.periodic import PeriodicResult
+from rotorsim.results.quasi_periodic import QuasiPeriodicResult
 from rotorsim.results.static import StaticResult
 from rotorsim.results.sweep import SweepResult
 from rotorsim.results.transient import TransientResult
@@ -40,7 +41,7 @@ RESULT_TYPES = {
     "modal": ModalResult, "campbell": CampbellResult, "critical_speeds": CriticalSpeeds,
     "critical_speed_map": CriticalSpeedMapResult, "unbalance": FrequencyResponseResult,
     "frequency_response": FrequencyResponseResult, "static": StaticResult,
-    "transient": TransientResult, "periodic": PeriodicResult,
+    "transient": TransientResult, "periodic": (PeriodicResult, QuasiPeriodicResult),
     "periodic_parameter": PeriodicResult, "sweep": SweepResult,
     "api_stability": ApiLevel1Result, "api_unbalance": ApiUnbalanceResult,
 }
@@ -52,6 +53,15 @@ def test_the_expected_model_files_exist():
     assert set(FILES) >= {"default", "compressor", "large_rotor", "tapered", "friswell_5_9_1",
                           "friswell_5_9_2", "friswell_5_9_5", "friswell_5_9_9"}
     assert set(RESULT_TYPES) == set(SPEC_TYPES)
+
+
+def test_the_default_branch_is_quasi_periodic_with_nothing_frozen():
+    """Unbalance with the balls' varying compliance (``Z kappa = 4.09``): the showcase
+    branch is the branch of tori (issue 17), not a frozen approximation."""
+    model = load_model(MODELS / "default.toml")
+    result = run_analysis(model, "branch", fast=True)
+    assert isinstance(result, QuasiPeriodicResult) and result.approximation == ""
+    assert result.vc_order == pytest.approx(4.09, abs=0.01)
 
 
 @pytest.mark.parametrize(("name", "analysis"), CASES, ids=[f"{f}-{a}" for f, a in CASES])

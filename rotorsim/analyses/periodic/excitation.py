@@ -111,6 +111,11 @@ class ExcitationPlan:
     unbalance_ratio : float
         Signed speed ratio of the spool that carries the unbalance (1 on a one-line rotor):
         its unbalance turns at ``r W`` with the angle ``r phi``.
+    quasi_periodic : bool
+        The forcing and the VC are incommensurate and the caller left
+        ``varying_compliance`` open: the response is a torus
+        (:mod:`~rotorsim.analyses.periodic.torus` hands it to the quasi-periodic HB);
+        ``approximation`` says what the frozen periodic problem would neglect.
     """
 
     order: float
@@ -119,6 +124,7 @@ class ExcitationPlan:
     base_harmonic: int
     approximation: str = ""
     unbalance_ratio: float = 1.0
+    quasi_periodic: bool = False
 
 
 def fundamental_order(orders: Sequence[float]) -> float | None:
@@ -186,8 +192,9 @@ def plan_excitation(elements: Sequence[Any], *, unbalance: bool, base: HarmonicB
     f = fundamental if fundamental is not None else fundamental_order(
         forced + (vc if moving else []))
     vc_periodic = f is not None and all(_multiple(o, f) is not None for o in vc)
+    quasi = False
     if moving and not vc_periodic and varying_compliance is None:
-        moving = False
+        moving, quasi = False, True
         f = fundamental if fundamental is not None else fundamental_order(forced)
         approximation = (f"rolling elements frozen at the shaft angle phi0 (varying "
                          f"compliance at orders {_orders(vc)} neglected: with the forcing at "
@@ -206,7 +213,7 @@ def plan_excitation(elements: Sequence[Any], *, unbalance: bool, base: HarmonicB
                          "compliance neglected on request)")
     return ExcitationPlan(float(f), moving, harmonic_of(u_order, f) if unbalance else 0,
                           harmonic_of(base.order, f) if base is not None else 0,
-                          approximation, float(unbalance_ratio))
+                          approximation, float(unbalance_ratio), quasi)
 
 
 def _frequency_plan(vc: list[float], unbalance: bool, base: HarmonicBase | None,

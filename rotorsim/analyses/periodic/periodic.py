@@ -9,8 +9,8 @@ over the spin speed ``W`` (or, at a fixed speed, the frequency of a housing exci
 
 1. the forcing present (unbalance, varying compliance of rolling bearings, housing motion)
    fixes the fundamental ``omega = f W`` (:mod:`~.periodic_excitation`; unbalance with
-   varying compliance is quasi-periodic: the rolling elements are then frozen and
-   ``result.approximation`` says so);
+   varying compliance is quasi-periodic: the branch of tori is then computed instead,
+   :mod:`~.torus`);
 2. the rotor becomes a rotor-agnostic :class:`~rotorsim.harmonic_balance.problem.HBProblem`
    on its active DOFs (:mod:`~.periodic_problem`), discretised by HB-AFT with ``H``
    harmonics and condensed exactly onto the nonlinear DOFs;
@@ -62,6 +62,7 @@ from rotorsim.analyses.periodic.problem import (
 )
 from rotorsim.analyses.periodic.resume import finished_result, resumed
 from rotorsim.analyses.periodic.stability import DEFAULT_TOL, stability_model
+from rotorsim.analyses.periodic.torus import refuse_unsupported, torus_branch
 from rotorsim.analyses.statics.linearized_rotor import rolling_start
 from rotorsim.analyses.statics.nonlinear_static import start_point
 from rotorsim.analyses.system_input import nonlinear_system
@@ -80,6 +81,7 @@ from rotorsim.options import (
     StabilityOptions,
 )
 from rotorsim.results.periodic import PeriodicResult
+from rotorsim.results.quasi_periodic import QuasiPeriodicResult
 from rotorsim.solvers.continuation import Branch
 from rotorsim.solvers.stats import Stats
 
@@ -118,7 +120,7 @@ def periodic(
     fold_map: bool | ParameterMap = False,
     x0: ArrayLike | None = None,
     peaks: Sequence[tuple[int, str]] = (),
-) -> PeriodicResult:
+) -> PeriodicResult | QuasiPeriodicResult:
     """Branch of periodic responses from ``start`` to ``stop`` (module docstring).
 
     Parameters
@@ -151,9 +153,12 @@ def periodic(
         ``parameter="frequency"`` ``a cos(Omega t + phase)`` at the continued ``Omega``.
         Default: standard gravity along ``-y``, nothing else.
     varying_compliance : bool, optional
-        Rolling elements move with their cages (True), are frozen at ``shaft_angle``
-        (False), or (None) move when the response stays periodic and are frozen otherwise
-        (recorded in ``result.approximation``).
+        Rolling elements move with their cages (True: refused when the response is not
+        periodic), are frozen at ``shaft_angle`` (False, recorded in
+        ``result.approximation``), or (None) move: when the unbalance and the VC are
+        incommensurate the response is a torus, computed by the two-frequency harmonic
+        balance (:mod:`~.torus`; a housing excitation or an unbalance on a spool at
+        another speed still freezes them, recorded in ``result.approximation``).
     shaft_angle : float
         Shaft angle ``phi0`` at ``t = 0`` [rad] (and the frozen angle).
     continuation : ContinuationOptions, optional
@@ -198,7 +203,8 @@ def periodic(
 
     Returns
     -------
-    PeriodicResult
+    PeriodicResult or QuasiPeriodicResult
+        The latter for unbalance with incommensurate VC (:mod:`~.torus`).
 
     Raises
     ------
@@ -236,6 +242,14 @@ def periodic(
                            varying_compliance=varying_compliance, fundamental=h.fundamental,
                            frequency_parameter=frequency,
                            unbalance_ratio=spool_ratio(system, list(e.unbalance)))
+    if plan.quasi_periodic and opts.base is None and plan.unbalance_ratio == 1.0:
+        refuse_unsupported(WHERE, fold_map=fold_map is not False, peaks=bool(peaks),
+                           checkpoint=ck.path is not None or ck.resume is not None,
+                           x0=x0 is not None)
+        return torus_branch(model, nonlinear, start=start, stop=stop, opts=opts, clock=clock,
+                            described={"parameter": parameter, "start": float(start),
+                                       "stop": float(stop), "harmonics": int(h.count),
+                                       "varying_compliance": varying_compliance})
     check_discretization(h.count, h.samples, plan, system, h.condense, WHERE)
     stats = Stats()
     q0 = start_point(system, x0, f"{WHERE}.x0") if x0 is not None else _static_guess(

@@ -1,15 +1,23 @@
-"""``rs.quasi_periodic``: quasi-periodic unbalance responses over a speed range, each point
-started from the previous one, with the torus's stability along the way (issue 17).
+"""``rs.quasi_periodic``: quasi-periodic unbalance responses over a speed range, by
+pseudo-arclength continuation of the torus in the speed, with the torus's stability at
+every point (issue 17).
 
-The speed is stepped from ``start`` to ``stop`` (natural-parameter continuation: the shaft
-and VC frequencies both follow the speed, ``w2 = Z kappa W``). A point that does not
-converge halves the step; below ``min_step`` the branch stops with the reason, keeping
-what it has (a fold of the torus branch, or a torus that ceases to exist, stops it; the
-Lyapunov exponent says which points are stable).
+The shaft and VC frequencies both follow the speed (``w2 = Z kappa W``). The torus's
+bearing coefficients and the speed are continued together
+(:func:`~rotorsim.solvers.continuation.continue_branch` on
+:class:`~rotorsim.analyses.quasiperiodic.continuation.SpeedResidual`): where a lightly
+damped resonance on Hertzian contacts bends over, the branch turns back at a fold and
+carries on, as the periodic branches do. Scales: the unknowns by the largest coefficient
+at the start, the residual by its Jacobian's row norms, the speed by the range; the
+largest step is ``step / (stop - start)`` of that scaled arclength, times the size of the
+response relative to the start (steps follow the growing orbit through a resonance). A
+branch that stops (the step fell below its minimum: no torus beyond, or a torus breaking
+up) says where and why, keeping what it has.
 """
 
 from __future__ import annotations
 
+import time
 from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any
@@ -17,18 +25,24 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from rotorsim.analyses.quasiperiodic.continuation import SpeedResidual
 from rotorsim.analyses.quasiperiodic.point import (
     QuasiPeriodicPoint,
     solve_at,
     system_of,
     torus_of,
 )
-from rotorsim.analyses.quasiperiodic.problem import WHERE
-from rotorsim.errors import ConvergenceError, ModelError
-from rotorsim.harmonic_balance.quasi import TorusAFT
+from rotorsim.analyses.quasiperiodic.problem import WHERE, RotorQuasiProblem
+from rotorsim.analyses.quasiperiodic.stability import STABILITY_TOL, TorusStability
+from rotorsim.errors import ModelError, Status
+from rotorsim.harmonic_balance.quasi import QuasiSolution, TorusAFT
 from rotorsim.options import Excitation
+from rotorsim.solvers.continuation import Continuation, continue_branch
 
 FloatArray = NDArray[np.float64]
+STALL_TOL = 1e-6
+"""Scaled residual at which a stalled corrector is accepted (contact onsets make the
+residual non-smooth, as on periodic branches)."""
 
 
 @dataclass(frozen=True, eq=False)
@@ -39,7 +53,9 @@ class QuasiPeriodicBranch:
     ----------
     points : tuple of QuasiPeriodicPoint
     exponents : array (P,)
-        Largest Lyapunov exponent of each torus [1/s] (NaN when not computed).
+        Largest real part of each torus's characteristic exponents [1/s] (the Hill
+        method, or the largest Lyapunov exponent with ``stability="lyapunov"``; NaN when
+        not computed).
     status : str
         ``"ok"`` (reached ``stop``) or ``"stopped"``.
     reason : str
@@ -50,6 +66,8 @@ class QuasiPeriodicBranch:
     exponents: FloatArray
     status: str
     reason: str
+    stability: tuple[TorusStability | None, ...] = ()
+    stability_time: float = 0.0
 
     @property
     def speeds(self) -> FloatArray:
@@ -58,8 +76,10 @@ class QuasiPeriodicBranch:
 
     @property
     def stable(self) -> NDArray[np.bool_]:
-        """Negative exponent (False where it was not computed)."""
-        return np.asarray(self.exponents < 0.0)
+        """Growth per shaft revolution below :data:`~.stability.STABILITY_TOL` (False where
+        the exponent was not computed)."""
+        growth = np.nan_to_num(self.exponents, nan=np.inf) * 2 * np.pi / self.speeds
+        return np.asarray(growth < STABILITY_TOL)
 
     def amplitude(self, node: int, dof: str, k1: int, k2: int) -> FloatArray:
         """Amplitude of the tone ``k1 W + k2 w2`` of ``(node, dof)`` at every speed."""
@@ -74,21 +94,24 @@ def quasi_periodic(model: Any, *, start: float, stop: float, step: float | None 
                    harmonics: int | tuple[int, int] = (10, 3), truncation: str = "box",
                    samples: tuple[int, int] | None = None,
                    excitation: Excitation | None = None, nonlinear: Sequence[Any] = (),
-                   stability: bool = True, periods: int = 40, tol: float = 1e-9
-                   ) -> QuasiPeriodicBranch:
+                   stability: bool | str = True, periods: int = 40, tol: float = 1e-9,
+                   max_points: int = 1000) -> QuasiPeriodicBranch:
     """Quasi-periodic responses from ``start`` to ``stop`` [rad/s] (module docstring).
 
     Parameters
     ----------
     step : float, optional
-        Speed step [rad/s] (default 1/50 of the range); halved where a point fails, down to
-        1e-4 of the range.
+        Largest step [rad/s] where the response is flat (default 1/50 of the range).
     harmonics, truncation, samples, excitation, nonlinear, tol
         As :func:`~rotorsim.analyses.quasiperiodic.point.quasi_periodic_point` (default
         box ``(10, 3)``: ten harmonics of the shaft frequency, three of the VC frequency).
-    stability : bool
-        Compute the largest Lyapunov exponent of every torus (over ``periods``
-        revolutions).
+    stability : bool or {"hill", "lyapunov"}
+        Stability of every torus: its characteristic exponents by the quasi-periodic
+        Hill method (True or "hill"; :meth:`QuasiPeriodicPoint.exponents`), or its
+        largest Lyapunov exponent over ``periods`` revolutions ("lyapunov"; its
+        resolution is about ``1 / T``, too coarse for very light damping); False: none.
+    max_points : int
+        Points of the branch at most.
 
     Raises
     ------
@@ -107,31 +130,48 @@ def quasi_periodic(model: Any, *, start: float, stop: float, step: float | None 
     h = span / 50 if step is None else float(step)
     if not (np.isfinite(h) and 0 < h <= span):
         raise ModelError(f"step must be in (0, {span:g}] rad/s, got {step!r}", f"{WHERE}.step")
-    direction = 1.0 if stop > start else -1.0
+    if stability not in (True, False, "hill", "lyapunov"):
+        raise ModelError(f"stability must be True, False, 'hill' or 'lyapunov', got "
+                         f"{stability!r}", f"{WHERE}.stability")
     system = system_of(model, nonlinear)
     torus = torus_of(harmonics, truncation)
     aft = TorusAFT(torus, samples)
     ex = excitation if excitation is not None else Excitation()
     unbalance = tuple(unbalance) or tuple(ex.unbalance or ())
-    points = [solve_at(system, float(start), torus, aft, ex, unbalance, tol)]
-    status, reason, speed = "ok", "", float(start)
-    min_step = 1e-4 * span
-    while direction * (stop - speed) > 1e-12 * span:
-        trial = speed + direction * min(h, abs(stop - speed))
-        previous = points[-1]
-        try:
-            point = solve_at(system, trial, torus, aft, ex, unbalance, tol,
-                             start=previous.solution.X[:, previous.rotor_problem.problem.nl_dofs])
-        except ConvergenceError as exc:
-            h /= 2
-            if h < min_step:
-                status, reason = "stopped", (f"no torus beyond {speed:.6g} rad/s: the step fell "
-                                             f"below {min_step:.3g} rad/s ({exc})")
-                break
-            continue
-        points.append(point)
-        speed = trial
-        h = min(2 * h, span / 50 if step is None else float(step))
-    exponents = np.array([p.stability(periods=periods).exponent if stability else np.nan
-                          for p in points])
-    return QuasiPeriodicBranch(tuple(points), exponents, status, reason)
+    first = solve_at(system, float(start), torus, aft, ex, unbalance, tol)
+    fun = SpeedResidual(system, first.rotor_problem, aft, unbalance)
+    nl = np.asarray(first.rotor_problem.problem.nl_dofs)
+    x0 = first.solution.X[:, nl].ravel()
+    options = Continuation(
+        initial_step=min(0.5 * h, h) / span, max_step=h / span, min_step=1e-6,
+        direction=1 if stop > start else -1, lam_min=min(start, stop),
+        lam_max=max(start, stop), max_points=int(max_points), tol=tol,
+        x_scale=float(np.abs(x0).max()) or 1.0, r_scale="auto", lam_scale=span,
+        relative_step=True, stall_tol=max(STALL_TOL, tol))
+    branch = continue_branch(fun, x0, float(start), options)
+    points = tuple(_point(fun, first, x, float(w), float(r), int(it)) for x, w, r, it in
+                   zip(branch.x, branch.lam, branch.residuals, branch.iterations, strict=True))
+    status = "ok" if branch.status == Status.OK else "stopped"
+    reason = "" if status == "ok" else f"{branch.reason} (at {branch.lam[-1]:.6g} rad/s)"
+    clock = time.perf_counter()
+    checks: list[TorusStability | None] = [None] * len(points)
+    if stability == "lyapunov":
+        exponents = np.array([p.stability(periods=periods).exponent for p in points])
+    elif stability:
+        checks = [p.exponents() for p in points]
+        exponents = np.array([c.exponents.largest for c in checks])  # type: ignore[union-attr]
+    else:
+        exponents = np.full(len(points), np.nan)
+    return QuasiPeriodicBranch(points, exponents, status, reason, tuple(checks),
+                               time.perf_counter() - clock)
+
+
+def _point(fun: SpeedResidual, first: QuasiPeriodicPoint, x: FloatArray, speed: float,
+           residual: float, iterations: int) -> QuasiPeriodicPoint:
+    """A branch point as a :class:`QuasiPeriodicPoint` (its problem at its own speed)."""
+    w2 = first.rotor_problem.vc_order * speed
+    base = first.rotor_problem
+    rp = RotorQuasiProblem(fun.problem_at(speed), base.active, base.static, base.vc_order,
+                           speed)
+    solution = QuasiSolution(fun.full(x, speed), fun.aft, speed, w2, residual, iterations)
+    return QuasiPeriodicPoint(speed, w2, solution, rp, first.system)

@@ -99,41 +99,115 @@ class CondensedTones:
     linear: list[ComplexArray]
     """Per tone ``[Z_LL^-1 Z_LN, Z_LL^-1 F_L]`` (``(n_L, d + 1)``): ``X_L = Z_LL^-1 F_L -
     Z_LL^-1 Z_LN X_N``."""
+    factors: list[Any] = field(default_factory=list)
+    """Per tone the LU factors of ``Z_LL`` (empty without linear DOFs)."""
 
 
-def condense(problem: QuasiProblem, aft: TorusAFT, w1: float, w2: float) -> CondensedTones:
-    """Schur complements and condensed loads of every tone at ``(w1, w2)``."""
-    n, N = problem.n, np.asarray(problem.nl_dofs, dtype=np.int64)
-    L = np.setdiff1d(np.arange(n), N)
+DENSE_LINEAR = 600
+"""Linear parts up to this many DOFs are condensed with dense blocks and dense LU."""
+
+
+@dataclass(frozen=True, eq=False)
+class LinearBlocks:
+    """``M, C, G, K`` split once into the blocks of the nonlinear DOFs ``N`` and the linear
+    DOFs ``L``: ``NN``, ``NL``, ``LN`` dense and ``LL`` dense (up to
+    :data:`DENSE_LINEAR` DOFs) or sparse. Forming ``Z = K - w^2 M + i w (C + s G)`` tone
+    by tone from them avoids re-indexing sparse matrices at every tone and speed."""
+
+    N: IntArray
+    L: IntArray
+    blocks: dict[str, tuple[Any, Any, Any, Any]]
+    dense: bool
+
+    @classmethod
+    def of(cls, problem: QuasiProblem) -> LinearBlocks:
+        N = np.asarray(problem.nl_dofs, dtype=np.int64)
+        L = np.setdiff1d(np.arange(problem.n), N)
+        dense = problem.n <= DENSE_LINEAR
+        out = {}
+        for name in ("M", "C", "G", "K"):
+            A = getattr(problem, name)
+            if A is None:
+                continue
+            A = sp.csr_matrix(A)
+            rows_N, rows_L = A[N], A[L]
+            LL = rows_L[:, L]
+            out[name] = (rows_N[:, N].toarray(), rows_N[:, L].toarray(),
+                         rows_L[:, N].toarray(), LL.toarray() if dense else LL.tocsc())
+        return cls(N, L, out, dense)
+
+    def z(self, w: float, s: float) -> tuple[Any, Any, Any, Any]:
+        """``(Z_NN, Z_NL, Z_LN, Z_LL)`` at the frequency ``w`` [rad/s] and spin ``s``."""
+        coef = {"K": 1.0, "M": -w * w, "C": 1j * w, "G": 1j * w * s}
+        parts = [name for name in ("K", "M", "C", "G") if name in self.blocks]
+        return tuple(sum(coef[name] * self.blocks[name][b] for name in parts)
+                     for b in range(4))
+
+
+def condense(problem: QuasiProblem, aft: TorusAFT, w1: float, w2: float,
+             blocks: LinearBlocks | None = None) -> CondensedTones:
+    """Schur complements and condensed loads of every tone at ``(w1, w2)`` (``blocks``:
+    :class:`LinearBlocks` of ``problem``'s matrices, formed here when not given)."""
+    lb = LinearBlocks.of(problem) if blocks is None else blocks
+    N, L = lb.N, lb.L
     omega = np.concatenate([[0.0], aft.harmonics.frequencies(w1, w2)])
     F = _complex_excitation(problem, aft)
-    D = problem.damping(w1)
+    spin = problem.spin + problem.spin_ratio * w1
     S = np.empty((omega.size, N.size, N.size), dtype=complex)
     load = np.empty((omega.size, N.size), dtype=complex)
-    linear = []
+    linear, factors = [], []
     for j, w in enumerate(omega):
-        Z = problem.K - w**2 * problem.M + 1j * w * D
-        Z = sp.csc_matrix(Z) if sp.issparse(Z) else np.asarray(Z, dtype=complex)
-        ZNN, ZNL = _block(Z, N, N), _block(Z, N, L)
+        ZNN, ZNL, ZLN, ZLL = lb.z(float(w), spin)
         if L.size == 0:
             S[j], load[j] = ZNN, F[j, N]
             linear.append(np.zeros((0, N.size + 1), dtype=complex))
             continue
-        ZLL = Z[L][:, L] if sp.issparse(Z) else Z[np.ix_(L, L)]
         lu = factorize(ZLL, where=f"quasi-periodic HB, linear DOFs at tone {j} "
-                             f"(Omega = {w:.6g} rad/s)")
-        ZLN = _block(Z, L, N)
+                             f"(Omega = {w:.6g} rad/s)", dense_threshold=DENSE_LINEAR)
         Y = lu.solve(np.column_stack([ZLN, F[j, L]]))
         S[j] = ZNN - ZNL @ Y[:, :-1]
         load[j] = F[j, N] - ZNL @ Y[:, -1]
         linear.append(Y)
-    return CondensedTones(omega, S, load, linear)
+        factors.append(lu)
+    return CondensedTones(omega, S, load, linear, factors)
+
+
+def speed_derivative(blocks: LinearBlocks, tones: CondensedTones, orders: FloatArray,
+                     speed: float, Y: FloatArray, dF: ComplexArray) -> FloatArray:
+    """``d/dW`` of the condensed linear residual at fixed ``Y (rows, d)`` when every tone
+    turns with the spin, ``Omega_j = c_j W`` (``orders`` ``c_j (T + 1,)``, the mean's 0),
+    the spin is ``W`` and ``M, C, G, K`` do not depend on it; ``dF (T + 1, n)`` is the
+    derivative of the complex excitation. With ``dZ_j = -2 Omega_j c_j M + i c_j (C + W
+    G) + i Omega_j G`` and ``g = dZ_j X_j - dF_j`` on all DOFs (``X_L`` recovered), the
+    condensed derivative is ``g_N - Z_NL Z_LL^-1 g_L`` (the Schur complement's chain
+    rule)."""
+    N, L = blocks.N, blocks.L
+    Zc = np.concatenate([Y[:1].astype(complex), Y[1::2] - 1j * Y[2::2]])
+    out = np.zeros(Zc.shape, dtype=complex)
+    b = blocks.blocks
+    for j in range(Zc.shape[0]):
+        c, w = float(orders[j]), float(orders[j]) * speed
+        coef = {"M": -2.0 * w * c, "C": 1j * c, "G": 1j * c * speed + 1j * w}
+        parts = [name for name in ("M", "C", "G") if name in b]
+        dZ = [sum(coef[name] * b[name][k] for name in parts) for k in range(4)]
+        XN = Zc[j]
+        XL = tones.linear[j][:, -1] - tones.linear[j][:, :-1] @ XN
+        gN = dZ[0] @ XN + dZ[1] @ XL - dF[j, N]
+        gL = dZ[2] @ XN + dZ[3] @ XL - dF[j, L]
+        ZNL = blocks.z(w, speed)[1]
+        out[j] = gN - ZNL @ tones.factors[j].solve(gL)
+    R = np.empty(Y.shape)
+    R[0] = out[0].real
+    R[1::2], R[2::2] = out[1:].real, -out[1:].imag
+    return R
 
 
 def residual(problem: QuasiProblem, aft: TorusAFT, tones: CondensedTones, w1: float,
-             w2: float, Y: FloatArray) -> tuple[FloatArray, FloatArray]:
+             w2: float, Y: FloatArray, jacobian: bool = True
+             ) -> tuple[FloatArray, FloatArray | None]:
     """Condensed residual ``(rows d,)`` and its Jacobian at nonlinear coefficients
-    ``Y (rows, d)`` (ordering harmonic-major, as :meth:`TorusAFT.jacobian`)."""
+    ``Y (rows, d)`` (ordering harmonic-major, as :meth:`TorusAFT.jacobian`; None with
+    ``jacobian=False``)."""
     rows, d = Y.shape
     Zc = np.concatenate([Y[:1].astype(complex), Y[1::2] - 1j * Y[2::2]])
     lin = np.einsum("jab,jb->ja", tones.S, Zc) - tones.load
@@ -141,6 +215,13 @@ def residual(problem: QuasiProblem, aft: TorusAFT, tones: CondensedTones, w1: fl
     R[0] = lin[0].real
     R[1::2] = lin[1:].real
     R[2::2] = -lin[1:].imag
+    if not jacobian:
+        if problem.force is not None:
+            q = aft.to_samples(Y)
+            v = aft.to_samples(aft.derivative_matrix(w1, w2) @ Y)
+            f, _, _ = problem.force(q, v, *aft.angles)
+            R += aft.to_coefficients(f)
+        return R.ravel(), None
     blocks = np.zeros((rows, d, rows, d))
     blocks[0, :, 0, :] = tones.S[0].real
     j = np.arange(1, rows // 2 + 1)
@@ -190,10 +271,3 @@ def _complex_excitation(problem: QuasiProblem, aft: TorusAFT) -> ComplexArray:
         raise ModelError(f"excitation has shape {P.shape}, expected {(rows, problem.n)} "
                          "(rows of the harmonic set, DOFs)", "QuasiProblem.excitation")
     return np.concatenate([P[:1].astype(complex), P[1::2] - 1j * P[2::2]])
-
-
-def _block(Z: Any, rows: IntArray, cols: IntArray) -> ComplexArray:
-    """A dense block of ``Z`` (one of its dimensions is the few nonlinear DOFs)."""
-    if sp.issparse(Z):
-        return np.asarray(Z[rows][:, cols].toarray())
-    return np.asarray(Z[np.ix_(rows, cols)])

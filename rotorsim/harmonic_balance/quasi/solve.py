@@ -101,7 +101,9 @@ def solve_quasi(problem: QuasiProblem, aft: TorusAFT, w1: float, w2: float, *,
                   float(np.abs(tones.S).max(initial=0.0)) * x_scale, 1e-300)
 
     def fun(x: FloatArray) -> tuple[FloatArray, FloatArray]:
-        return residual(problem, aft, tones, float(w1), float(w2), x.reshape(rows, d))
+        r, J = residual(problem, aft, tones, float(w1), float(w2), x.reshape(rows, d))
+        assert J is not None
+        return r, J
 
     scaled = ResidualProblem.scaled(fun, rows * d, x_scale, r_scale)
     state = Newton(tol=tol, max_iter=max_iter, where="quasi-periodic HB", dense=True).solve(

@@ -1,0 +1,70 @@
+"""``rs.periodic`` on a quasi-periodic problem: unbalance with the varying compliance (VC)
+of rolling bearings whose cages turn, at incommensurate orders.
+
+The response is then a 2-torus, not a periodic orbit. Rather than freezing the rolling
+elements (an answer that depends on an arbitrary cage angle, issue 17), ``rs.periodic``
+hands the problem to the two-frequency harmonic balance
+(:func:`~rotorsim.analyses.quasiperiodic.branch.quasi_periodic`) and returns a
+:class:`~rotorsim.results.quasi_periodic.QuasiPeriodicResult`. The periodic options map
+as follows:
+
+* ``harmonics=H``: the box ``(H, H2)`` of tones ``k1 W + k2 w2``, ``H2 =`` :func:`vc_order`
+  (3 for ``H >= 7``, 2 for ``H >= 4``, else 1); ``Harmonics.samples`` is not used (the
+  torus grid follows the box);
+* ``continuation``: ``max_points`` caps the points; the largest speed step where the
+  response is flat is the range over :data:`STEPS`, or over half of ``max_points`` when
+  that is fewer (pseudo-arclength continuation
+  shortens it through resonances and turns at folds; ``max_step`` is not used: a step of
+  a fifth of the range can leap over a lightly damped resonance);
+* ``stability``: any method gives the characteristic exponents by the quasi-periodic Hill
+  method; None skips them.
+
+Not available on a torus (a :class:`~rotorsim.errors.ModelError` says so and how to freeze
+the rolling elements instead): housing excitation, a fold map, peak location, checkpoints,
+``x0``, and the unbalance of a spool that turns at a speed ratio other than 1.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+from rotorsim.analyses.quasiperiodic.branch import quasi_periodic
+from rotorsim.analyses.quasiperiodic.output import quasi_periodic_result
+from rotorsim.errors import ModelError
+from rotorsim.options import Excitation
+from rotorsim.results.quasi_periodic import QuasiPeriodicResult
+
+STEPS = 50
+"""Speed steps over the range (natural-parameter continuation)."""
+FREEZE = "; set varying_compliance=False to freeze the rolling elements instead"
+
+
+def vc_order(harmonics: int) -> int:
+    """VC harmonics ``H2`` that go with ``H`` shaft harmonics."""
+    return 3 if harmonics >= 7 else 2 if harmonics >= 4 else 1
+
+
+def refuse_unsupported(where: str, **given: Any) -> None:
+    """ModelError naming the first option a torus does not support."""
+    for name, value in given.items():
+        if value:
+            raise ModelError(f"{name} is not available for a quasi-periodic response "
+                             f"(unbalance with varying compliance){FREEZE}", f"{where}.{name}")
+
+
+def torus_branch(model: Any, nonlinear: Any, *, start: float, stop: float, opts: Any,
+                 described: dict[str, Any], clock: float) -> QuasiPeriodicResult:
+    """The branch of tori for ``rs.periodic``'s arguments (module docstring)."""
+    h, e, st = opts.harmonics, opts.excitation, opts.stability
+    box = (int(h.count), vc_order(int(h.count)))
+    span = abs(float(stop) - float(start))
+    max_points = int(opts.stepping().max_points)
+    step = span / min(STEPS, max(1, (max_points - 1) // 2))   # room to refine
+    branch = quasi_periodic(
+        model, start=float(start), stop=float(stop), step=step, unbalance=list(e.unbalance),
+        harmonics=box, truncation="box",
+        excitation=Excitation(gravity=e.gravity, direction=e.direction, loads=list(e.loads)),
+        nonlinear=tuple(nonlinear), stability=st.method is not None, max_points=max_points)
+    options = {**described, "quasi_periodic": True, "box": list(box), "step": step,
+               "stability": None if st.method is None else "hill"}
+    return quasi_periodic_result(branch, opts.output.nodes, options, clock)
