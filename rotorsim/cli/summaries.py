@@ -281,6 +281,19 @@ def transient_summary(result: Any, units: str = "rpm") -> str:
     return "\n".join(lines)
 
 
+def _largest_uy(result: Any) -> list[tuple[int, Any, int]]:
+    """``(node, uy peak-to-peak over the branch, index of its largest)`` of every kept node
+    with ``uy``."""
+    out = []
+    for node in sorted({int(i) // 6 for i in result.dofs}):
+        try:
+            amp = result.amplitude(node, "uy", "peak_to_peak")
+        except Exception:  # a node without uy kept
+            continue
+        out.append((node, amp, int(np.argmax(amp))))
+    return out
+
+
 def quasi_periodic_summary(result: Any, units: str = "rpm") -> str:
     """Points, status, stability and stability changes of a branch of tori, and the largest
     responses of the kept nodes with their 1X and VC tones."""
@@ -297,17 +310,10 @@ def quasi_periodic_summary(result: Any, units: str = "rpm") -> str:
         if not result.exponents_converged.all():
             lines.append(f"exponents not converged in the stability box at "
                          f"{int((~result.exponents_converged).sum())} points")
-    rows = []
-    for node in sorted({int(i) // 6 for i in result.dofs}):
-        try:
-            amp = result.amplitude(node, "uy", "peak_to_peak")
-        except Exception:  # a node without uy kept
-            continue
-        k = int(np.argmax(amp))
-        rows.append((node, f"{amp[k] * 1e6:.3f}",
-                     f"{abs(result.tone(node, 'uy', 1, 0)[k]) * 1e6:.3f}",
-                     f"{abs(result.tone(node, 'uy', 0, 1)[k]) * 1e6:.4f}",
-                     f"{result.speed[k] * f:.6g}"))
+    rows = [(node, f"{amp[k] * 1e6:.3f}",
+             f"{abs(result.tone(node, 'uy', 1, 0)[k]) * 1e6:.3f}",
+             f"{abs(result.tone(node, 'uy', 0, 1)[k]) * 1e6:.4f}",
+             f"{result.speed[k] * f:.6g}") for node, amp, k in _largest_uy(result)]
     rows.sort(key=lambda r: -float(r[1]))
     lines.append(table(rows[:6], ("node", "max uy p-p [um]", "1X [um]", "VC [um]",
                                   f"at speed [{units}]")))
@@ -339,14 +345,8 @@ def periodic_summary(result: Any, units: str = "rpm") -> str:
     if result.has_stability:
         lines.append(f"stable points: {int(result.stable.sum())} of {len(p)} "
                      f"({result.stability_method})")
-    rows = []
-    for node in sorted({int(i) // 6 for i in result.dofs}):
-        try:
-            amp = result.amplitude(node, "uy", "peak_to_peak")
-        except Exception:  # a node without uy kept
-            continue
-        k = int(np.argmax(amp))
-        rows.append((node, f"{amp[k] * 1e6:.3f}", f"{p[k] * f:.6g}"))
+    rows = [(node, f"{amp[k] * 1e6:.3f}", f"{p[k] * f:.6g}")
+            for node, amp, k in _largest_uy(result)]
     rows.sort(key=lambda r: -float(r[1]))
     lines.append(table(rows[:6], ("node", "max uy p-p [um]", f"at {label}")))
     if result.bifurcations:

@@ -20,6 +20,21 @@ MEASURES = ("max", "peak_to_peak", "half_peak_to_peak", "mean")
 """Amplitude measures of :meth:`PeriodicResult.amplitude`."""
 
 
+def branch_measure(result: Any, column: int, measure: str) -> FloatArray:
+    """``measure`` of the kept DOF ``column`` at every point of a branch with ``max_abs``,
+    ``peak_to_peak`` and ``coefficients`` (row 0 the mean): "max", "peak_to_peak",
+    "half_peak_to_peak" or "mean"."""
+    if measure == "max":
+        return np.asarray(result.max_abs[:, column])
+    if measure == "peak_to_peak":
+        return np.asarray(result.peak_to_peak[:, column])
+    if measure == "half_peak_to_peak":
+        return 0.5 * np.asarray(result.peak_to_peak[:, column])
+    if measure == "mean":
+        return np.asarray(result.coefficients[:, 0, column])
+    raise TypeError(f"unknown measure {measure!r}; valid: {', '.join(MEASURES)}")
+
+
 @dataclass(frozen=True, eq=False)
 class PeriodicBifurcation:
     """A bifurcation located on a periodic branch.
@@ -219,16 +234,7 @@ class PeriodicResult(KeptDofs):
         ``measure``: "max" (``max |q|``), "peak_to_peak", "half_peak_to_peak" or "mean"
         (harmonic 0).
         """
-        j = self.column(node, dof)
-        if measure == "max":
-            return self.max_abs[:, j]
-        if measure == "peak_to_peak":
-            return self.peak_to_peak[:, j]
-        if measure == "half_peak_to_peak":
-            return 0.5 * self.peak_to_peak[:, j]
-        if measure == "mean":
-            return self.coefficients[:, 0, j]
-        raise TypeError(f"unknown measure {measure!r}; valid: {', '.join(MEASURES)}")
+        return branch_measure(self, self.column(node, dof), measure)
 
     def harmonic(self, node: int, dof: str = "uy", h: int = 1) -> ComplexArray:
         """Complex amplitude ``X_h = Q_hc - i Q_hs`` of harmonic ``h`` (P,) [m, rad]."""

@@ -12,7 +12,7 @@ from numpy.typing import NDArray
 from rotorsim.assembly.dof_map import DofMap
 from rotorsim.errors import ModelError, Status
 from rotorsim.results.dof_access import KeptDofs
-from rotorsim.results.periodic import MEASURES
+from rotorsim.results.periodic import branch_measure
 
 FloatArray = NDArray[np.float64]
 IntArray = NDArray[np.int64]
@@ -148,16 +148,7 @@ class QuasiPeriodicResult(KeptDofs):
     def amplitude(self, node: int, dof: str = "uy", measure: str = "max") -> FloatArray:
         """``measure`` of one DOF at every point (P,) [m, rad]: "max", "peak_to_peak",
         "half_peak_to_peak" or "mean"."""
-        j = self.column(node, dof)
-        if measure == "max":
-            return self.max_abs[:, j]
-        if measure == "peak_to_peak":
-            return self.peak_to_peak[:, j]
-        if measure == "half_peak_to_peak":
-            return 0.5 * self.peak_to_peak[:, j]
-        if measure == "mean":
-            return self.coefficients[:, 0, j]
-        raise TypeError(f"unknown measure {measure!r}; valid: {', '.join(MEASURES)}")
+        return branch_measure(self, self.column(node, dof), measure)
 
     def tone(self, node: int, dof: str, k1: int, k2: int) -> ComplexArray:
         """Complex amplitude ``c - i s`` of the tone ``k1 W + k2 w2`` (P,) [m, rad] (the

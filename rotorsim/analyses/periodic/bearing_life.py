@@ -90,7 +90,8 @@ def _cage_ratio(element: Any, options: RatingOptions | None) -> float:
     return RatedBearing(element, options or RatingOptions()).geometric_cage_ratio
 
 
-def _node_dofs(result: PeriodicResult | QuasiPeriodicResult, q: np.ndarray, node: int) -> np.ndarray:
+def _node_dofs(result: PeriodicResult | QuasiPeriodicResult, q: np.ndarray, node: int
+               ) -> np.ndarray:
     """The 6 DOFs of ``node`` (samples, 6) from the kept DOFs ``q``; fixed DOFs are 0."""
     out = np.zeros((q.shape[0], 6))
     kept = {int(d): j for j, d in enumerate(result.dofs)}
