@@ -225,13 +225,32 @@ def _periodic_results() -> dict[str, Any]:
                                                       "stability_modes": "auto"},
         stats={"points": 4.0}, reason="lam_max = 1310 reached")
     peak = PeriodicPeak(1, "orbit", "max", 1276.25, 3.5e-5, 2, True)
-    return {"periodic": run, "periodic_bifurcation": fold, "periodic_peak": peak,
+    return {**_torus_results(), "periodic": run, "periodic_bifurcation": fold,
+            "periodic_peak": peak,
             "periodic_with_peaks": dataclasses.replace(run, peaks=(peak,)),
             "periodic_without_stability": dataclasses.replace(
                 run, bifurcations=(), multipliers=np.zeros((4, 0), complex))}
 
 
-RESULT_NAMES = ["modal", "campbell", "critical_exact", "critical_campbell", "map",
+def _torus_results() -> dict[str, Any]:
+    from rotorsim.results.quasi_periodic import QuasiPeriodicResult, TorusEvent
+
+    rng = np.random.default_rng(11)
+    event = TorusEvent("loss_of_stability", 1270.5, 1, (-0.3, 2.5), 410.25)
+    tori = QuasiPeriodicResult(
+        speed=np.array([1200.0, 1250.0, 1300.0]), vc_frequency=np.array([4.09, 4.09, 4.09])
+        * np.array([1200.0, 1250.0, 1300.0]), vc_order=4.09,
+        tones=np.array([[1, 0], [0, 1], [1, -1]]), dofs=np.array([6, 7, 8]),
+        coefficients=rng.random((3, 7, 3)), max_abs=rng.random((3, 3)),
+        peak_to_peak=rng.random((3, 3)), exponents=np.array([-0.3, 2.5, np.nan]),
+        exponents_converged=np.array([True, True, False]), stability_method="hill",
+        events=(event,), iterations=np.array([0, 3, 4]), residuals=rng.random(3) * 1e-10,
+        held_dofs=np.array([5]), dof_map=DofMap(3), nodes_pos=np.array([0.0, 0.1, 0.2]),
+        options={"box": [6, 2]}, stats={"points": 3.0}, reason="")
+    return {"quasi_periodic": tori, "torus_event": event}
+
+
+RESULT_NAMES = ["quasi_periodic", "torus_event", "modal", "campbell", "critical_exact", "critical_campbell", "map",
                 "unbalance", "receptance", "static", "static_system", "deflected_shape",
                 "ellipse", "intersections", "bearing_equilibrium", "energy_minimum",
                 "stiffness_over_pass", "transient", "transient_continuable",
