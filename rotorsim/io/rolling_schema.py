@@ -105,9 +105,6 @@ class RollingTable(Linked):
         if self.rows == 2:
             if self.row_spacing is None:
                 raise fail("field required with rows = 2", ".row_spacing")
-            if self.rating is not None:
-                raise fail("[rolling_bearings.rating] is not read for double-row bearings "
-                           "yet (use rotorsim.DoubleRowRating)", ".rating")
             return
         for key, default in (("row_spacing", None), ("arrangement", "back_to_back"),
                              ("axial_interference", 0.0)):

@@ -16,6 +16,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from rotorsim.elements.rolling.double_row import DoubleRowBearing
 from rotorsim.elements.rolling.geometry import cage_ratio
 from rotorsim.elements.rolling.rating.hertz_pressure import (
     BallContactPressure,
@@ -43,6 +44,8 @@ _MIRROR = np.array([1.0, 1.0, -1.0, -1.0, -1.0])
 def _unwrap(model: Any) -> tuple[Any, FloatArray]:
     """Base model and the factor on ``delta`` (the mirror of a reversed bearing)."""
     inner = getattr(model, "bearing", None)
+    if isinstance(model, DoubleRowBearing):  # one row's rating: cage ratio, C of a row
+        return _unwrap(model.row)[0], np.full(5, np.nan)
     if isinstance(model, ReversedBearing):
         base, factor = _unwrap(model.bearing)
         return base, factor * _MIRROR
@@ -62,6 +65,8 @@ class RatedBearing:
     Parameters
     ----------
     model : BallBearing, RollerBearing, ReversedBearing or RollingBearing
+        (a ``DoubleRowBearing`` gives one row's rating and cage ratio only: its loads,
+        lives and pressures are refused; :func:`rotorsim.bearing_life` rates the unit)
     options : RatingOptions
 
     Examples
@@ -108,7 +113,14 @@ class RatedBearing:
         d = self.base.ball_diameter if self.kind == "ball" else self.base.roller_diameter
         return cage_ratio(d, self.base.pitch_diameter, self.base.contact_angle)
 
+    def _single(self) -> None:
+        if np.isnan(self.mirror).any():
+            raise ModelError("a RatedBearing of a DoubleRowBearing is one row's rating only; "
+                             "rate the unit with rotorsim.bearing_life (or DoubleRowRating)",
+                             "RatedBearing")
+
     def _delta(self, delta: ArrayLike) -> FloatArray:
+        self._single()
         d = np.atleast_2d(np.asarray(delta, dtype=float))
         if d.ndim != 2 or d.shape[1] != 5 or not np.isfinite(d).all():
             raise ModelError(f"delta must be finite with shape (S, 5), got {np.shape(delta)}",
@@ -195,6 +207,7 @@ class RatedBearing:
         evaluation of the contacts; balls may pass their known loads and angles (S, N)
         (an equilibrium result has them) to skip it."""
         o = self.options
+        self._single()
         if self.kind == "roller":
             laminae = lamina_loads(self.base, self._delta(delta), psi)
             line = laminae * (self.base.n_slices / self.base.effective_length)
