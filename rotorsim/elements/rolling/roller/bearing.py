@@ -41,11 +41,6 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from rotorsim.elements.rolling.contact.hertz_line import LINE_EXPONENT
-from rotorsim.elements.rolling.contact.hertz_point import (
-    BEARING_STEEL_E,
-    BEARING_STEEL_NU,
-    effective_modulus,
-)
 from rotorsim.elements.rolling.geometry import cage_ratio, checked_state, element_angles
 from rotorsim.elements.rolling.roller.checks import (
     check_options,
@@ -60,22 +55,17 @@ from rotorsim.elements.rolling.roller.integrals import (
     force_stiffness,
     roller_constants,
     roller_rows,
-    tilt_limits,
     unit_load_directions,
 )
 from rotorsim.elements.rolling.roller.line_load import RollerLineLoad
 from rotorsim.elements.rolling.roller.profile import RollerProfile, StraightProfile
-from rotorsim.elements.rolling.roller.slice_influence import influence_slice_loads
+from rotorsim.elements.rolling.roller.slice_outputs import roller_loads, slice_loads
 from rotorsim.elements.rolling.state import BearingState
 from rotorsim.errors import ModelError
 
 FloatArray = NDArray[np.float64]
 
 _assemble_tangent = assemble_tangent  # the name rotorsim.elements.rolling.lubrication imports
-_STEEL_E_STAR = effective_modulus(BEARING_STEEL_E, BEARING_STEEL_NU, BEARING_STEEL_E,
-                                  BEARING_STEEL_NU)  # E* of the slice influence [Pa]
-
-
 
 @dataclass(frozen=True, eq=False)
 class RollerBearing:
@@ -367,44 +357,11 @@ class RollerBearing:
         >>> bool(q[0] > q[5] > 0)
         True
         """
-        dk = self.slice_deflections(delta, psi)
-        if self.slice_model == "influence":
-            return influence_slice_loads(dk, self.kn, float(self.exponent),
-                                         self.effective_length, self._race_radii,
-                                         _STEEL_E_STAR)
-        return np.asarray((self.kn / self.n_slices) * np.maximum(dk, 0.0) ** self.exponent)
-
-    @cached_property
-    def _race_radii(self) -> tuple[float, float]:
-        """Reduced radii ``D (1 -+ gamma) / 2`` [m] of the inner and outer line contact."""
-        gamma = self.roller_diameter * math.cos(self.contact_angle) / self.pitch_diameter
-        return (0.5 * self.roller_diameter * (1.0 - gamma),
-                0.5 * self.roller_diameter * (1.0 + gamma))
+        return slice_loads(self, self.slice_deflections(delta, psi))
 
     def roller_loads(self, delta: ArrayLike, psi: ArrayLike) -> RollerLoads:
         """Per-roller load, eccentricity (seed 000 eq 9) and loaded zone (eq 8); with
         ``slice_model="influence"`` the slice loads and eccentricity of the half-space
         distribution (:meth:`slice_loads`)."""
         _, _, v, lw = self._kinematics(*self._inputs(delta, psi))
-        ints = self._line.integrals(v, lw)
-        q = self.kn * ints.load
-        loaded = ints.load > 0.0
-        ecc = np.where(loaded, self.effective_length * ints.load_moment
-                       / np.where(loaded, ints.load, 1.0), 0.0)
-        if self.model == "tilt_integral" and self.slice_model == "independent":
-            return RollerLoads(q, ecc, tilt_limits(v, lw))
-        xi, dk = self._line.xi, self._line.slice_deflection(v, lw)
-        pos = np.maximum(dk, 0.0)
-        slice_load = (self.kn / self.n_slices) * pos**self.exponent
-        if self.slice_model == "influence":
-            slice_load = influence_slice_loads(dk, self.kn, float(self.exponent),
-                                               self.effective_length, self._race_radii,
-                                               _STEEL_E_STAR)
-            total = slice_load.sum(axis=-1)
-            ecc = np.where(total > 0.0, self.effective_length * (slice_load @ xi)
-                           / np.where(total > 0.0, total, 1.0), 0.0)
-        half = 0.5 / self.n_slices
-        lo = np.where(dk > 0.0, xi - half, np.inf).min(axis=-1)
-        hi = np.where(dk > 0.0, xi + half, -np.inf).max(axis=-1)
-        limits = np.where(loaded[..., None], np.stack([lo, hi], axis=-1), np.nan)
-        return RollerLoads(q, ecc, limits, slice_load)
+        return roller_loads(self, v, lw)
