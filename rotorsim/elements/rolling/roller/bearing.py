@@ -119,7 +119,8 @@ class RollerBearing:
         ``(Kn/K) delta_k^n``, or the half-space influence coefficients of
         :mod:`~rotorsim.elements.rolling.roller.slice_influence` (edge effect), normalised
         to the same roller loads. Force, stiffness and energy (statics, transients) use
-        the independent law in both cases.
+        the independent law in both cases (why, and what it changes: docs/bearing_life.md,
+        "Roller edge effect").
 
     References
     ----------
