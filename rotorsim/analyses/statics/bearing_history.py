@@ -92,7 +92,8 @@ def _rated_history(rated: Any, ratios: tuple[float, float], d: FloatArray, angle
         part = slice(first, min(first + block + 1, d.shape[0]))  # blocks share one sample
         score, density, scale = rated.damage_density(d[part], psi[part])
         cells = ring_damage_density(rated.reference, density, psi[part], rings[part],
-                                    rated.geometric_cage_ratio, rated.options.n_cells, scale)
+                                    rated.geometric_cage_ratio, rated.options.n_cells, scale,
+                                    score)
         damage = cells if damage is None else damage.plus(cells)
         at = np.argmax(score, axis=0)
         better = score[at, np.arange(n)] > peak_score

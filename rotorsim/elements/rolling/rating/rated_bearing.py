@@ -156,15 +156,23 @@ class RatedBearing:
             if getattr(b, "slice_model", "independent") == "influence":  # half-space laminae
                 density = (b.slice_loads(self._delta(delta), psi) / cap[0]) ** p
                 return density.sum(axis=-1), density, (1.0, float((cap[0] / cap[1]) ** p))
-            deflection = b.slice_deflections(self._delta(delta), psi)
-            loaded = deflection > 0.0
-            values = deflection[loaded]  # the power only where loaded: the costly step
-            values *= 1e6  # micrometres: no subnormal powers near the load-zone edge
-            np.power(values, b.exponent * p, out=values)
-            values *= (b.kn / (b.n_slices * cap[0]) * 1e-6 ** b.exponent) ** p
-            density = np.zeros(deflection.shape)
-            density[loaded] = values
-            return density.sum(axis=-1), density, (1.0, float((cap[0] / cap[1]) ** p))
+            _, _, v, lw = b._kinematics(*b._inputs(self._delta(delta), psi))
+            line = b._line
+            # rollers that may touch (largest slice deflection bound > 0): only their
+            # slices are evaluated, typically half the rollers
+            reach = v + 0.5 * np.abs(lw) - float(np.min(line.drop))
+            rollers = reach > 0.0
+            part = line.slice_deflection(v[rollers], lw[rollers])  # (R, K) [m]
+            # micrometres: no subnormal powers near the load-zone edge
+            np.maximum(part, 0.0, out=part)
+            part *= 1e6
+            np.power(part, b.exponent * p, out=part)
+            part *= (b.kn / (b.n_slices * cap[0]) * 1e-6 ** b.exponent) ** p
+            density = np.zeros((*v.shape, b.n_slices))
+            density[rollers] = part
+            score = np.zeros(v.shape)
+            score[rollers] = part.sum(axis=-1)
+            return score, density, (1.0, float((cap[0] / cap[1]) ** p))
         loads, u = self.loads(delta, psi)
         return loads, (u * u * u)[:, :, None, :], (1.0, 1.0)
 
