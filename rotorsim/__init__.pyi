@@ -72,6 +72,7 @@ from .elements.rolling import (
     RollerBearing,
 )
 from .elements.rolling.contact.exponent_fit import kn_for_exponent
+from .elements.rolling.contact.iso_spring import iso16281_ball_constant
 from .elements.rolling.double_row import DoubleRowBearing
 from .elements.rolling.element import RollingBearing
 from .elements.rolling.flexible_ring.bearing import FlexibleRingRollerBearing
@@ -87,7 +88,6 @@ from .elements.rolling.rating.friction import PalmgrenFriction, friction_torque
 from .elements.rolling.rating.hertz_pressure import contact_pressures
 from .elements.rolling.rating.iso281 import BearingRating
 from .elements.rolling.rating.options import RatingOptions
-from .elements.rolling.rating.spring_constant import iso16281_ball_constant
 from .elements.rolling.roller.half_space import HalfSpaceLineContact, roller_pressure_field
 from .elements.shaft import ShaftElement, cowper_shear_coefficient
 from .errors import (

@@ -77,7 +77,7 @@ _MIRRORED = {"back_to_back": (False, True), "face_to_face": (True, False),
              "tandem": (False, False)}
 _MIRROR = np.array([1.0, 1.0, -1.0, -1.0, -1.0])
 _DELEGATED = ("pitch_diameter", "contact_angle", "Kn", "exponent", "clearance", "kappa",
-              "center_distance", "psi0")
+              "center_distance", "psi0", "effective_length")
 
 
 def row_transform(z_row: float, mirrored: bool) -> FloatArray:

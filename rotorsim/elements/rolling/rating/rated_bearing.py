@@ -110,7 +110,8 @@ class RatedBearing:
     @property
     def geometric_cage_ratio(self) -> float:
         """``(1 - D cos a / d_m) / 2`` (also for a model built with ``cage="fixed"``)."""
-        d = self.base.ball_diameter if self.kind == "ball" else self.base.roller_diameter
+        d = self.base.ball_diameter if self.kind == "ball" \
+            else self.base.diameter_for("the cage ratio of a rating")
         return cage_ratio(d, self.base.pitch_diameter, self.base.contact_angle)
 
     def _single(self) -> None:
@@ -220,9 +221,9 @@ class RatedBearing:
             laminae = lamina_loads(self.base, self._delta(delta), psi)
             line = laminae * (self.base.n_slices / self.base.effective_length)
             return (self.reference.life(laminae, rotating_ring=o.rotating_ring),
-                    roller_pressures(self.base.roller_diameter, self.base.pitch_diameter,
-                                     self.base.contact_angle, line, self.base._line.xi,
-                                     **o.materials))
+                    roller_pressures(self.base.diameter_for("contact pressures"),
+                                     self.base.pitch_diameter, self.base.contact_angle, line,
+                                     self.base._line.xi, **o.materials))
         if element_load is None or contact_angle is None:
             st = self.base.state(self._delta(delta), psi)
             element_load, contact_angle = st.element_load, st.contact_angle

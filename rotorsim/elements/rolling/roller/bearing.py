@@ -77,10 +77,14 @@ class RollerBearing:
         Number of rollers ``Z``.
     pitch_diameter : float
         Pitch diameter ``d_m = 2 r_p`` [m] (roller centres).
-    roller_diameter : float
-        Mean roller diameter [m] (cage ratio only).
+    roller_diameter : float, optional
+        Mean roller diameter [m]. Only needed by what uses it: the cage ratio of a
+        rotating cage at a shaft angle other than 0 (transients, histories), ISO 281
+        ratings and lives, contact pressures, the half-space slices, the centrifugal force
+        and EHL damping; statics at ``phi = 0`` and stiffness do without it (each use
+        without it raises a ``ModelError`` that names it).
     effective_length : float
-        Effective contact length ``L`` [m].
+        Effective contact length ``L`` [m] (required).
     Kn : float, optional
         Whole-roller load-deflection constant [N/m^n]: ``Q = Kn delta^n`` for a uniform
         total deflection ``delta`` of both contacts (ISO/TS 16281 and Lim-Singh convention;
@@ -138,8 +142,8 @@ class RollerBearing:
 
     n_rollers: int
     pitch_diameter: float
-    roller_diameter: float
-    effective_length: float
+    roller_diameter: float | None = None
+    effective_length: float = None  # type: ignore[assignment]  # required (checked)
     Kn: float | None = None
     contact_angle: float = 0.0
     radial_clearance: float | None = None
@@ -158,11 +162,16 @@ class RollerBearing:
         if isinstance(self.n_rollers, bool) or not isinstance(self.n_rollers, int | np.integer) \
                 or self.n_rollers < 1:
             raise ModelError(f"n_rollers must be an integer >= 1, got {self.n_rollers!r}", where)
+        if self.effective_length is None:
+            raise ModelError("effective_length is required (the roller's contact length "
+                             "L [m])", where)
         for name in ("pitch_diameter", "roller_diameter", "effective_length"):
             value = getattr(self, name)
+            if value is None and name == "roller_diameter":
+                continue
             if not (finite_number(value) and value > 0.0):
                 raise ModelError(f"{name} must be positive and finite, got {value!r}", where)
-        if self.roller_diameter >= self.pitch_diameter:
+        if self.roller_diameter is not None and self.roller_diameter >= self.pitch_diameter:
             raise ModelError(f"roller_diameter {self.roller_diameter} m must be smaller than "
                              f"pitch_diameter {self.pitch_diameter} m", where)
         if not (finite_number(self.contact_angle)
@@ -210,11 +219,21 @@ class RollerBearing:
         """Cage ratio: cage angle over shaft angle (0 for ``cage="fixed"``)."""
         if self.cage == "fixed":
             return 0.0
-        return cage_ratio(self.roller_diameter, self.pitch_diameter, self.contact_angle)
+        return cage_ratio(self.diameter_for("the cage ratio of a rotating cage (or give "
+                                            "cage='fixed')"),
+                          self.pitch_diameter, self.contact_angle)
+
+    def diameter_for(self, use: str) -> float:
+        """``roller_diameter`` [m]; a ``ModelError`` naming ``use`` when it was not given."""
+        if self.roller_diameter is None:
+            raise ModelError(f"roller_diameter is needed for {use}", self._where)
+        return float(self.roller_diameter)
 
     def element_angles(self, phi: ArrayLike = 0.0) -> FloatArray:
-        """Roller angles ``psi`` [rad], shape ``(S, Z)``, at shaft angles ``phi`` (S,)."""
-        return element_angles(self.n_rollers, phi, self.kappa, self.psi0)
+        """Roller angles ``psi`` [rad], shape ``(S, Z)``, at shaft angles ``phi`` (S,)
+        (at ``phi = 0`` without the cage ratio, which needs ``roller_diameter``)."""
+        still = self.roller_diameter is None and not np.any(np.asarray(phi, dtype=float))
+        return element_angles(self.n_rollers, phi, 0.0 if still else self.kappa, self.psi0)
 
     @cached_property
     def _line(self) -> RollerLineLoad:

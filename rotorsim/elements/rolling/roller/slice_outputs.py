@@ -33,9 +33,9 @@ STEEL_E_STAR = effective_modulus(BEARING_STEEL_E, BEARING_STEEL_NU, BEARING_STEE
 def race_radii(bearing: Any) -> tuple[float, float]:
     """Reduced radii ``D (1 -+ gamma) / 2`` [m] of the inner and outer line contact,
     ``gamma = D cos a0 / d_m``."""
-    gamma = bearing.roller_diameter * math.cos(bearing.contact_angle) / bearing.pitch_diameter
-    return (0.5 * bearing.roller_diameter * (1.0 - gamma),
-            0.5 * bearing.roller_diameter * (1.0 + gamma))
+    d = bearing.diameter_for("the half-space slices (slice_model='influence')")
+    gamma = d * math.cos(bearing.contact_angle) / bearing.pitch_diameter
+    return (0.5 * d * (1.0 - gamma), 0.5 * d * (1.0 + gamma))
 
 
 def slice_loads(bearing: Any, deflection: FloatArray) -> FloatArray:
