@@ -26,6 +26,7 @@ from rotorsim.analyses.statics.double_row_life import (
     double_row_of,
     double_row_rating,
     split_rows,
+    take_sample,
     unit_equivalent_load,
 )
 from rotorsim.elements.rolling.rating.hertz_pressure import BallContactPressure
@@ -116,16 +117,13 @@ def _double_row_life(bearing: Any, eq: BearingEquilibriumResult, opts: RatingOpt
     rating = double_row_rating(unit, opts)
     own, psi = split_rows(unit, factor, eq.displacement, eq.element_angles)
     n = int(unit.row.n_elements)
-    loads = np.asarray(eq.element_load, dtype=float)
-    angles = np.asarray(eq.contact_angle, dtype=float)
-    rows = []
-    for k in range(2):
-        part = slice(k * n, (k + 1) * n)
-        life, pressures = rating.row.steady(own[k], psi[k], loads[None, part],
-                                            angles[None, part])
-        rows.append(life_result(rating.row, life, pressures, source="equilibrium",
-                                load=np.full(5, np.nan), P=math.nan, angles=psi[k, 0],
-                                loads=loads[part], stats={}))
+    loads = np.asarray(eq.element_load, dtype=float).reshape(2, n)
+    angles = np.asarray(eq.contact_angle, dtype=float).reshape(2, n)
+    # both rows as two samples of the row model: one evaluation
+    life, pressures = rating.row.steady(own[:, 0], psi[:, 0], loads, angles)
+    rows = [life_result(rating.row, take_sample(life, k), take_sample(pressures, k),
+                        source="equilibrium", load=np.full(5, np.nan), P=math.nan,
+                        angles=psi[k, 0], loads=loads[k], stats={}) for k in range(2)]
     applied = np.asarray(eq.load, dtype=float)
     return combine_rows(rating, (rows[0], rows[1]), P=unit_equivalent_load(rating, applied),
                         load=applied, stats={"wall_time": time.perf_counter() - t0},

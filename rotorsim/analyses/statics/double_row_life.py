@@ -77,6 +77,15 @@ def split_rows(bearing: DoubleRowBearing, factor: np.ndarray, delta: Any, psi: A
     return bearing.row_displacements(d), np.stack([p[..., :n], p[..., n:]])
 
 
+def take_sample(result: Any, k: int) -> Any:
+    """Sample ``k`` of a batched life or pressure result (arrays with a leading sample
+    axis; ``reference_load`` and the slice positions ``xi`` are shared) as a batch of 1."""
+    changes = {f.name: getattr(result, f.name)[k:k + 1] for f in dataclasses.fields(result)
+               if f.name not in ("reference_load", "xi")
+               and isinstance(getattr(result, f.name), np.ndarray)}
+    return dataclasses.replace(result, **changes)
+
+
 def unit_equivalent_load(rating: DoubleRowRating, load: np.ndarray) -> float:
     """ISO 281 ``P`` of the unit from the radial and axial parts of ``load`` (5,) (NaN
     where no double-row ``X, Y`` table applies, e.g. a cylindrical roller pair)."""
