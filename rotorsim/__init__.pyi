@@ -38,6 +38,7 @@ from .analyses.statics.linearized_rotor import (
     linearize_rolling_bearings,
 )
 from .analyses.statics.static import static
+from .analyses.statics.torus_life import quasi_periodic_life
 from .analyses.sweep.sweep import (
     Grid,
     Normal,
@@ -262,6 +263,7 @@ __all__ = [
     "periodic_parameter",
     "plot",
     "quasi_periodic",
+    "quasi_periodic_life",
     "quasi_periodic_point",
     "required_separation_margin",
     "residual_unbalance",
