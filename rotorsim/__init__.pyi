@@ -38,6 +38,7 @@ from .analyses.statics.linearized_rotor import (
     linearize_rolling_bearings,
 )
 from .analyses.statics.static import static
+from .analyses.statics.torus_life import quasi_periodic_life
 from .analyses.sweep.sweep import (
     Grid,
     Normal,
@@ -72,6 +73,7 @@ from .elements.rolling import (
     RollerBearing,
 )
 from .elements.rolling.contact.exponent_fit import kn_for_exponent
+from .elements.rolling.contact.iso_spring import iso16281_ball_constant
 from .elements.rolling.double_row import DoubleRowBearing
 from .elements.rolling.element import RollingBearing
 from .elements.rolling.flexible_ring.bearing import FlexibleRingRollerBearing
@@ -87,7 +89,6 @@ from .elements.rolling.rating.friction import PalmgrenFriction, friction_torque
 from .elements.rolling.rating.hertz_pressure import contact_pressures
 from .elements.rolling.rating.iso281 import BearingRating
 from .elements.rolling.rating.options import RatingOptions
-from .elements.rolling.rating.spring_constant import iso16281_ball_constant
 from .elements.rolling.roller.half_space import HalfSpaceLineContact, roller_pressure_field
 from .elements.shaft import ShaftElement, cowper_shear_coefficient
 from .errors import (
@@ -265,6 +266,7 @@ __all__ = [
     "periodic_parameter",
     "plot",
     "quasi_periodic",
+    "quasi_periodic_life",
     "quasi_periodic_point",
     "required_separation_margin",
     "residual_unbalance",

@@ -342,7 +342,8 @@ def _rolling_model(t: RollingTable) -> BallBearing | RollerBearing:
                 keys[k] = getattr(t, k)
         if t.Kn is not None:
             return BallBearing(Kn=t.Kn, tag=t.tag, **keys)
-        return BallBearing.from_geometry(tag=t.tag, **keys)  # schema: f_i, f_o given
+        method = "iso16281" if t.spring_constant == "iso16281" else "exact"
+        return BallBearing.from_geometry(tag=t.tag, method=method, **keys)  # f_i, f_o given
     assert isinstance(t, RollerTable)
     return RollerBearing(n_rollers=t.n_rollers, roller_diameter=t.roller_diameter,
                          effective_length=t.effective_length, Kn=t.Kn,

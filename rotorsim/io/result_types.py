@@ -68,7 +68,7 @@ register_result_type(BearingLifeResult, {
     "P_ref": "N", "ring_life": "1e6 rev", "equivalent_load": "N", "reference_load": "N",
     "a1": "1", "a_iso": "1", "Lnmr": "1e6 rev", "Lnm": "1e6 rev", "max_pressure": "Pa",
     "semi_major": "m", "semi_minor": "m", "shoulder_margin": "rad", "slice_pressure": "Pa",
-    "slice_xi": "1", "element_angles": "rad", "element_load": "N"})
+    "slice_xi": "1", "element_angles": "rad", "element_load": "N", "row_life": "1e6 rev"})
 register_result_type(TransientResult, {
     "t": "s", "q": "m, rad", "v": "m/s, rad/s", "dofs": "1", "speed": _ANGULAR,
     "angle": "rad", "acceleration": "rad/s^2", "bearing_loads": "N, N m",

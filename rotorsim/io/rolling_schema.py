@@ -105,9 +105,6 @@ class RollingTable(Linked):
         if self.rows == 2:
             if self.row_spacing is None:
                 raise fail("field required with rows = 2", ".row_spacing")
-            if self.rating is not None:
-                raise fail("[rolling_bearings.rating] is not read for double-row bearings "
-                           "yet (use rotorsim.DoubleRowRating)", ".rating")
             return
         for key, default in (("row_spacing", None), ("arrangement", "back_to_back"),
                              ("axial_interference", 0.0)):
@@ -134,11 +131,15 @@ class BallTable(RollingTable):
     f_o: PositiveRatio | None = None
     A0: Length | None = None
     groove_center_radius: Length | Literal["pitch"] | None = None
+    spring_constant: Literal["hertz", "iso16281"] | None = None
 
     @model_validator(mode="after")
     def _kn_source(self) -> "BallTable":
         if self.Kn is None and (self.f_i is None or self.f_o is None):
             raise fail("field required (or give f_i and f_o: Kn from Hertz theory)", ".Kn")
+        if self.Kn is not None and self.spring_constant is not None:
+            raise fail("Kn is given: spring_constant chooses how Kn is computed from f_i, "
+                       "f_o; give one of the two", ".spring_constant")
         self._check_interference(self.ball_diameter, "ball")
         return self
 
@@ -146,7 +147,7 @@ class BallTable(RollingTable):
 class RollerTable(RollingTable):
     type: Literal["roller"]
     n_rollers: Annotated[int, Field(ge=1, le=10_000)]
-    roller_diameter: Length
+    roller_diameter: Length | None = None
     effective_length: Length
     profile: ProfileTable | None = None
     model: Literal["tilt_integral", "slices"] = "tilt_integral"
@@ -155,7 +156,8 @@ class RollerTable(RollingTable):
 
     @model_validator(mode="after")
     def _interference(self) -> "RollerTable":
-        self._check_interference(self.roller_diameter, "roller")
+        if self.roller_diameter is not None:  # the bounds scale with the diameter
+            self._check_interference(self.roller_diameter, "roller")
         return self
 
 

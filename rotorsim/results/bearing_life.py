@@ -68,6 +68,10 @@ class BearingLifeResult:
         Slice centres along the roller (fractions of the length; empty for balls).
     element_angles, element_load : arrays (N,)
         Angles [rad] and loads [N] of the elements the pressures belong to.
+    row_life : array (2,) or None
+        Double-row bearings: ``L10r`` of row 0 and row 1 (combined into ``L10r``,
+        :mod:`rotorsim.analyses.statics.double_row_life`; per-element arrays list row 0
+        first); None for a single row.
     options, stats, status, summary
     """
 
@@ -100,6 +104,7 @@ class BearingLifeResult:
     stats: dict[str, float] = field(default_factory=dict)
     status: Status = Status.OK
     summary: dict[str, Any] = field(default_factory=dict)
+    row_life: FloatArray | None = None
 
     @property
     def peak_pressure(self) -> float:
@@ -157,6 +162,9 @@ class BearingLifeResult:
         lines.append(f"  ISO/TS 16281:  L10r = {life(self.L10r)} Mrev, P_ref = "
                      f"{life(self.P_ref)} N, rings (inner, outer) {life(self.ring_life[0])}, "
                      f"{life(self.ring_life[1])} Mrev")
+        if self.row_life is not None:
+            lines.append("  rows:          L10r = " + ", ".join(life(x) for x in self.row_life)
+                         + " Mrev (combined with the Weibull slope)")
         if self.a_iso != 1 or self.a1 != 1:
             lines.append(f"  a1 = {self.a1:.4g}, a_ISO = {self.a_iso:.4g}, Lnmr = "
                          f"{life(self.Lnmr)} Mrev")

@@ -11,6 +11,7 @@ conventions are in :mod:`rotorsim.elements.rolling.rating`.
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import time
 from collections.abc import Sequence
@@ -20,6 +21,14 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from rotorsim.analyses.statics.bearing_statics import bearing_equilibrium
+from rotorsim.analyses.statics.double_row_life import (
+    combine_rows,
+    double_row_of,
+    double_row_rating,
+    split_rows,
+    take_sample,
+    unit_equivalent_load,
+)
 from rotorsim.elements.rolling.rating.hertz_pressure import BallContactPressure
 from rotorsim.elements.rolling.rating.iso16281 import ReferenceLife
 from rotorsim.elements.rolling.rating.life_factor import (
@@ -48,7 +57,9 @@ def bearing_life(bearing: Any, load: ArrayLike | None = None, *,
 
     Parameters
     ----------
-    bearing : BallBearing, RollerBearing, ReversedBearing or RollingBearing
+    bearing : BallBearing, RollerBearing, DoubleRowBearing, ReversedBearing or RollingBearing
+        A double-row bearing is rated row by row and the rows combined
+        (:mod:`~rotorsim.analyses.statics.double_row_life`).
     load : array (5,), optional
         ``[Fx, Fy, Fz, Mx, My]`` on the inner ring [N, N m]; the equilibrium is solved
         (:func:`~rotorsim.analyses.statics.bearing_statics.bearing_equilibrium`).
@@ -74,13 +85,16 @@ def bearing_life(bearing: Any, load: ArrayLike | None = None, *,
     """
     t0 = time.perf_counter()
     opts = RatingOptions() if options is None else options
-    rating = rated(bearing, opts)
+    double = double_row_of(bearing) is not None
+    rating = None if double else rated(bearing, opts)  # refuses unknown models first
     if (load is None) == (equilibrium is None):
         raise ModelError("give exactly one of load and equilibrium", "bearing_life")
     if equilibrium is None:
         assert load is not None
         equilibrium = bearing_equilibrium(bearing.bearing if hasattr(bearing, "relative")
                                           else bearing, load, phi=phi)
+    if rating is None:
+        return _double_row_life(bearing, equilibrium, opts, t0)
     # the equilibrium's element loads and angles are the base model's (also reversed)
     life, pressures = rating.steady(
         equilibrium.displacement[None], equilibrium.element_angles[None],
@@ -91,6 +105,29 @@ def bearing_life(bearing: Any, load: ArrayLike | None = None, *,
                        angles=equilibrium.element_angles,
                        loads=np.asarray(equilibrium.element_load, dtype=float),
                        stats={"wall_time": time.perf_counter() - t0})
+
+
+def _double_row_life(bearing: Any, eq: BearingEquilibriumResult, opts: RatingOptions,
+                     t0: float) -> BearingLifeResult:
+    """:func:`bearing_life` of a double-row bearing: each row rated at its own ring
+    displacement, the rows combined (:mod:`.double_row_life`)."""
+    found = double_row_of(bearing)
+    assert found is not None
+    unit, factor = found
+    rating = double_row_rating(unit, opts)
+    own, psi = split_rows(unit, factor, eq.displacement, eq.element_angles)
+    n = int(unit.row.n_elements)
+    loads = np.asarray(eq.element_load, dtype=float).reshape(2, n)
+    angles = np.asarray(eq.contact_angle, dtype=float).reshape(2, n)
+    # both rows as two samples of the row model: one evaluation
+    life, pressures = rating.row.steady(own[:, 0], psi[:, 0], loads, angles)
+    rows = [life_result(rating.row, take_sample(life, k), take_sample(pressures, k),
+                        source="equilibrium", load=np.full(5, np.nan), P=math.nan,
+                        angles=psi[k, 0], loads=loads[k], stats={}) for k in range(2)]
+    applied = np.asarray(eq.load, dtype=float)
+    return combine_rows(rating, (rows[0], rows[1]), P=unit_equivalent_load(rating, applied),
+                        load=applied, stats={"wall_time": time.perf_counter() - t0},
+                        tag=getattr(bearing, "tag", "") or "")
 
 
 def _iso281_load(rated: RatedBearing, load: FloatArray) -> float:
@@ -206,9 +243,9 @@ def duty_cycle_life(bearing: Any, cases: Sequence[tuple[float, ArrayLike, float 
     if not cases:
         raise ModelError("no load cases", where)
     opts = RatingOptions() if options is None else options
-    rating = rated(bearing, opts)
     model = bearing.bearing if hasattr(bearing, "relative") else bearing
-    shares, parts, p_values = [], [], []
+    found = double_row_of(bearing)
+    shares, loads, equilibria = [], [], []
     for i, case in enumerate(cases):
         if len(case) != 3:
             raise ModelError(f"case {i}: expected (share, load, speed_rpm), got {case!r}",
@@ -222,17 +259,46 @@ def duty_cycle_life(bearing: Any, cases: Sequence[tuple[float, ArrayLike, float 
                                  where)
             share = share * speed
         eq = bearing_equilibrium(model, load)
-        parts.append(steady_damage(rating, eq.displacement))
+        equilibria.append(eq)
         shares.append(share)
-        p_values.append(_iso281_load(rating, np.asarray(eq.load, dtype=float)))
-    damage = combine_histories(parts, shares)
-    life = history_life(rating.reference, damage)
+        loads.append(np.asarray(eq.load, dtype=float))
     w = np.asarray(shares) / np.sum(shares)
+    record = {"basis": basis, "cases": len(cases)}
+    if found is not None:
+        unit, factor = found
+        dr = double_row_rating(unit, opts)
+        own = [split_rows(unit, factor, e.displacement, e.element_angles) for e in equilibria]
+        n = int(unit.row.n_elements)
+        last_loads = np.asarray(eq.element_load, dtype=float)
+        rows = tuple(_cycle_result(dr.row, [o[0][k, 0] for o in own], shares,
+                                   own[-1][0][k], own[-1][1][k],
+                                   last_loads[k * n:(k + 1) * n], math.nan, record)
+                     for k in range(2))
+        p_values = np.array([unit_equivalent_load(dr, x) for x in loads])
+        expo = dr.rating.exponent
+        return combine_rows(dr, (rows[0], rows[1]),
+                            P=float(np.sum(w * p_values ** expo) ** (1 / expo)),
+                            load=np.full(5, np.nan),
+                            stats={"wall_time": time.perf_counter() - t0},
+                            tag=getattr(bearing, "tag", "") or "")
+    rating = rated(bearing, opts)
+    p_values = np.array([_iso281_load(rating, x) for x in loads])
     p_exp = rating.rating.exponent
-    P = float(np.sum(w * np.asarray(p_values) ** p_exp) ** (1 / p_exp))
-    return life_result(rating, life, rating.pressures(eq.displacement[None],
-                                                      eq.element_angles[None]),
-                       source="duty_cycle", load=np.full(5, np.nan), P=P,
-                       angles=eq.element_angles, loads=np.asarray(eq.element_load),
-                       stats={"wall_time": time.perf_counter() - t0},
-                       options={"basis": basis, "cases": len(cases)})
+    result = _cycle_result(rating, [e.displacement for e in equilibria], shares,
+                           eq.displacement[None], eq.element_angles[None],
+                           np.asarray(eq.element_load, dtype=float),
+                           float(np.sum(w * p_values ** p_exp) ** (1 / p_exp)), record)
+    return dataclasses.replace(result, stats={"wall_time": time.perf_counter() - t0})
+
+
+def _cycle_result(rating: RatedBearing, displacements: list[FloatArray], shares: list[float],
+                  last: FloatArray, last_angles: FloatArray, loads: FloatArray, P: float,
+                  record: dict[str, Any]) -> BearingLifeResult:
+    """Palmgren-Miner life of the steady cases at ring ``displacements`` (5,) of one row
+    (:func:`steady_damage`), with the pressures and element ``loads`` of the last case at
+    ``last`` (1, 5); ``P`` the ISO 281 load of the spectrum."""
+    parts = [steady_damage(rating, d) for d in displacements]
+    life = history_life(rating.reference, combine_histories(parts, shares))
+    return life_result(rating, life, rating.pressures(last, last_angles), source="duty_cycle",
+                       load=np.full(5, np.nan), P=P, angles=last_angles[0],
+                       loads=loads, stats={}, options=record)

@@ -95,7 +95,9 @@ def _geometry(bearing: Any) -> tuple[float, float, float]:
     """Moment arm [m], physical range [m] and a deflection scale [m]."""
     try:
         arm = float(getattr(bearing, "moment_arm", 0.5 * bearing.pitch_diameter))
-        diameter = float(getattr(bearing, "ball_diameter", None) or bearing.roller_diameter)
+        diameter = float(getattr(bearing, "ball_diameter", None)
+                         or getattr(bearing, "roller_diameter", None)
+                         or bearing.effective_length)  # a roller without its diameter
         clearance = abs(float(bearing.clearance))
         kn, n = float(bearing.Kn), float(bearing.exponent)
     except AttributeError as exc:

@@ -306,11 +306,12 @@ def _mirrored(st: BearingState) -> BearingState:
 def _volume(base: Any) -> float:
     if isinstance(base, BallBearing):
         return math.pi * base.ball_diameter**3 / 6.0
-    return 0.25 * math.pi * base.roller_diameter**2 * base.effective_length
+    return 0.25 * math.pi * base.diameter_for("the roller mass") ** 2 * base.effective_length
 
 
 def _kinematic_cage_ratio(base: Any) -> float:
-    diameter = base.ball_diameter if isinstance(base, BallBearing) else base.roller_diameter
+    diameter = base.ball_diameter if isinstance(base, BallBearing) \
+        else base.diameter_for("the cage ratio")
     return geometry.cage_ratio(diameter, base.pitch_diameter, base.contact_angle)
 
 

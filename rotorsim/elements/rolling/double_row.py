@@ -38,10 +38,13 @@ pressure centre lies at ``z_k - r_p tan(a0)``, on the ``-z`` side of the row):
 
 The elements of row 0 come first in every per-element array (``(S, 2 N)``).
 
-Not yet: rows with the centrifugal force of their elements (``CentrifugalBearing``), EHL
-contact damping (``RollingBearing(contact_damping="ehl")``), writing a double-row bearing
-back to a model file (``rs.save_model``) and ``rs.bearing_life`` (rate it with
+Lives and pressures: :func:`rotorsim.bearing_life` and the history lives rate the unit row
+by row (:mod:`rotorsim.analyses.statics.double_row_life`,
 :class:`~rotorsim.elements.rolling.rating.double_row.DoubleRowRating`).
+
+Not yet: rows with the centrifugal force of their elements (``CentrifugalBearing``), EHL
+contact damping (``RollingBearing(contact_damping="ehl")``) and writing a double-row bearing
+back to a model file (``rs.save_model``).
 
 References
 ----------
@@ -74,7 +77,7 @@ _MIRRORED = {"back_to_back": (False, True), "face_to_face": (True, False),
              "tandem": (False, False)}
 _MIRROR = np.array([1.0, 1.0, -1.0, -1.0, -1.0])
 _DELEGATED = ("pitch_diameter", "contact_angle", "Kn", "exponent", "clearance", "kappa",
-              "center_distance", "psi0")
+              "center_distance", "psi0", "effective_length")
 
 
 def row_transform(z_row: float, mirrored: bool) -> FloatArray:

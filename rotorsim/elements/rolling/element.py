@@ -44,6 +44,12 @@ from numpy.typing import ArrayLike, NDArray
 from rotorsim.elements.base import ElementForce, frozen_scalar
 from rotorsim.elements.linear_bearing import BearingElement
 from rotorsim.elements.rolling.centrifugal import CentrifugalBearing
+from rotorsim.elements.rolling.element_force import (
+    damped_tangents,
+    expand_matrix,
+    expand_vector,
+    per_sample,
+)
 from rotorsim.elements.rolling.lubrication import Lubricant, LubricatedContacts
 from rotorsim.elements.rolling.reversed import ReversedBearing
 from rotorsim.errors import ModelError
@@ -51,25 +57,6 @@ from rotorsim.errors import ModelError
 FloatArray = NDArray[np.float64]
 CONTACT_DAMPING = ("none", "proportional", "ehl")
 """Contact damping models of :class:`RollingBearing`."""
-_FD_STEP = 1e-9
-"""Scaled step [m] of the central difference of the tangent along the velocity."""
-
-
-# 0-d arrays: cheaper operands than Python floats in the hot path (same values)
-_ZERO, _ONE, _FD_H, _FD_2H = (frozen_scalar(x) for x in (0.0, 1.0, _FD_STEP, 2 * _FD_STEP))
-_SIGNS = np.array([1.0, -1.0])  # inner node +F, outer node -F
-_SIGN_BLOCKS = np.array([[1.0, -1.0], [-1.0, 1.0]])[:, None, :, None]  # (2, 1, 2, 1)
-
-
-def _per_sample(value: ArrayLike, n_samples: int) -> FloatArray:
-    """A scalar or (S,) array as (S,) floats (a broadcast view of a scalar)."""
-    arr = np.asarray(value, dtype=float).reshape(-1)
-    return arr if arr.shape[0] == n_samples else np.broadcast_to(arr, (n_samples,))
-
-
-def _apply(k: FloatArray, x: FloatArray) -> FloatArray:
-    """``k @ x`` per sample: (S, 5, 5) times (S, 5)."""
-    return np.asarray(np.matmul(k, x[:, :, None]))[:, :, 0]
 
 
 @dataclass(frozen=True, eq=False)
@@ -271,8 +258,8 @@ class RollingBearing:
         if rate.shape[0] != n_samples:
             raise ModelError(f"u and v have {n_samples} and {rate.shape[0]} samples",
                              self.label)
-        phis = _per_sample(phi, n_samples)
-        speeds = _per_sample(speed, n_samples)
+        phis = per_sample(phi, n_samples)
+        speeds = per_sample(speed, n_samples)
         if self.cage_speed_factor != 1.0:  # both rings turn: the cage's own angle and speed
             phis, speeds = phis * self.cage_speed_factor, speeds * self.cage_speed_factor
         psi = self.bearing.element_angles(phis)
@@ -297,42 +284,15 @@ class RollingBearing:
     def _tangents(self, delta: FloatArray, rate: FloatArray, psi: FloatArray,
                   speeds: FloatArray, internal: Any
                   ) -> tuple[FloatArray, FloatArray, FloatArray, Any]:
-        """Force (S, 5), ``dF/d delta``, ``dF/d delta'`` (S, 5, 5) and internal DOFs."""
+        """Force (S, 5), ``dF/d delta``, ``dF/d delta'`` (S, 5, 5) and internal DOFs
+        (:func:`~.element_force.damped_tangents`)."""
         beta, scale = self._damping
-        fast = getattr(self.bearing, "_force_stiffness", None)  # rigid ball/roller models
-        if beta is None or not rate.any():
-            if fast is not None:
-                f0, k0 = fast(delta, np.cos(psi), np.sin(psi))
-                solved = None
-            else:
-                st = self._state(delta, psi, speeds, internal)
-                f0, k0, solved = st.force, st.stiffness, getattr(st, "internal", None)
-            # at rest beta K delta' = 0: the force is the elastic one
-            return f0, k0, np.zeros_like(k0) if beta is None else beta * k0, solved
-        scaled = rate * scale
-        size = np.sqrt(np.add.reduce(scaled * scaled, axis=1))  # as np.linalg.norm
-        step = _FD_H * (rate / np.where(size > _ZERO, size, _ONE)[:, None])
-        n_samples = delta.shape[0]
-        shifted = np.empty((3, n_samples, 5))
-        shifted[0] = delta
-        np.add(delta, step, out=shifted[1])
-        np.subtract(delta, step, out=shifted[2])
-        if fast is not None:
-            force3, k3 = fast(shifted, np.cos(psi), np.sin(psi))
-            f0, k0, k_plus, k_minus, solved = force3[0], k3[0], k3[1], k3[2], None
-        else:
-            warm = None if internal is None else np.concatenate([internal] * 3)
-            st = self._state(shifted.reshape(3 * n_samples, 5),
-                             np.concatenate([psi, psi, psi]), np.concatenate([speeds] * 3),
-                             warm)
-            f0, k0 = st.force[:n_samples], st.stiffness[:n_samples]
-            k_plus = st.stiffness[n_samples:2 * n_samples]
-            k_minus = st.stiffness[2 * n_samples:]
-            solved = getattr(st, "internal", None)
-            solved = None if solved is None else solved[:n_samples]
-        dk = (k_plus - k_minus) / _FD_2H
-        force = f0 + beta * _apply(k0, rate)
-        return force, k0 + beta * dk * size[:, None, None], beta * k0, solved
+        return damped_tangents(self._fast, self._state, beta, scale, delta, rate, psi,
+                               speeds, internal)
+
+    @cached_property
+    def _fast(self) -> Any:
+        return getattr(self.bearing, "_force_stiffness", None)  # rigid ball/roller models
 
     @cached_property
     def _damping(self) -> tuple[FloatArray | None, FloatArray]:
@@ -348,22 +308,10 @@ class RollingBearing:
         return float(self._damping[1][3])
 
     def _expand_vector(self, f5: FloatArray) -> FloatArray:
-        if self.n_link is None:
-            out = np.zeros((f5.shape[0], 6))
-            out[:, :5] = f5
-            return out
-        out = np.zeros((f5.shape[0], 2, 6))
-        np.multiply(f5[:, None, :], _SIGNS[:, None], out=out[:, :, :5])
-        return out.reshape(-1, 12)
+        return expand_vector(f5, self.n_link is not None)
 
     def _expand_matrix(self, k5: FloatArray) -> FloatArray:
-        if self.n_link is None:
-            out = np.zeros((k5.shape[0], 6, 6))
-            out[:, :5, :5] = k5
-            return out
-        out = np.zeros((k5.shape[0], 2, 6, 2, 6))
-        np.multiply(k5[:, None, :, None, :], _SIGN_BLOCKS, out=out[:, :, :5, :, :5])
-        return out.reshape(-1, 12, 12)
+        return expand_matrix(k5, self.n_link is not None)
 
     def model_at_speed(self, speed: float | None = None) -> Any:
         """The bearing model whose ``state`` a linearisation at shaft speed ``speed``

@@ -114,10 +114,10 @@ def _ball_races(b: Any, lubricant: Lubricant) -> _Races:
 
 
 def _roller_races(b: Any) -> _Races:
-    gamma = b.roller_diameter * math.cos(b.contact_angle) / b.pitch_diameter
-    radii = ((0.5 * b.roller_diameter * (1.0 - gamma), math.inf),
-             (0.5 * b.roller_diameter * (1.0 + gamma), math.inf))
-    return _Races(False, radii, (0.5, 0.5), (), b.roller_diameter,
+    d = b.diameter_for("EHL contact damping")
+    gamma = d * math.cos(b.contact_angle) / b.pitch_diameter
+    radii = ((0.5 * d * (1.0 - gamma), math.inf), (0.5 * d * (1.0 + gamma), math.inf))
+    return _Races(False, radii, (0.5, 0.5), (), d,
                   b.effective_length / b.n_slices)
 
 

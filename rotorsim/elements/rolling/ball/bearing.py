@@ -39,6 +39,7 @@ from rotorsim.elements.rolling.ball.checks import CAGES, ResolvedGeometry, resol
 from rotorsim.elements.rolling.ball.tangent import assemble, ball_sums, directions
 from rotorsim.elements.rolling.contact.hertz_point import ball_bearing_constant
 from rotorsim.elements.rolling.state import BearingState, FloatArray
+from rotorsim.errors import ModelError
 
 __all__ = ["CAGES", "BallBearing"]
 
@@ -147,6 +148,11 @@ class BallBearing:
         The inner and outer point contacts are evaluated at ``alpha0`` and combined in
         series, ``Kn = (K_i^(-2/3) + K_o^(-2/3))^(-3/2)``; other keyword arguments go to
         the constructor. Materials default to bearing steel (208 GPa, 0.3).
+        ``method``: ``"exact"`` (elliptic integrals), ``"hamrock_brewe"`` (curve fits) or
+        ``"iso16281"``, the ISO/TS 16281 spring constant
+        (:func:`~rotorsim.elements.rolling.contact.iso_spring.iso16281_ball_constant`,
+        0.99935 times the exact one; balls and rings of one material, ``E_ball``,
+        ``nu_ball``).
 
         Examples
         --------
@@ -155,9 +161,21 @@ class BallBearing:
         >>> round(b.Kn / 1e9, 2)
         10.32
         """
-        kn, _, _ = ball_bearing_constant(ball_diameter, pitch_diameter, contact_angle, f_i,
-                                         f_o, E_ball=E_ball, nu_ball=nu_ball, E_ring=E_ring,
-                                         nu_ring=nu_ring, method=method)
+        if method == "iso16281":
+            from rotorsim.elements.rolling.contact.iso_spring import (
+                iso16281_ball_constant,
+            )
+
+            if (E_ring not in (None, E_ball)) or (nu_ring not in (None, nu_ball)):
+                raise ModelError("the ISO/TS 16281 spring constant takes balls and rings of "
+                                 "one material (give E_ball, nu_ball only)",
+                                 "BallBearing.from_geometry")
+            kn = iso16281_ball_constant(ball_diameter, pitch_diameter, contact_angle, f_i,
+                                        f_o, E=E_ball, nu=nu_ball)
+        else:
+            kn, _, _ = ball_bearing_constant(ball_diameter, pitch_diameter, contact_angle,
+                                             f_i, f_o, E_ball=E_ball, nu_ball=nu_ball,
+                                             E_ring=E_ring, nu_ring=nu_ring, method=method)
         return cls(n_balls=n_balls, pitch_diameter=pitch_diameter,
                    ball_diameter=ball_diameter, Kn=kn, contact_angle=contact_angle, f_i=f_i,
                    f_o=f_o, **kwargs)

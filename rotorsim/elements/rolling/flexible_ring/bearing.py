@@ -30,6 +30,7 @@ import dataclasses
 import math
 from dataclasses import dataclass, field
 from functools import cached_property
+from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -163,6 +164,40 @@ class FlexibleRingRollerBearing:
 
     def __post_init__(self) -> None:
         check_parameters(self)
+
+    @classmethod
+    def from_diameters(cls, *, n_rollers: int, pitch_diameter: float, roller_diameter: float,
+                       effective_length: float, diametral_clearance: float | None = None,
+                       radial_clearance: float | None = None,
+                       shaft_diameter: float | None = None,
+                       housing_diameter: float | None = None,
+                       **kwargs: Any) -> FlexibleRingRollerBearing:
+        """The bearing from diameters and either clearance, as the rigid-ring models take
+        them: ``pitch_diameter = 2 R_p``, ``roller_diameter = 2 R_b``, the shaft bore and
+        housing outside ``shaft_diameter = 2 R_s``, ``housing_diameter = 2 R_h`` [m], and
+        ``diametral_clearance = g`` or ``radial_clearance = g / 2`` [m] (one of the two,
+        default 0); other keyword arguments go to the constructor.
+
+        Examples
+        --------
+        >>> b = FlexibleRingRollerBearing.from_diameters(
+        ...     n_rollers=24, pitch_diameter=0.15, roller_diameter=0.013,
+        ...     effective_length=0.016, radial_clearance=-20e-6, shaft_diameter=0.108,
+        ...     housing_diameter=0.194, ring_width=0.030)
+        >>> b.pitch_radius, b.diametral_clearance
+        (0.075, -4e-05)
+        """
+        if diametral_clearance is not None and radial_clearance is not None:
+            raise ModelError("give diametral_clearance or radial_clearance, not both",
+                             "FlexibleRingRollerBearing.from_diameters")
+        g = (2.0 * radial_clearance if radial_clearance is not None
+             else diametral_clearance or 0.0)
+        return cls(n_rollers=n_rollers, pitch_radius=0.5 * pitch_diameter,
+                   roller_radius=0.5 * roller_diameter, effective_length=effective_length,
+                   diametral_clearance=g,
+                   shaft_radius=None if shaft_diameter is None else 0.5 * shaft_diameter,
+                   housing_radius=None if housing_diameter is None else 0.5 * housing_diameter,
+                   **kwargs)
 
     # ------------------------------------------------------------------ geometry
     @property

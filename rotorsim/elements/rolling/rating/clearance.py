@@ -276,7 +276,8 @@ def operating_clearance(diametral_clearance: float, inner_raceway: float,
 
 def raceway_diameters(model: Any) -> tuple[float, float, float]:
     """``D_i, D_o, D_w`` [m] of a ``BallBearing`` or ``RollerBearing``: ``d_m -/+ D_w cos a``."""
-    diameter = float(getattr(model, "ball_diameter", None) or model.roller_diameter)
+    diameter = float(getattr(model, "ball_diameter", None)
+                     or model.diameter_for("the operating clearance"))
     spread = diameter * math.cos(float(model.contact_angle))
     return model.pitch_diameter - spread, model.pitch_diameter + spread, diameter
 

@@ -327,7 +327,7 @@ def contact_pressures(bearing: Any, delta: ArrayLike, psi: ArrayLike | None = No
         else:
             deflection = np.maximum(bearing.slice_deflections(delta, psi_arr), 0.0)
             line = bearing.kn * deflection**bearing.exponent / bearing.effective_length
-        return roller_pressures(bearing.roller_diameter, bearing.pitch_diameter,
+        return roller_pressures(bearing.diameter_for("contact pressures"), bearing.pitch_diameter,
                                 bearing.contact_angle, line, bearing._line.xi, **materials)
     raise ModelError(f"contact pressures are implemented for BallBearing and RollerBearing, "
                      f"not {type(bearing).__name__}", "contact_pressures")

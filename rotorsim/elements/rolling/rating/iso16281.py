@@ -312,7 +312,8 @@ def reference_rating(bearing: Any, rating: BearingRating, n_laminae: int | None 
                                bearing.pitch_diameter, bearing.contact_angle,
                                bearing.f_i, bearing.f_o)
     if hasattr(bearing, "n_rollers"):
-        return ReferenceRating(rating, int(bearing.n_rollers), bearing.roller_diameter,
+        return ReferenceRating(rating, int(bearing.n_rollers),
+                               bearing.diameter_for("ISO/TS 16281 ratings"),
                                bearing.pitch_diameter, bearing.contact_angle,
                                n_laminae=int(bearing.n_slices if n_laminae is None
                                              else n_laminae))
@@ -342,7 +343,8 @@ def rating_for(bearing: Any, C: float | None = None, C0: float | None = None,
     if hasattr(bearing, "n_rollers"):
         return BearingRating.from_geometry(
             "roller", n_elements=int(bearing.n_rollers),
-            element_diameter=bearing.roller_diameter, pitch_diameter=bearing.pitch_diameter,
+            element_diameter=bearing.diameter_for("ISO 281 ratings"),
+            pitch_diameter=bearing.pitch_diameter,
             contact_angle=bearing.contact_angle, effective_length=bearing.effective_length,
             bm=bm, C=C, C0=C0)
     raise ModelError(f"no rating for {type(bearing).__name__}: BallBearing or "

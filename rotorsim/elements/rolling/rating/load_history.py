@@ -92,10 +92,13 @@ def ring_damage(ref: ReferenceRating, u: ArrayLike, psi: ArrayLike, ring_angles:
 
 def ring_damage_density(ref: ReferenceRating, density: ArrayLike, psi: ArrayLike,
                         ring_angles: ArrayLike, kappa: float, n_cells: int = 360,
-                        ring_scale: tuple[float, float] = (1.0, 1.0)) -> RingDamage:
+                        ring_scale: tuple[float, float] = (1.0, 1.0),
+                        score: ArrayLike | None = None) -> RingDamage:
     """:func:`ring_damage` from the damage density ``u^p``: (T, N, K, 2) per ring, or
     (T, N, K) shared by both rings times ``ring_scale`` (rollers: the same lamina loads
-    on both races, whose ``u^p`` differ by ``(q_ci / q_ce)^p`` only)."""
+    on both races, whose ``u^p`` differ by ``(q_ci / q_ce)^p`` only). ``score`` (T, N),
+    optional: zero exactly where an element's density is zero (e.g. its summed density),
+    so that only the steps of loaded elements are spread on the cells."""
     where = "ring_damage"
     dens = np.asarray(density, dtype=float)
     p_arr = np.asarray(psi, dtype=float)
@@ -110,6 +113,10 @@ def ring_damage_density(ref: ReferenceRating, density: ArrayLike, psi: ArrayLike
         raise ModelError(f"cage ratio {kappa!r} must be in (0, 1): the history life needs "
                          "rolling elements that orbit", where)
     mid = dens[1:] + dens[:-1]  # twice the trapezoid mean in time (T-1, N, K[, 2])
+    active: NDArray[np.intp] | None = None
+    if score is not None:
+        sc = np.asarray(score, dtype=float)
+        active = np.flatnonzero((sc[1:] + sc[:-1]).ravel() > 0.0)  # loaded steps
     out = np.empty((n_k, n_cells, 2))
     width = 2.0 * math.pi / n_cells
     per_rev = (ref.n_elements * (1.0 - kappa), ref.n_elements * kappa)
@@ -118,24 +125,30 @@ def ring_damage_density(ref: ReferenceRating, density: ArrayLike, psi: ArrayLike
         start = np.minimum(rel[1:], rel[:-1]) / width  # arcs swept, in cells (T-1, N)
         stop = np.maximum(rel[1:], rel[:-1]) / width
         ring_mid = mid if mid.ndim == 3 else mid[..., ring]
-        out[..., ring] = (_swept_cells(start, stop, ring_mid, n_cells)
+        out[..., ring] = (_swept_cells(start, stop, ring_mid, n_cells, active)
                           * (0.5 * ring_scale[ring] / per_rev[ring]))
     relative = np.abs(np.diff(rings[:, 0] - rings[:, 1])).sum() / (2.0 * math.pi)
     return RingDamage(out, float(relative))
 
 
-def _swept_cells(start: FloatArray, stop: FloatArray, density: FloatArray, n_cells: int
-                 ) -> FloatArray:
+def _swept_cells(start: FloatArray, stop: FloatArray, density: FloatArray, n_cells: int,
+                 active: NDArray[np.intp] | None = None) -> FloatArray:
     """``sum density x (overlap of the arc [start, stop] with each cell)`` (K, M): arcs
     (T, N) in cell units on a periodic ring of ``n_cells``, ``density`` (T, N, K) uniform
     along each arc (the midpoint rule of each step).
 
     The overlaps form a sparse (M, T N) matrix, one entry per cell an arc touches (two or
-    one for a step shorter than a cell), applied to the (T N, K) densities at once.
+    one for a step shorter than a cell), applied to the (T N, K) densities at once; only
+    the arcs ``active`` (flat indices into (T, N); default: those with a density) enter.
     """
     from scipy.sparse import csr_matrix
 
-    lo, hi = start.ravel(), stop.ravel()
+    values = density.reshape(start.size, -1)
+    if active is None:
+        active = np.flatnonzero(values.any(axis=1))  # arcs with damage: the loaded zone
+    if active.size == 0:
+        return np.zeros((values.shape[1], n_cells))
+    lo, hi, values = start.ravel()[active], stop.ravel()[active], values[active]
     i_lo, i_hi = np.floor(lo).astype(np.int64), np.floor(hi).astype(np.int64)
     count = i_hi - i_lo + 1  # cells each arc touches
     arc = np.repeat(np.arange(lo.size), count)
@@ -147,7 +160,7 @@ def _swept_cells(start: FloatArray, stop: FloatArray, density: FloatArray, n_cel
                                                                         cell)
     matrix = csr_matrix((np.maximum(overlap, 0.0), (np.mod(cell, n_cells), arc)),
                         shape=(n_cells, lo.size))
-    cells = matrix @ density.reshape(lo.size, -1)  # (M, K)
+    cells = matrix @ values  # (M, K)
     return np.asarray(cells.T)
 
 

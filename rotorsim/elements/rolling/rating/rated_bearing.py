@@ -16,6 +16,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from rotorsim.elements.rolling.double_row import DoubleRowBearing
 from rotorsim.elements.rolling.geometry import cage_ratio
 from rotorsim.elements.rolling.rating.hertz_pressure import (
     BallContactPressure,
@@ -43,6 +44,8 @@ _MIRROR = np.array([1.0, 1.0, -1.0, -1.0, -1.0])
 def _unwrap(model: Any) -> tuple[Any, FloatArray]:
     """Base model and the factor on ``delta`` (the mirror of a reversed bearing)."""
     inner = getattr(model, "bearing", None)
+    if isinstance(model, DoubleRowBearing):  # one row's rating: cage ratio, C of a row
+        return _unwrap(model.row)[0], np.full(5, np.nan)
     if isinstance(model, ReversedBearing):
         base, factor = _unwrap(model.bearing)
         return base, factor * _MIRROR
@@ -62,6 +65,8 @@ class RatedBearing:
     Parameters
     ----------
     model : BallBearing, RollerBearing, ReversedBearing or RollingBearing
+        (a ``DoubleRowBearing`` gives one row's rating and cage ratio only: its loads,
+        lives and pressures are refused; :func:`rotorsim.bearing_life` rates the unit)
     options : RatingOptions
 
     Examples
@@ -105,10 +110,18 @@ class RatedBearing:
     @property
     def geometric_cage_ratio(self) -> float:
         """``(1 - D cos a / d_m) / 2`` (also for a model built with ``cage="fixed"``)."""
-        d = self.base.ball_diameter if self.kind == "ball" else self.base.roller_diameter
+        d = self.base.ball_diameter if self.kind == "ball" \
+            else self.base.diameter_for("the cage ratio of a rating")
         return cage_ratio(d, self.base.pitch_diameter, self.base.contact_angle)
 
+    def _single(self) -> None:
+        if np.isnan(self.mirror).any():
+            raise ModelError("a RatedBearing of a DoubleRowBearing is one row's rating only; "
+                             "rate the unit with rotorsim.bearing_life (or DoubleRowRating)",
+                             "RatedBearing")
+
     def _delta(self, delta: ArrayLike) -> FloatArray:
+        self._single()
         d = np.atleast_2d(np.asarray(delta, dtype=float))
         if d.ndim != 2 or d.shape[1] != 5 or not np.isfinite(d).all():
             raise ModelError(f"delta must be finite with shape (S, 5), got {np.shape(delta)}",
@@ -144,15 +157,23 @@ class RatedBearing:
             if getattr(b, "slice_model", "independent") == "influence":  # half-space laminae
                 density = (b.slice_loads(self._delta(delta), psi) / cap[0]) ** p
                 return density.sum(axis=-1), density, (1.0, float((cap[0] / cap[1]) ** p))
-            deflection = b.slice_deflections(self._delta(delta), psi)
-            loaded = deflection > 0.0
-            values = deflection[loaded]  # the power only where loaded: the costly step
-            values *= 1e6  # micrometres: no subnormal powers near the load-zone edge
-            np.power(values, b.exponent * p, out=values)
-            values *= (b.kn / (b.n_slices * cap[0]) * 1e-6 ** b.exponent) ** p
-            density = np.zeros(deflection.shape)
-            density[loaded] = values
-            return density.sum(axis=-1), density, (1.0, float((cap[0] / cap[1]) ** p))
+            _, _, v, lw = b._kinematics(*b._inputs(self._delta(delta), psi))
+            line = b._line
+            # rollers that may touch (largest slice deflection bound > 0): only their
+            # slices are evaluated, typically half the rollers
+            reach = v + 0.5 * np.abs(lw) - float(np.min(line.drop))
+            rollers = reach > 0.0
+            part = line.slice_deflection(v[rollers], lw[rollers])  # (R, K) [m]
+            # micrometres: no subnormal powers near the load-zone edge
+            np.maximum(part, 0.0, out=part)
+            part *= 1e6
+            np.power(part, b.exponent * p, out=part)
+            part *= (b.kn / (b.n_slices * cap[0]) * 1e-6 ** b.exponent) ** p
+            density = np.zeros((*v.shape, b.n_slices))
+            density[rollers] = part
+            score = np.zeros(v.shape)
+            score[rollers] = part.sum(axis=-1)
+            return score, density, (1.0, float((cap[0] / cap[1]) ** p))
         loads, u = self.loads(delta, psi)
         return loads, (u * u * u)[:, :, None, :], (1.0, 1.0)
 
@@ -195,13 +216,14 @@ class RatedBearing:
         evaluation of the contacts; balls may pass their known loads and angles (S, N)
         (an equilibrium result has them) to skip it."""
         o = self.options
+        self._single()
         if self.kind == "roller":
             laminae = lamina_loads(self.base, self._delta(delta), psi)
             line = laminae * (self.base.n_slices / self.base.effective_length)
             return (self.reference.life(laminae, rotating_ring=o.rotating_ring),
-                    roller_pressures(self.base.roller_diameter, self.base.pitch_diameter,
-                                     self.base.contact_angle, line, self.base._line.xi,
-                                     **o.materials))
+                    roller_pressures(self.base.diameter_for("contact pressures"),
+                                     self.base.pitch_diameter, self.base.contact_angle, line,
+                                     self.base._line.xi, **o.materials))
         if element_load is None or contact_angle is None:
             st = self.base.state(self._delta(delta), psi)
             element_load, contact_angle = st.element_load, st.contact_angle

@@ -41,11 +41,6 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from rotorsim.elements.rolling.contact.hertz_line import LINE_EXPONENT
-from rotorsim.elements.rolling.contact.hertz_point import (
-    BEARING_STEEL_E,
-    BEARING_STEEL_NU,
-    effective_modulus,
-)
 from rotorsim.elements.rolling.geometry import cage_ratio, checked_state, element_angles
 from rotorsim.elements.rolling.roller.checks import (
     check_options,
@@ -60,22 +55,17 @@ from rotorsim.elements.rolling.roller.integrals import (
     force_stiffness,
     roller_constants,
     roller_rows,
-    tilt_limits,
     unit_load_directions,
 )
 from rotorsim.elements.rolling.roller.line_load import RollerLineLoad
 from rotorsim.elements.rolling.roller.profile import RollerProfile, StraightProfile
-from rotorsim.elements.rolling.roller.slice_influence import influence_slice_loads
+from rotorsim.elements.rolling.roller.slice_outputs import roller_loads, slice_loads
 from rotorsim.elements.rolling.state import BearingState
 from rotorsim.errors import ModelError
 
 FloatArray = NDArray[np.float64]
 
 _assemble_tangent = assemble_tangent  # the name rotorsim.elements.rolling.lubrication imports
-_STEEL_E_STAR = effective_modulus(BEARING_STEEL_E, BEARING_STEEL_NU, BEARING_STEEL_E,
-                                  BEARING_STEEL_NU)  # E* of the slice influence [Pa]
-
-
 
 @dataclass(frozen=True, eq=False)
 class RollerBearing:
@@ -87,10 +77,14 @@ class RollerBearing:
         Number of rollers ``Z``.
     pitch_diameter : float
         Pitch diameter ``d_m = 2 r_p`` [m] (roller centres).
-    roller_diameter : float
-        Mean roller diameter [m] (cage ratio only).
+    roller_diameter : float, optional
+        Mean roller diameter [m]. Only needed by what uses it: the cage ratio of a
+        rotating cage at a shaft angle other than 0 (transients, histories), ISO 281
+        ratings and lives, contact pressures, the half-space slices, the centrifugal force
+        and EHL damping; statics at ``phi = 0`` and stiffness do without it (each use
+        without it raises a ``ModelError`` that names it).
     effective_length : float
-        Effective contact length ``L`` [m].
+        Effective contact length ``L`` [m] (required).
     Kn : float, optional
         Whole-roller load-deflection constant [N/m^n]: ``Q = Kn delta^n`` for a uniform
         total deflection ``delta`` of both contacts (ISO/TS 16281 and Lim-Singh convention;
@@ -129,7 +123,8 @@ class RollerBearing:
         ``(Kn/K) delta_k^n``, or the half-space influence coefficients of
         :mod:`~rotorsim.elements.rolling.roller.slice_influence` (edge effect), normalised
         to the same roller loads. Force, stiffness and energy (statics, transients) use
-        the independent law in both cases.
+        the independent law in both cases (why, and what it changes: docs/bearing_life.md,
+        "Roller edge effect").
 
     References
     ----------
@@ -147,8 +142,8 @@ class RollerBearing:
 
     n_rollers: int
     pitch_diameter: float
-    roller_diameter: float
-    effective_length: float
+    roller_diameter: float | None = None
+    effective_length: float = None  # type: ignore[assignment]  # required (checked)
     Kn: float | None = None
     contact_angle: float = 0.0
     radial_clearance: float | None = None
@@ -167,11 +162,16 @@ class RollerBearing:
         if isinstance(self.n_rollers, bool) or not isinstance(self.n_rollers, int | np.integer) \
                 or self.n_rollers < 1:
             raise ModelError(f"n_rollers must be an integer >= 1, got {self.n_rollers!r}", where)
+        if self.effective_length is None:
+            raise ModelError("effective_length is required (the roller's contact length "
+                             "L [m])", where)
         for name in ("pitch_diameter", "roller_diameter", "effective_length"):
             value = getattr(self, name)
+            if value is None and name == "roller_diameter":
+                continue
             if not (finite_number(value) and value > 0.0):
                 raise ModelError(f"{name} must be positive and finite, got {value!r}", where)
-        if self.roller_diameter >= self.pitch_diameter:
+        if self.roller_diameter is not None and self.roller_diameter >= self.pitch_diameter:
             raise ModelError(f"roller_diameter {self.roller_diameter} m must be smaller than "
                              f"pitch_diameter {self.pitch_diameter} m", where)
         if not (finite_number(self.contact_angle)
@@ -219,11 +219,21 @@ class RollerBearing:
         """Cage ratio: cage angle over shaft angle (0 for ``cage="fixed"``)."""
         if self.cage == "fixed":
             return 0.0
-        return cage_ratio(self.roller_diameter, self.pitch_diameter, self.contact_angle)
+        return cage_ratio(self.diameter_for("the cage ratio of a rotating cage (or give "
+                                            "cage='fixed')"),
+                          self.pitch_diameter, self.contact_angle)
+
+    def diameter_for(self, use: str) -> float:
+        """``roller_diameter`` [m]; a ``ModelError`` naming ``use`` when it was not given."""
+        if self.roller_diameter is None:
+            raise ModelError(f"roller_diameter is needed for {use}", self._where)
+        return float(self.roller_diameter)
 
     def element_angles(self, phi: ArrayLike = 0.0) -> FloatArray:
-        """Roller angles ``psi`` [rad], shape ``(S, Z)``, at shaft angles ``phi`` (S,)."""
-        return element_angles(self.n_rollers, phi, self.kappa, self.psi0)
+        """Roller angles ``psi`` [rad], shape ``(S, Z)``, at shaft angles ``phi`` (S,)
+        (at ``phi = 0`` without the cage ratio, which needs ``roller_diameter``)."""
+        still = self.roller_diameter is None and not np.any(np.asarray(phi, dtype=float))
+        return element_angles(self.n_rollers, phi, 0.0 if still else self.kappa, self.psi0)
 
     @cached_property
     def _line(self) -> RollerLineLoad:
@@ -367,44 +377,11 @@ class RollerBearing:
         >>> bool(q[0] > q[5] > 0)
         True
         """
-        dk = self.slice_deflections(delta, psi)
-        if self.slice_model == "influence":
-            return influence_slice_loads(dk, self.kn, float(self.exponent),
-                                         self.effective_length, self._race_radii,
-                                         _STEEL_E_STAR)
-        return np.asarray((self.kn / self.n_slices) * np.maximum(dk, 0.0) ** self.exponent)
-
-    @cached_property
-    def _race_radii(self) -> tuple[float, float]:
-        """Reduced radii ``D (1 -+ gamma) / 2`` [m] of the inner and outer line contact."""
-        gamma = self.roller_diameter * math.cos(self.contact_angle) / self.pitch_diameter
-        return (0.5 * self.roller_diameter * (1.0 - gamma),
-                0.5 * self.roller_diameter * (1.0 + gamma))
+        return slice_loads(self, self.slice_deflections(delta, psi))
 
     def roller_loads(self, delta: ArrayLike, psi: ArrayLike) -> RollerLoads:
         """Per-roller load, eccentricity (seed 000 eq 9) and loaded zone (eq 8); with
         ``slice_model="influence"`` the slice loads and eccentricity of the half-space
         distribution (:meth:`slice_loads`)."""
         _, _, v, lw = self._kinematics(*self._inputs(delta, psi))
-        ints = self._line.integrals(v, lw)
-        q = self.kn * ints.load
-        loaded = ints.load > 0.0
-        ecc = np.where(loaded, self.effective_length * ints.load_moment
-                       / np.where(loaded, ints.load, 1.0), 0.0)
-        if self.model == "tilt_integral" and self.slice_model == "independent":
-            return RollerLoads(q, ecc, tilt_limits(v, lw))
-        xi, dk = self._line.xi, self._line.slice_deflection(v, lw)
-        pos = np.maximum(dk, 0.0)
-        slice_load = (self.kn / self.n_slices) * pos**self.exponent
-        if self.slice_model == "influence":
-            slice_load = influence_slice_loads(dk, self.kn, float(self.exponent),
-                                               self.effective_length, self._race_radii,
-                                               _STEEL_E_STAR)
-            total = slice_load.sum(axis=-1)
-            ecc = np.where(total > 0.0, self.effective_length * (slice_load @ xi)
-                           / np.where(total > 0.0, total, 1.0), 0.0)
-        half = 0.5 / self.n_slices
-        lo = np.where(dk > 0.0, xi - half, np.inf).min(axis=-1)
-        hi = np.where(dk > 0.0, xi + half, -np.inf).max(axis=-1)
-        limits = np.where(loaded[..., None], np.stack([lo, hi], axis=-1), np.nan)
-        return RollerLoads(q, ecc, limits, slice_load)
+        return roller_loads(self, v, lw)

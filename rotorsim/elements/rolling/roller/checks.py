@@ -46,6 +46,8 @@ def resolve_clearance(b: Any, where: str) -> float:
                                                     rel_tol=1e-9, abs_tol=1e-15):
         raise ModelError(f"diametral_clearance {diametral} m must equal 2 x "
                          f"radial_clearance {radial} m (give one of them)", where)
+    if b.roller_diameter is None:  # the plausibility bounds scale with the diameter
+        return float(radial)
     if abs(radial) >= 0.5 * b.roller_diameter:
         raise ModelError(f"radial clearance {radial} m exceeds the roller radius: check "
                          "the units (metres)", where)

@@ -281,8 +281,9 @@ def roller_pressure_field(bearing: Any, delta: ArrayLike, psi: ArrayLike, roller
     length = bearing.effective_length
     slope = float(np.polyfit(np.arange(dk.shape[1]), dk[roller] + bearing.profile.drop(
         bearing._line.xi, length), 1)[0]) * bearing.n_slices / length  # omega_j [rad]
-    gamma = bearing.roller_diameter * math.cos(bearing.contact_angle) / bearing.pitch_diameter
-    radius = 0.5 * bearing.roller_diameter * (1.0 - gamma if race == "inner" else 1.0 + gamma)
+    d = bearing.diameter_for("the half-space pressure field")
+    gamma = d * math.cos(bearing.contact_angle) / bearing.pitch_diameter
+    radius = 0.5 * d * (1.0 - gamma if race == "inner" else 1.0 + gamma)
     if e_star is None:
         e_star = effective_modulus(BEARING_STEEL_E, BEARING_STEEL_NU, BEARING_STEEL_E,
                                    BEARING_STEEL_NU)
