@@ -101,18 +101,24 @@ class Case:
     harmonics: int | tuple[int, int]
     truncation: str
     samples: tuple[int, int] | None
+    combination_nodes: tuple[int, ...]
+    """Nodes whose largest combination tones are compared (elsewhere: the base tones)."""
+
+    def tones(self, point: Any, node: int, dof: str) -> list[tuple[int, int]]:
+        """The tones of ``(node, dof)`` held to the 1 % bound."""
+        return compared_tones(point, node, dof, 3 if node in self.combination_nodes else 0)
 
 
 def rigid_case() -> Case:
     return Case("rigid", rigid_rotor(), RIGID_UNBALANCE, rigid_excitation(),
-                ((0, "ux"), (0, "uy")), 1e-8, RIGID_BOX, "box", RIGID_SAMPLES)
+                ((0, "ux"), (0, "uy")), 1e-8, RIGID_BOX, "box", RIGID_SAMPLES, (0,))
 
 
 def default_case() -> Case:
     rotor, unbalance = default_rotor()
     return Case("default", rotor, unbalance, rs.Excitation(),
                 ((8, "ux"), (8, "uy"), (0, "ux"), (0, "uy")), 1e-7, DEFAULT_HARMONICS,
-                "diamond", DEFAULT_SAMPLES)
+                "diamond", DEFAULT_SAMPLES, (0,))
 
 
 def solve_point(case: Case, speed: float, harmonics: int | tuple[int, int] | None = None,
