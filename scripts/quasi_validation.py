@@ -331,7 +331,8 @@ def perturbation_growth(clearance: float, speed: float, duration: float, size: f
     unperturbed run from the torus (which it leaves when the torus is unstable, from the
     HB's own truncation error); the least-squares slopes of their logarithms from
     revolution ``skip`` on, while the unperturbed run stays within ``linear`` of the
-    peak-to-peak from the torus (the linear regime)."""
+    peak-to-peak from the torus and within twice its distance over the first revolutions
+    (the linear regime)."""
     case = rigid_case()
     rotor = rigid_rotor(clearance)
     point = rs.quasi_periodic_point(rotor, speed, unbalance=case.unbalance,
@@ -361,8 +362,12 @@ def perturbation_growth(clearance: float, speed: float, duration: float, size: f
     between_rev = between[:-1].reshape(n_rev, 200).max(axis=1)
     off_rev = off[:-1].reshape(n_rev, 200).max(axis=1)
     t_rev = revolution * (np.arange(n_rev) + 0.5)
-    beyond = np.flatnonzero(off_rev > linear * ptp)
-    stop = int(beyond[0]) if beyond.size else n_rev
+    # the linear regime ends where the run's distance from the torus exceeds ``linear`` of
+    # the peak-to-peak and twice its size over the first revolutions (the HB's truncation
+    # error starts free vibration, which decays on a stable torus)
+    bound = max(linear * ptp, 2 * float(off_rev[:skip + 1].max()))
+    beyond = np.flatnonzero(off_rev[skip:] > bound)
+    stop = skip + int(beyond[0]) if beyond.size else n_rev
     fit = slice(skip, stop)
     return GrowthCheck(clearance, speed, float(exponent),
                        _slope(t_rev[fit], between_rev[fit]), _slope(t_rev[fit], off_rev[fit]),
