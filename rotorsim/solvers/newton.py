@@ -44,15 +44,22 @@ class ResidualProblem:
     r_scale : array (n,)
         Size of each residual component that counts as "large" (positive): the solve stops
         when ``max |r / r_scale| <= tol``.
+    residual : callable, optional
+        ``residual(x) -> r`` alone, for the line search's trial points when the Jacobian
+        costs much more than the residual (harmonic balance on a torus): ``fun`` is then
+        called only at the accepted point.
     """
 
     fun: ResidualFunction
     x_scale: FloatArray
     r_scale: FloatArray
+    residual: Callable[[FloatArray], FloatArray] | None = None
 
     @classmethod
     def scaled(cls, fun: ResidualFunction, n: int, x_scale: ArrayLike | None = None,
-               r_scale: ArrayLike | None = None) -> ResidualProblem:
+               r_scale: ArrayLike | None = None,
+               residual: Callable[[FloatArray], FloatArray] | None = None
+               ) -> ResidualProblem:
         """Problem with unit scales where none are given (checked: positive, finite)."""
         scales = []
         for name, value in (("x_scale", x_scale), ("r_scale", r_scale)):
@@ -61,7 +68,7 @@ class ResidualProblem:
             if not (np.all(np.isfinite(arr)) and np.all(arr > 0)):
                 raise ModelError(f"{name} must be positive and finite, got {value!r}", "newton")
             scales.append(arr)
-        return cls(fun, scales[0], scales[1])
+        return cls(fun, scales[0], scales[1], residual)
 
 
 @dataclass(frozen=True, eq=False)
@@ -157,10 +164,19 @@ class Newton:
         alpha = 1.0
         for _ in range(self.max_backtracks):
             x = state.x + alpha * p_hat * xs
-            r, J = self._evaluate(problem, x, stats)
-            finite = bool(np.all(np.isfinite(r)) and np.all(np.isfinite(J)))
+            if problem.residual is not None:      # the Jacobian only where accepted
+                if stats is not None:
+                    stats.residual_evaluations += 1
+                r = np.asarray(problem.residual(x), dtype=float).reshape(-1)
+                finite = bool(np.all(np.isfinite(r)))
+                J = None
+            else:
+                r, J = self._evaluate(problem, x, stats)
+                finite = bool(np.all(np.isfinite(r)) and np.all(np.isfinite(J)))
             merit = 0.5 * float(np.sum((r / rs) ** 2)) if finite else math.inf
             if merit <= merit0 + self.armijo * alpha * slope:
+                if J is None:
+                    r, J = self._evaluate(problem, x, stats)
                 return NewtonState(x, r, J, self._norm(problem, r), state.iteration + 1,
                                    alpha * longest)
             if stats is not None:

@@ -105,7 +105,11 @@ def solve_quasi(problem: QuasiProblem, aft: TorusAFT, w1: float, w2: float, *,
         assert J is not None
         return r, J
 
-    scaled = ResidualProblem.scaled(fun, rows * d, x_scale, r_scale)
+    def value(x: FloatArray) -> FloatArray:
+        return residual(problem, aft, tones, float(w1), float(w2), x.reshape(rows, d),
+                        jacobian=False)[0]
+
+    scaled = ResidualProblem.scaled(fun, rows * d, x_scale, r_scale, residual=value)
     state = Newton(tol=tol, max_iter=max_iter, where="quasi-periodic HB", dense=True).solve(
         scaled, start.ravel())
     X = full_coefficients(problem, tones, state.x.reshape(rows, d))
