@@ -185,6 +185,19 @@ class QuasiPeriodicResult(KeptDofs):
                          self.tones @ np.array([self.speed[point], self.vc_frequency[point]]))
         return C[0] + np.cos(phase) @ C[1::2] + np.sin(phase) @ C[2::2]
 
+    def state(self, point: int, t: float = 0.0) -> tuple[FloatArray, FloatArray]:
+        """Displacements and velocities on ALL DOFs (``6 n_nodes``,) at time ``t`` [s] of one
+        point's torus (shaft and cage angles 0 at ``t = 0``) [m, rad, m/s, rad/s]: the
+        ``initial`` of a transient started on it. DOFs not kept are zero."""
+        C = self.coefficients[point]
+        omega = self.tones @ np.array([self.speed[point], self.vc_frequency[point]])
+        cos, sin = np.cos(omega * t), np.sin(omega * t)
+        q = C[0] + cos @ C[1::2] + sin @ C[2::2]
+        v = (omega * cos) @ C[2::2] - (omega * sin) @ C[1::2]
+        q_all, v_all = np.zeros(self.dof_map.ndof), np.zeros(self.dof_map.ndof)
+        q_all[self.dofs], v_all[self.dofs] = q, v
+        return q_all, v_all
+
     def orbit(self, point: int, node: int, t: FloatArray) -> tuple[FloatArray, FloatArray]:
         """``(ux, uy)`` of ``node`` at times ``t`` [s] (a torus never closes: pass many
         revolutions to see it filled)."""

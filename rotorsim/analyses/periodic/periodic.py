@@ -62,7 +62,7 @@ from rotorsim.analyses.periodic.problem import (
 )
 from rotorsim.analyses.periodic.resume import finished_result, resumed
 from rotorsim.analyses.periodic.stability import DEFAULT_TOL, stability_model
-from rotorsim.analyses.periodic.torus import refuse_unsupported, torus_branch
+from rotorsim.analyses.periodic.torus import one_vc_order, refuse_unsupported, torus_branch
 from rotorsim.analyses.statics.linearized_rotor import rolling_start
 from rotorsim.analyses.statics.nonlinear_static import start_point
 from rotorsim.analyses.system_input import nonlinear_system
@@ -242,7 +242,8 @@ def periodic(
                            varying_compliance=varying_compliance, fundamental=h.fundamental,
                            frequency_parameter=frequency,
                            unbalance_ratio=spool_ratio(system, list(e.unbalance)))
-    if plan.quasi_periodic and opts.base is None and plan.unbalance_ratio == 1.0:
+    if plan.quasi_periodic and opts.base is None and plan.unbalance_ratio == 1.0 \
+            and one_vc_order(elements):
         refuse_unsupported(WHERE, fold_map=fold_map is not False, peaks=bool(peaks),
                            checkpoint=ck.path is not None or ck.resume is not None,
                            x0=x0 is not None)

@@ -20,8 +20,10 @@ as follows:
   method; None skips them.
 
 Not available on a torus (a :class:`~rotorsim.errors.ModelError` says so and how to freeze
-the rolling elements instead): housing excitation, a fold map, peak location, checkpoints,
-``x0``, and the unbalance of a spool that turns at a speed ratio other than 1.
+the rolling elements instead): a fold map, peak location, checkpoints, ``x0``. A housing
+excitation, the unbalance of a spool that turns at a speed ratio other than 1, or rolling
+bearings of several VC orders (three or more frequencies) keep the rolling elements frozen,
+recorded in ``result.approximation``.
 """
 
 from __future__ import annotations
@@ -30,6 +32,8 @@ from typing import Any
 
 from rotorsim.analyses.quasiperiodic.branch import quasi_periodic
 from rotorsim.analyses.quasiperiodic.output import quasi_periodic_result
+from rotorsim.analyses.quasiperiodic.problem import SAME_ORDER
+from rotorsim.analyses.varying_compliance import vc_orders
 from rotorsim.errors import ModelError
 from rotorsim.options import Excitation
 from rotorsim.results.quasi_periodic import QuasiPeriodicResult
@@ -37,6 +41,13 @@ from rotorsim.results.quasi_periodic import QuasiPeriodicResult
 STEPS = 50
 """Speed steps over the range (natural-parameter continuation)."""
 FREEZE = "; set varying_compliance=False to freeze the rolling elements instead"
+
+
+def one_vc_order(elements: Any) -> bool:
+    """The rolling bearings whose cages turn share one VC order (two frequencies in all:
+    a 2-torus; several orders would make more, and the rolling elements stay frozen)."""
+    orders = vc_orders(elements)
+    return bool(orders) and max(orders) - min(orders) <= SAME_ORDER * max(orders)
 
 
 def vc_order(harmonics: int) -> int:

@@ -132,9 +132,10 @@ def test_periodic_life_of_an_unbalance_orbit():
     rotor = rs.Rotor(shaft, [disk], dampers, nonlinear_elements=bearings, fixed=[(1, "uz")])
     unbalance = [(1, 3e-5, 0.0)]
     branch = rs.periodic(rotor, start=600.0, stop=610.0, harmonics=6, nodes=[0, 1, 2],
-                         unbalance=unbalance,
+                         unbalance=unbalance, varying_compliance=False,
                          continuation=rs.ContinuationOptions(max_points=2, tol=1e-10),
                          stability=rs.StabilityOptions(None, bifurcations=False))
+    assert isinstance(branch, rs.PeriodicResult) and "frozen" in branch.approximation
     life = rs.periodic_life(branch, bearings[0], 0)
     q0, v0 = branch.state(0, 0.0)
     speed = float(branch.speed[0])
@@ -145,6 +146,16 @@ def test_periodic_life_of_an_unbalance_orbit():
     assert life.options["periods"] >= 1
     with pytest.raises(ModelError, match="point 5"):
         rs.periodic_life(branch, bearings[0], 5)
+    # with the balls moving (the default): the torus, rated along time over its cage
+    # revolutions, against the same transient (balls orbiting in both)
+    tori = rs.periodic(rotor, start=600.0, stop=610.0, harmonics=6, nodes=[0, 1, 2],
+                       unbalance=unbalance, stability=None,
+                       continuation=rs.ContinuationOptions(max_points=4, tol=1e-10))
+    assert isinstance(tori, rs.QuasiPeriodicResult)
+    on_torus = rs.periodic_life(tori, bearings[0], 0)
+    print(f"L10r: frozen {life.L10r:.6g}, torus {on_torus.L10r:.6g}, transient "
+          f"{reference.L10r:.6g}")
+    assert on_torus.L10r == pytest.approx(reference.L10r, rel=0.05)
 
 
 def test_bad_input_is_refused_with_a_named_error():
