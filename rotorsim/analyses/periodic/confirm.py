@@ -84,6 +84,12 @@ RELATIVE_TOL = 1e-5
 brackets reach the corrector's own error in the probes' abscissae: probes then fall
 outside the bracket and the event stayed "not located" at 1e-7 of its bracket)."""
 
+HOLD_SLOPE = 0.5
+"""A branch point is corrected on the finer grid at its own parameter (every Newton
+iteration at one ``omega``: one condensation) when the parameter component of its tangent
+is at least this fraction of the largest one of its neighbours (no fold next to it, where
+``dR/dx`` is singular); otherwise, or if that fails, on its tangent's normal hyperplane."""
+
 MAX_ITER = 6
 """Newton iterations of a fine-grid correction (from a converged coarse point)."""
 
@@ -115,12 +121,31 @@ class Artefact:
                 "points": [self.i, self.j], "reason": self.reason}
 
 
-@dataclass(frozen=True)
+@dataclass
 class _FinePoint:
-    """A branch point corrected on the fine grid: tangent and multiplier counts."""
+    """A branch point corrected on the fine grid: tangent, and multiplier counts (computed
+    when a period-doubling or Neimark-Sacker candidate first asks)."""
 
     tangent: Tangent | None
-    counts: tuple[int, int] | None
+    x: FloatArray
+    lam: float
+    model: StabilityModel | None
+    _counts: tuple[tuple[int, int] | None] | None = None
+
+    @property
+    def counts(self) -> tuple[int, int] | None:
+        if self._counts is None:
+            self._counts = (self._floquet(),)
+        return self._counts[0]
+
+    def _floquet(self) -> tuple[int, int] | None:
+        if self.model is None:
+            return None
+        try:
+            mu = self.model.floquet(self.x, self.lam).multipliers
+        except (ModelError, ConvergenceError, np.linalg.LinAlgError):
+            return None
+        return unstable_counts(mu, self.model.tol)
 
 
 @dataclass
@@ -209,22 +234,28 @@ class SamplingCheck:
     def _correct(self, i: int) -> _FinePoint | None:
         b = self.branch
         y0 = self.system.to_y(b.x[i], float(b.lam[i]))
-        # on the hyperplane through the point normal to its tangent: well posed at folds
         border = b.tangents[i]
-        corr = correct(self.system, y0, border, float(border @ y0), self.corrector,
-                       self.stats)
+        corr = None
+        if abs(border[-1]) >= HOLD_SLOPE * _steepest(b.tangents, i):
+            # at the point's own parameter: one condensation for the whole correction
+            e_lam = np.zeros(y0.size)
+            e_lam[-1] = 1.0
+            corr = correct(self.system, y0, e_lam, float(y0[-1]), self.corrector,
+                           self.stats, hold_parameter=True)
+        if corr is None or not corr.converged or corr.evaluation is None:
+            # on the hyperplane through the point normal to its tangent: well posed at folds
+            corr = correct(self.system, y0, border, float(border @ y0), self.corrector,
+                           self.stats)
         if not corr.converged or corr.evaluation is None:
             return None
         tan = tangent(corr.evaluation, b.tangents[i], self.stats)
-        counts = None
-        if self.fine_model is not None:
-            x, lam = self.system.from_y(corr.y)
-            try:
-                mu = self.fine_model.floquet(x, lam).multipliers
-            except (ModelError, ConvergenceError, np.linalg.LinAlgError):
-                mu = None
-            counts = None if mu is None else unstable_counts(mu, self.fine_model.tol)
-        return _FinePoint(tan, counts)
+        x, lam = self.system.from_y(corr.y)
+        return _FinePoint(tan, x, lam, self.fine_model)
+
+
+def _steepest(tangents: FloatArray, i: int) -> float:
+    """Largest ``|t_lam|`` among point ``i`` and its neighbours."""
+    return float(np.max(np.abs(tangents[max(i - 1, 0): i + 2, -1])))
 
 
 def candidates(branch: Branch, multipliers: np.ndarray | None,
