@@ -13,11 +13,11 @@ bearings open and close contacts, many such changes are artefacts of the discret
   the truncation of a Craig-Bampton reduced Floquet model) that move a nearly neutral
   multiplier across ``|mu| = 1 + tol``.
 
-Folds are turning points of the branch itself (a corner of a non-smooth branch is one
-too) and are always located. Any other candidate is confirmed when it survives a finer
-discretisation: both bracket points are corrected again on an AFT grid with :data:`REFINE`
-times the samples (on the hyperplane through each point normal to its tangent, well posed
-at folds), with :data:`REFINE` times the fixed-interface modes when the Floquet model is
+Every candidate, folds included, is confirmed when it survives a finer discretisation (a
+turning point of the branch that the finer grid does not turn is an aliasing artefact):
+both bracket points are corrected again on an AFT grid with :data:`REFINE` times the
+samples (at their own parameter where no fold is next to them, else on the hyperplane
+through each point normal to its tangent, well posed at folds), with :data:`REFINE` times the fixed-interface modes when the Floquet model is
 reduced, and the same test must still change in the same way between them (or between
 their outer neighbours ``i - 1``, ``j + 1``, when the finer grid moves the event across a
 bracket point). When one edge of an unstable window fails, so does the other. Confirmed
@@ -189,11 +189,9 @@ class SamplingCheck:
     def confirms(self, candidate: Candidate, coarse: np.ndarray | None) -> str:
         """"" when ``candidate`` survives the fine grid, else the reason it does not
         (``coarse``: the branch's multipliers (P, r), for the direction of a count
-        change). Folds are turning points of the branch itself and always pass. The fine
-        grid may move an event across a bracket point: the change is also sought between
-        the neighbours ``i - 1`` and ``j + 1``."""
-        if candidate.kind == "fold":
-            return ""
+        change). A fold must turn the finer branch too (the parameter component of the
+        finer tangent changes sign). The fine grid may move an event across a bracket
+        point: the change is also sought between the neighbours ``i - 1`` and ``j + 1``."""
         last = len(self.branch) - 1
         reason = ""
         for i, j in ((candidate.i, candidate.j),
@@ -210,10 +208,13 @@ class SamplingCheck:
         lo, hi = self._point(i), self._point(j)
         if lo is None or hi is None:
             return "a bracket point does not converge on the finer sampling"
-        if candidate.kind == "branch_point":
+        if candidate.kind in ("branch_point", "fold"):
             if lo.tangent is None or hi.tangent is None:
                 return "no tangent on the finer sampling"
-            changed = lo.tangent.det_sign * hi.tangent.det_sign < 0
+            if candidate.kind == "fold":   # the finer branch turns between them too
+                changed = lo.tangent.t[-1] * hi.tangent.t[-1] < 0
+            else:
+                changed = lo.tangent.det_sign * hi.tangent.det_sign < 0
         else:
             if lo.counts is None or hi.counts is None or coarse is None \
                     or self.model is None:
