@@ -17,13 +17,14 @@ Every candidate, folds included, is confirmed when it survives a finer discretis
 turning point of the branch that the finer grid does not turn is an aliasing artefact):
 both bracket points are corrected again on an AFT grid with :data:`REFINE` times the
 samples (at their own parameter where no fold is next to them, else on the hyperplane
-through each point normal to its tangent, well posed at folds), with :data:`REFINE` times
-the fixed-interface modes when the Floquet model is reduced, and the same test must still
-change in the same way between them (or between their outer neighbours ``i - 1``,
-``j + 1``, when the finer grid moves the event across a bracket point). When one edge of an unstable window fails, so does the other. Confirmed
-candidates are then located; an event whose test function jumps across zero (it does not
-fall to :data:`DIP` of its bracket values) or crosses it :data:`STEEP` times more steeply
-than between its points is an artefact too.
+through each point normal to its tangent, well posed at folds), with :data:`REFINE`
+times the fixed-interface modes when the Floquet model is reduced, and the same test
+must still change in the same way between them (or between their outer neighbours ``i -
+1``, ``j + 1``, when the finer grid moves the event across a bracket point). When one
+edge of an unstable window fails, so does the other. Confirmed candidates are then
+located; an event whose test function jumps across zero (it does not fall to :data:`DIP`
+of its bracket values) or crosses it :data:`STEEP` times more steeply than between its
+points is an artefact too.
 
 Artefacts are never reported as bifurcations: ``result.unresolved`` lists them, merged per
 kind over adjacent intervals, with the interval and the reason, so that nothing is
