@@ -19,8 +19,8 @@ both bracket points are corrected again on an AFT grid with :data:`REFINE` times
 samples (at their own parameter where no fold is next to them, else on the hyperplane
 through each point normal to its tangent, well posed at folds), with :data:`REFINE`
 times the fixed-interface modes when the Floquet model is reduced, and the same test
-must still change in the same way between them (or between their outer neighbours ``i -
-1``, ``j + 1``, when the finer grid moves the event across a bracket point). When one
+must still change in the same way between them (or between their outer neighbours
+``i - 1``, ``j + 1``, when the finer grid moves the event across a bracket point). When one
 edge of an unstable window fails, so does the other. Confirmed candidates are then
 located; an event whose test function jumps across zero (it does not fall to :data:`DIP`
 of its bracket values) or crosses it :data:`STEEP` times more steeply than between its
