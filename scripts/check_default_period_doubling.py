@@ -31,7 +31,7 @@ def main() -> None:
     model = rs.load_model(ROOT / "models" / "default.toml")
     spec = dataclasses.replace(model.analyses["branch"], nodes=None)
     rotor = model.rotor.with_nonlinear(model.rolling_bearings)
-    r = ar._periodic(rotor, model, spec, False, False, None)
+    r = ar._periodic(rotor, model, spec, False, False, rs.Checkpointing())
     i = int(np.argmin(np.min(r.multipliers.real, axis=1)))
     system = _system(rotor)
     pm = PeriodMap(system, float(r.speed[i]), 2 * np.pi / float(r.fundamental[i]),
