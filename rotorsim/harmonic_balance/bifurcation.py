@@ -51,6 +51,7 @@ from rotorsim.solvers.continuation_core import (
     Tangent,
 )
 from rotorsim.solvers.continuation_locate import (
+    ESTIMATE_WIDTH,
     Segment,
     SegmentPoint,
     illinois,
@@ -308,13 +309,18 @@ class _Locator:
             ends = (lo.value, hi.value)
         tol = max(self.options.tol, self.options.relative_tol * h)
         coarse = max(tol, 1e-6 * h) if kind == "fold" else tol
+        # folds sit at corners of a contact branch, where a Hermite estimate across the
+        # corner is only O(w) close (and the parameter has kinks at every contact onset
+        # an AFT sample crosses): their probes are always corrected
+        near = ESTIMATE_WIDTH * h if kind != "fold" else 0.0
         if self.options.screen_jumps and kind != "fold":
-            lo, hi, regular = screened(segment, lo, hi, coarse, self.options.max_iter)
+            lo, hi, regular = screened(segment, lo, hi, coarse, self.options.max_iter, near)
         else:
-            lo, hi, regular = *illinois(segment, lo, hi, coarse, self.options.max_iter), True
+            lo, hi, regular = *illinois(segment, lo, hi, coarse, self.options.max_iter,
+                                        near), True
         if not regular:  # a jump of the test function: returned unlocated
             best = lo if abs(lo.value) <= abs(hi.value) else hi
-            x, lam = self.system.from_y(best.y)
+            x, lam = self.system.from_y(segment.polished(best).y)
             return BifurcationEvent(kind, lam, x, i, j, ends, False, "test_function",
                                     None, best.data, best.value, math.inf)
         if kind == "fold":
@@ -325,13 +331,16 @@ class _Locator:
                 x, lam, phi = fold
                 return BifurcationEvent("fold", lam, x, i, j, ends, True, "extended_system",
                                         phi)
-            lo, hi = illinois(segment, lo, hi, tol, self.options.max_iter)
+            lo, hi = illinois(segment, lo, hi, tol, self.options.max_iter, near)
         best = lo if abs(lo.value) <= abs(hi.value) else hi
-        if kind == "neimark_sacker" and not _is_complex_crossing(best.data):
+        # the event's point on the branch; its test value is that of the bracket, where
+        # the estimates are free of the corrector's noise at a nearly singular Jacobian
+        point = segment.polished(best)
+        if kind == "neimark_sacker" and not _is_complex_crossing(point.data):
             return None
-        x, lam = self.system.from_y(best.y)
+        x, lam = self.system.from_y(point.y)
         return BifurcationEvent(kind, lam, x, i, j, ends, hi.s - lo.s <= tol, "test_function",
-                                best.t[:-1] if kind == "fold" else None, best.data,
+                                point.t[:-1] if kind == "fold" else None, point.data,
                                 best.value, steepness(lo, hi, ends, h))
 
     def _test(self, kind: str, y: FloatArray, tan: Tangent, border: FloatArray,

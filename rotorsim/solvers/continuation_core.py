@@ -275,12 +275,15 @@ class CorrectorOptions:
 
 
 def correct(system: ScaledSystem, y_start: FloatArray, border: FloatArray, target: float,
-            options: CorrectorOptions, stats: Stats) -> Correction:
+            options: CorrectorOptions, stats: Stats, *,
+            hold_parameter: bool = False) -> Correction:
     """Newton with backtracking on ``R(y) = 0, border . y = target`` (seed 002 eq 3.42).
 
     Converged when ``max |R / r_scale| <= tol`` and ``|border . y - target| <= tol``, or
     within the round-off floor where that is above ``tol`` (:data:`ROUNDOFF`), and, with
-    ``options.step_tol``, when the last Newton correction is below it too. Each
+    ``options.step_tol``, when the last Newton correction is below it too (the one just
+    taken, or the one computed at the converged point, which is then not taken: no
+    evaluation is spent to confirm a point already within ``step_tol``). Each
     iteration factorises the bordered Jacobian once; the trial points of the line search
     satisfy the Armijo condition ``m(a) <= (1 - 2 c a) m(0)`` on the merit
     ``m = |F|^2 / 2`` (the Newton direction has slope ``-2 m(0)``). Once the residual is
@@ -294,6 +297,12 @@ def correct(system: ScaledSystem, y_start: FloatArray, border: FloatArray, targe
     holds only in a vanishing neighbourhood and the line search takes ever smaller steps;
     ``stall_tol`` is the force imbalance, relative to the typical force, below which such a
     point is as good as the discretisation behind it.
+
+    ``hold_parameter=True`` (with ``border = e_lam``, ``target = y_start[-1]``) keeps the
+    parameter bit for bit at its start: the parameter component of every Newton step is
+    set to zero instead of the round-off the solve leaves there, so a residual that caches
+    work per parameter value (the condensation of a harmonic-balance residual, one LU per
+    harmonic and ``omega``) does that work once per correction.
     """
     y = np.array(y_start, dtype=float)
     try:
@@ -316,10 +325,16 @@ def correct(system: ScaledSystem, y_start: FloatArray, border: FloatArray, targe
         except ConvergenceError as exc:
             return Correction(y, ev, iteration, False, str(exc))
         step = -fact.solve(np.concatenate([ev.rh, [weight * g]]))
+        if hold_parameter:
+            step[-1] = 0.0
         length = float(np.linalg.norm(step))
         if length > options.max_correction:  # a trust region: shorten, keep the direction
             step *= options.max_correction / length
         last_step = float(np.max(np.abs(step)))
+        if small and options.step_tol is not None and last_step <= options.step_tol:
+            # the correction still due is below step_tol: y is as close as asked, and the
+            # step's evaluation would only confirm it
+            return Correction(y, ev, iteration + 1, True)
         if small:
             trial, accepted, message = y + step, None, ""
             try:

@@ -19,11 +19,12 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
 
+from rotorsim.errors import ConvergenceError
 from rotorsim.solvers.continuation_core import (
     CorrectorOptions,
     Evaluation,
@@ -57,6 +58,7 @@ class SegmentPoint:
     t: FloatArray
     value: float
     data: Any = None
+    corrected: bool = True
 
 
 @dataclass(frozen=True, eq=False)
@@ -69,6 +71,7 @@ class Segment:
     direction: FloatArray
     test: TestFunction
     guard: str = "cone"
+    _polished: dict[int, SegmentPoint] = field(default_factory=dict, repr=False)
 
     @classmethod
     def between(cls, system: ScaledSystem, corrector: CorrectorOptions, y0: FloatArray,
@@ -89,13 +92,7 @@ class Segment:
         bracket from the Hermite start ("drift": at a branch point the traced branch's
         tangent is ill-determined, the bordered Jacobian being nearly singular, while the
         start stays O(h^4) close to the branch)."""
-        chord = hi.y - lo.y
-        length = float(np.linalg.norm(chord))
-        v = chord / length
-        sigma = (s - lo.s) / (hi.s - lo.s)
-        s2, s3 = sigma * sigma, sigma * sigma * sigma
-        start = ((2 * s3 - 3 * s2 + 1) * lo.y + (s3 - 2 * s2 + sigma) * length * lo.t
-                 + (3 * s2 - 2 * s3) * hi.y + (s3 - s2) * length * hi.t)
+        start, v, length = _hermite(lo, hi, s)
         cone = 2.0 * max(_angle(lo.t, v), _angle(hi.t, v)) + CONE_SLACK
         point = self._corrected(start, v, cone if self.guard == "cone" else None)
         if point is None or not lo.s < point.s < hi.s:
@@ -103,6 +100,41 @@ class Segment:
         if self.guard == "drift" and np.linalg.norm(point.y - start) > DRIFT * length:
             return None
         return point
+
+    def estimate(self, lo: SegmentPoint, hi: SegmentPoint, s: float) -> SegmentPoint | None:
+        """The cubic Hermite interpolant of the corrected points ``lo`` and ``hi`` at
+        abscissa ``s``, *not* corrected: one evaluation and one factorisation for the
+        tangent and the test. Between corrected points ``w`` apart it lies ``O(w^4)`` from
+        the branch where the branch is smooth, so on a bracket already narrowed to
+        :data:`ESTIMATE_WIDTH` of the segment its test value is that of the branch to far
+        below the location tolerance, and free of the corrector's noise at a nearly
+        singular Jacobian (a contact kink between them is caught by :func:`illinois`).
+        None if the evaluation fails."""
+        target = s
+        for _ in range(3):  # the interpolant's abscissa, on the segment's chord, at s
+            start, v, _ = _hermite(lo, hi, s)
+            s += target - float(self.direction @ (start - self.origin))
+        stats = Stats()
+        try:
+            ev = self.system.evaluate(start, stats)
+        except ConvergenceError:
+            return None
+        tan = tangent(ev, v, stats)
+        if tan is None:
+            return None
+        value, data = self.test(start, ev, tan, v)
+        return SegmentPoint(float(self.direction @ (start - self.origin)), start, tan.t,
+                            value, data, corrected=False)
+
+    def polished(self, point: SegmentPoint) -> SegmentPoint:
+        """``point`` corrected onto the branch (chord hyperplane) if it is an estimate;
+        the estimate itself if the correction fails."""
+        if point.corrected:
+            return point
+        if id(point) not in self._polished:
+            corrected = self._corrected(point.y, self.direction, None)
+            self._polished[id(point)] = corrected if corrected is not None else point
+        return self._polished[id(point)]
 
     def _corrected(self, start: FloatArray, border: FloatArray,
                    cone: float | None) -> SegmentPoint | None:
@@ -120,20 +152,40 @@ class Segment:
 
 
 def illinois(segment: Segment, lo: SegmentPoint, hi: SegmentPoint, tol: float,
-             max_iter: int) -> tuple[SegmentPoint, SegmentPoint]:
+             max_iter: int, estimate: float = 0.0, scale: float | None = None
+             ) -> tuple[SegmentPoint, SegmentPoint]:
     """Shrink the bracket ``[lo, hi]`` (opposite test signs) to width ``tol`` in ``s``.
 
     Returns the final bracket (equal points if the test vanished exactly). A refused probe
-    is replaced by the bisection point; if that fails too the iteration stops early.
+    is replaced by the bisection point; if that fails too the iteration stops early. Once
+    the bracket is at most ``estimate`` wide, the probes are uncorrected points of the cubic
+    Hermite interpolant of the last two corrected bracket ends (:meth:`Segment.estimate`);
+    pass the final points through :meth:`Segment.polished`. An estimated zero where the
+    corrected test function is not small against ``scale`` (default: the smaller bracket
+    value at entry; :data:`CONSISTENT`) is a zero of the cubic only, and the iteration
+    restarts from the anchors with corrected probes.
     """
+    scale = min(abs(lo.value), abs(hi.value)) if scale is None else scale
     f_lo, f_hi = lo.value, hi.value
     side = 0
-    for _ in range(max_iter):
+    anchors = (lo, hi) if lo.corrected and hi.corrected else None
+    used = 0
+    while used < max_iter:
+        used += 1
         if hi.s - lo.s <= tol:
             break
         s = hi.s - f_hi * (hi.s - lo.s) / (f_hi - f_lo)
         mid = 0.5 * (lo.s + hi.s)
-        new = segment.probe(lo, hi, s if lo.s < s < hi.s else mid)
+        s = s if lo.s < s < hi.s else mid
+        new = None
+        if lo.corrected and hi.corrected:
+            anchors = (lo, hi)
+        if hi.s - lo.s <= estimate and anchors is not None:
+            # on the one cubic between the last corrected ends: the tangents of estimates
+            # are those of points off the branch, meaningless next to a branch point
+            new = segment.estimate(*anchors, s)
+            new = new if new is not None and lo.s < new.s < hi.s else None
+        new = new if new is not None else segment.probe(lo, hi, s)
         new = new if new is not None else segment.probe(lo, hi, mid)
         if new is None:
             break
@@ -147,7 +199,26 @@ def illinois(segment: Segment, lo: SegmentPoint, hi: SegmentPoint, tol: float,
             lo, f_lo = new, new.value
             f_hi = 0.5 * f_hi if side == 1 else f_hi
             side = 1
+    if anchors is not None and not (lo.corrected and hi.corrected) \
+            and not _consistent(segment, lo, hi, scale):
+        # a zero of the interpolated test function the branch does not have (a contact
+        # kink between the anchors): corrected probes from the anchors instead
+        return illinois(segment, *anchors, tol, max_iter - used)
     return lo, hi
+
+
+CONSISTENT = 0.1
+"""An estimated zero (:func:`illinois`) is accepted when the test function at the point
+corrected from it is at most this fraction of the smaller bracket value at entry. On the
+clearance rotor of issue 16 it was 1e-4 to 6e-3 of it where the cubic follows the branch
+(the corrector's noise next to a branch point), and 0.81 where a contact kink between the
+anchors put a zero on the cubic only."""
+
+
+def _consistent(segment: Segment, lo: SegmentPoint, hi: SegmentPoint,
+                scale: float) -> bool:
+    best = segment.polished(lo if abs(lo.value) <= abs(hi.value) else hi)
+    return abs(best.value) <= CONSISTENT * scale
 
 
 SCREEN_ITERATIONS = 6
@@ -158,8 +229,10 @@ of the smaller bracket value (Illinois converges superlinearly on it); a jump ha
 
 
 def screened(segment: Segment, lo: SegmentPoint, hi: SegmentPoint, tol: float,
-             max_iter: int) -> tuple[SegmentPoint, SegmentPoint, bool]:
-    """:func:`illinois`, stopped early on a jump: ``(lo, hi, regular)``.
+             max_iter: int, estimate: float = 0.0
+             ) -> tuple[SegmentPoint, SegmentPoint, bool]:
+    """:func:`illinois` (``estimate`` passed on), stopped early on a jump:
+    ``(lo, hi, regular)``.
 
     A test function that changes sign by jumping (a non-smooth point of a sampled
     contact law, not a bifurcation) would use up ``max_iter`` probes; after
@@ -167,12 +240,14 @@ def screened(segment: Segment, lo: SegmentPoint, hi: SegmentPoint, tol: float,
     below :data:`JUMP_RATIO` of the ends) from a jump, which is returned unlocated.
     """
     size = min(abs(lo.value), abs(hi.value))
-    lo, hi = illinois(segment, lo, hi, tol, min(SCREEN_ITERATIONS, max_iter))
+    lo, hi = illinois(segment, lo, hi, tol, min(SCREEN_ITERATIONS, max_iter), estimate,
+                      size)
     if hi.s - lo.s <= tol or lo is hi:
         return lo, hi, True
     if min(abs(lo.value), abs(hi.value)) > JUMP_RATIO * size:
         return lo, hi, False
-    lo, hi = illinois(segment, lo, hi, tol, max(max_iter - SCREEN_ITERATIONS, 0))
+    lo, hi = illinois(segment, lo, hi, tol, max(max_iter - SCREEN_ITERATIONS, 0), estimate,
+                      size)
     return lo, hi, True
 
 
@@ -194,6 +269,27 @@ def steepness(lo: SegmentPoint, hi: SegmentPoint, ends: tuple[float, float],
     if width <= 0.0 or not mean > 0.0:
         return 1.0
     return abs(hi.value - lo.value) / width / mean
+
+
+ESTIMATE_WIDTH = 1e-2
+"""Bracket width, relative to the segment's chord, below which :func:`illinois` probes
+with uncorrected Hermite points (:meth:`Segment.estimate`): their distance to the branch,
+``O(w^4)`` in the width ``w`` of a bracket between corrected points, is then about 1e-8 of
+the chord's curvature term, far below the 1e-5 location tolerance of events."""
+
+
+def _hermite(lo: SegmentPoint, hi: SegmentPoint, s: float
+             ) -> tuple[FloatArray, FloatArray, float]:
+    """Cubic Hermite interpolant of ``lo`` and ``hi`` (values, tangents) at abscissa
+    ``s``, the unit chord and its length."""
+    chord = hi.y - lo.y
+    length = float(np.linalg.norm(chord))
+    v = chord / length
+    sigma = (s - lo.s) / (hi.s - lo.s)
+    s2, s3 = sigma * sigma, sigma * sigma * sigma
+    start = ((2 * s3 - 3 * s2 + 1) * lo.y + (s3 - 2 * s2 + sigma) * length * lo.t
+             + (3 * s2 - 2 * s3) * hi.y + (s3 - s2) * length * hi.t)
+    return start, v, length
 
 
 def _angle(a: FloatArray, b: FloatArray) -> float:

@@ -13,17 +13,18 @@ bearings open and close contacts, many such changes are artefacts of the discret
   the truncation of a Craig-Bampton reduced Floquet model) that move a nearly neutral
   multiplier across ``|mu| = 1 + tol``.
 
-Folds are turning points of the branch itself (a corner of a non-smooth branch is one
-too) and are always located. Any other candidate is confirmed when it survives a finer
-discretisation: both bracket points are corrected again on an AFT grid with :data:`REFINE`
-times the samples (on the hyperplane through each point normal to its tangent, well posed
-at folds), with :data:`REFINE` times the fixed-interface modes when the Floquet model is
-reduced, and the same test must still change in the same way between them (or between
-their outer neighbours ``i - 1``, ``j + 1``, when the finer grid moves the event across a
-bracket point). When one edge of an unstable window fails, so does the other. Confirmed
-candidates are then located; an event whose test function jumps across zero (it does not
-fall to :data:`DIP` of its bracket values) or crosses it :data:`STEEP` times more steeply
-than between its points is an artefact too.
+Every candidate, folds included, is confirmed when it survives a finer discretisation (a
+turning point of the branch that the finer grid does not turn is an aliasing artefact):
+both bracket points are corrected again on an AFT grid with :data:`REFINE` times the
+samples (at their own parameter where no fold is next to them, else on the hyperplane
+through each point normal to its tangent, well posed at folds), with :data:`REFINE`
+times the fixed-interface modes when the Floquet model is reduced, and the same test
+must still change in the same way between them (or between their outer neighbours
+``i - 1``, ``j + 1``, when the finer grid moves the event across a bracket point). When one
+edge of an unstable window fails, so does the other. Confirmed candidates are then
+located; an event whose test function jumps across zero (it does not fall to :data:`DIP`
+of its bracket values) or crosses it :data:`STEEP` times more steeply than between its
+points is an artefact too.
 
 Artefacts are never reported as bifurcations: ``result.unresolved`` lists them, merged per
 kind over adjacent intervals, with the interval and the reason, so that nothing is
@@ -84,6 +85,12 @@ RELATIVE_TOL = 1e-5
 brackets reach the corrector's own error in the probes' abscissae: probes then fall
 outside the bracket and the event stayed "not located" at 1e-7 of its bracket)."""
 
+HOLD_SLOPE = 0.5
+"""A branch point is corrected on the finer grid at its own parameter (every Newton
+iteration at one ``omega``: one condensation) when the parameter component of its tangent
+is at least this fraction of the largest one of its neighbours (no fold next to it, where
+``dR/dx`` is singular); otherwise, or if that fails, on its tangent's normal hyperplane."""
+
 MAX_ITER = 6
 """Newton iterations of a fine-grid correction (from a converged coarse point)."""
 
@@ -115,12 +122,31 @@ class Artefact:
                 "points": [self.i, self.j], "reason": self.reason}
 
 
-@dataclass(frozen=True)
+@dataclass
 class _FinePoint:
-    """A branch point corrected on the fine grid: tangent and multiplier counts."""
+    """A branch point corrected on the fine grid: tangent, and multiplier counts (computed
+    when a period-doubling or Neimark-Sacker candidate first asks)."""
 
     tangent: Tangent | None
-    counts: tuple[int, int] | None
+    x: FloatArray
+    lam: float
+    model: StabilityModel | None
+    _counts: tuple[tuple[int, int] | None] | None = None
+
+    @property
+    def counts(self) -> tuple[int, int] | None:
+        if self._counts is None:
+            self._counts = (self._floquet(),)
+        return self._counts[0]
+
+    def _floquet(self) -> tuple[int, int] | None:
+        if self.model is None:
+            return None
+        try:
+            mu = self.model.floquet(self.x, self.lam).multipliers
+        except (ModelError, ConvergenceError, np.linalg.LinAlgError):
+            return None
+        return unstable_counts(mu, self.model.tol)
 
 
 @dataclass
@@ -164,11 +190,9 @@ class SamplingCheck:
     def confirms(self, candidate: Candidate, coarse: np.ndarray | None) -> str:
         """"" when ``candidate`` survives the fine grid, else the reason it does not
         (``coarse``: the branch's multipliers (P, r), for the direction of a count
-        change). Folds are turning points of the branch itself and always pass. The fine
-        grid may move an event across a bracket point: the change is also sought between
-        the neighbours ``i - 1`` and ``j + 1``."""
-        if candidate.kind == "fold":
-            return ""
+        change). A fold must turn the finer branch too (the parameter component of the
+        finer tangent changes sign). The fine grid may move an event across a bracket
+        point: the change is also sought between the neighbours ``i - 1`` and ``j + 1``."""
         last = len(self.branch) - 1
         reason = ""
         for i, j in ((candidate.i, candidate.j),
@@ -185,10 +209,13 @@ class SamplingCheck:
         lo, hi = self._point(i), self._point(j)
         if lo is None or hi is None:
             return "a bracket point does not converge on the finer sampling"
-        if candidate.kind == "branch_point":
+        if candidate.kind in ("branch_point", "fold"):
             if lo.tangent is None or hi.tangent is None:
                 return "no tangent on the finer sampling"
-            changed = lo.tangent.det_sign * hi.tangent.det_sign < 0
+            if candidate.kind == "fold":   # the finer branch turns between them too
+                changed = lo.tangent.t[-1] * hi.tangent.t[-1] < 0
+            else:
+                changed = lo.tangent.det_sign * hi.tangent.det_sign < 0
         else:
             if lo.counts is None or hi.counts is None or coarse is None \
                     or self.model is None:
@@ -209,22 +236,28 @@ class SamplingCheck:
     def _correct(self, i: int) -> _FinePoint | None:
         b = self.branch
         y0 = self.system.to_y(b.x[i], float(b.lam[i]))
-        # on the hyperplane through the point normal to its tangent: well posed at folds
         border = b.tangents[i]
-        corr = correct(self.system, y0, border, float(border @ y0), self.corrector,
-                       self.stats)
+        corr = None
+        if abs(border[-1]) >= HOLD_SLOPE * _steepest(b.tangents, i):
+            # at the point's own parameter: one condensation for the whole correction
+            e_lam = np.zeros(y0.size)
+            e_lam[-1] = 1.0
+            corr = correct(self.system, y0, e_lam, float(y0[-1]), self.corrector,
+                           self.stats, hold_parameter=True)
+        if corr is None or not corr.converged or corr.evaluation is None:
+            # on the hyperplane through the point normal to its tangent: well posed at folds
+            corr = correct(self.system, y0, border, float(border @ y0), self.corrector,
+                           self.stats)
         if not corr.converged or corr.evaluation is None:
             return None
         tan = tangent(corr.evaluation, b.tangents[i], self.stats)
-        counts = None
-        if self.fine_model is not None:
-            x, lam = self.system.from_y(corr.y)
-            try:
-                mu = self.fine_model.floquet(x, lam).multipliers
-            except (ModelError, ConvergenceError, np.linalg.LinAlgError):
-                mu = None
-            counts = None if mu is None else unstable_counts(mu, self.fine_model.tol)
-        return _FinePoint(tan, counts)
+        x, lam = self.system.from_y(corr.y)
+        return _FinePoint(tan, x, lam, self.fine_model)
+
+
+def _steepest(tangents: FloatArray, i: int) -> float:
+    """Largest ``|t_lam|`` among point ``i`` and its neighbours."""
+    return float(np.max(np.abs(tangents[max(i - 1, 0): i + 2, -1])))
 
 
 def candidates(branch: Branch, multipliers: np.ndarray | None,

@@ -37,7 +37,12 @@ from rotorsim.elements.base import FloatArray
 from rotorsim.harmonic_balance.bifurcation import PROBE_MAX_ITER, BifurcationEvent
 from rotorsim.solvers.continuation import Branch
 from rotorsim.solvers.continuation_core import CorrectorOptions, ScaledSystem
-from rotorsim.solvers.continuation_locate import Segment, illinois, steepness
+from rotorsim.solvers.continuation_locate import (
+    ESTIMATE_WIDTH,
+    Segment,
+    illinois,
+    steepness,
+)
 
 IMAG_TOL = 1e-6
 """``|Im mu| <= IMAG_TOL max(|mu|, 1)`` counts as real."""
@@ -144,10 +149,11 @@ def _locate(system: ScaledSystem, corrector: CorrectorOptions, points: FloatArra
     # no early jump screen: the count-based test switches between multiplier sets (a
     # complex pair becoming real), so its bracket values may differ by O(1) although the
     # crossing multiplier moves smoothly; the steepness at the located zero is judged
-    lo, hi = illinois(segment, lo, hi, tol, max_iter)
+    lo, hi = illinois(segment, lo, hi, tol, max_iter, ESTIMATE_WIDTH * length)
     regular = True
     best = lo if abs(lo.value) <= abs(hi.value) else hi
-    x, lam = system.from_y(best.y)
+    point = segment.polished(best)      # on the branch; the value is the bracket's
+    x, lam = system.from_y(point.y)
     return BifurcationEvent(kind, lam, x, i, j, ends, regular and hi.s - lo.s <= tol,
-                            "test_function", None, best.data, best.value,
+                            "test_function", None, point.data, best.value,
                             steepness(lo, hi, ends, length) if regular else math.inf)
