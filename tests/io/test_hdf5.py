@@ -250,7 +250,8 @@ def _torus_results() -> dict[str, Any]:
     return {"quasi_periodic": tori, "torus_event": event}
 
 
-RESULT_NAMES = ["quasi_periodic", "torus_event", "modal", "campbell", "critical_exact", "critical_campbell", "map",
+RESULT_NAMES = ["quasi_periodic", "torus_event", "modal", "campbell", "critical_exact",
+                "critical_campbell", "map",
                 "unbalance", "receptance", "static", "static_system", "deflected_shape",
                 "ellipse", "intersections", "bearing_equilibrium", "energy_minimum",
                 "stiffness_over_pass", "transient", "transient_continuable",
