@@ -268,6 +268,9 @@ def equal_accuracy(bench: BenchModel, reference_rtol: float = 1e-10,
         out[f"{label} {setting}: error"] = err
         out[f"{label} {setting}: s"] = wall
         out[f"{label} {setting}: steps"] = float(res.stats["steps"])
+        decision = res.options.get("auto_reduction")
+        if decision is not None:  # 1: the automatic path chose a Craig-Bampton model
+            out[f"{label} {setting}: reduced"] = float(bool(decision["reduced"]))
     for method in IVP_METHODS:
         for rtol in (bench.rtols[:2] if quick else bench.rtols):
             start_clock = time.process_time()
