@@ -33,6 +33,7 @@ import os
 import sys
 import time
 from pathlib import Path
+from typing import Any
 
 for _var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
     os.environ.setdefault(_var, "1")
@@ -88,17 +89,19 @@ def runs(bench: BenchModel, modes: int | None) -> list[tuple[str, str, float, fl
     automatic path at rtol 1e-3."""
     rotor, bearings = bench.build()
     times = np.linspace(0.0, bench.t_end, 41)
-    kw = dict(nonlinear=bearings, speed=bench.speed, unbalance=bench.unbalance,
-              nodes=[bench.probe], output=rs.Output(times=times), reduction=modes)
+    kw: dict[str, Any] = dict(nonlinear=bearings, speed=bench.speed,
+                              unbalance=bench.unbalance, nodes=[bench.probe],
+                              output=rs.Output(times=times), reduction=modes)
     ref = transient(rotor, bench.t_end, rtol=1e-8, **kw).displacement(bench.probe, "uy")
     motion = float(np.ptp(ref))
     out = []
-    settings = [(f"adams dt={dt:g}", {"dt": dt, "method": "adams"}) for dt in STEPS]
+    settings: list[tuple[str, dict[str, Any]]] = [
+        (f"adams dt={dt:g}", {"dt": dt, "method": "adams"}) for dt in STEPS]
     settings.append(("auto rtol=1e-3", {"rtol": 1e-3}))
     for label, extra in settings:
         clock = time.process_time()
         try:
-            res = transient(rotor, bench.t_end, **extra, **kw)  # type: ignore[arg-type]
+            res = transient(rotor, bench.t_end, **extra, **kw)
             y = res.displacement(bench.probe, "uy")
             err = float(np.max(np.abs(y - ref))) / motion
             outcome = "ok" if np.isfinite(err) and err < 1.0 else "diverged"
