@@ -39,20 +39,23 @@ DEFAULT_RTOL = 1e-4
 """Accuracy of ``method="auto"`` when no ``rtol`` is given."""
 
 
-def dof_weights(system: RotorSystem, n: int, basis: FloatArray | None = None
+def dof_weights(system: RotorSystem, n: int, basis: ReducedBasis | None = None
                 ) -> tuple[float, ...] | None:
     """Weight of every unknown in the error measure: 1 for translations, the longest shaft
-    element [m] for rotations. For a reduced problem (``basis`` T, free DOFs x n, ``q = T
-    x``) the weight of coordinate ``j`` is the largest weighted physical displacement of its
-    column, ``max_i w_i |T_ij|``, so that a weighted error of ``e`` in it moves no point of
-    the rotor by more than ``e``. None when ``n`` matches neither."""
+    element [m] for rotations. For a reduced problem (``q = T x`` on ``basis``) the
+    boundary coordinates keep the weights of their DOFs (they are those DOFs; the interior
+    follows them statically), and the weight of any other coordinate ``j`` is the largest
+    weighted physical displacement of its column, ``max_i w_i |T_ij|``, so that a weighted
+    error of ``e`` in it moves no point of the rotor by more than ``e``. None when ``n``
+    matches neither."""
     free = np.asarray(system.dof_map.free)
     lengths = np.diff(np.asarray(system.nodes_pos, dtype=float))
     length = float(np.max(lengths, initial=0.0)) or 1.0
     w = np.where(free % DOFS_PER_NODE >= 3, length, 1.0)
-    if basis is not None and basis.shape == (free.size, n):
-        w = np.max(np.abs(basis) * w[:, None], axis=0)
-        w = np.where(w > 0.0, w, 1.0)
+    if basis is not None and basis.T.shape == (free.size, n):
+        b = basis.boundary.size
+        rest = np.max(np.abs(basis.T[:, b:]) * w[:, None], axis=0)
+        w = np.concatenate([w[basis.boundary], np.where(rest > 0.0, rest, 1.0)])
     elif free.size != n:
         return None
     return tuple(float(x) for x in w)
@@ -68,7 +71,7 @@ def check_rtol(rtol: float) -> float:
 
 def auto_stepper(system: RotorSystem, problem: SecondOrderProblem, loads: TransientLoads,
                  profile: BoundSpeed, t0: float, t_end: float, q0: FloatArray,
-                 rtol: float, basis: FloatArray | None = None,
+                 rtol: float, basis: ReducedBasis | None = None,
                  motion: float | None = None) -> Radau:
     """The Radau stepper at ``rtol`` with the weights and motion floor of ``system``
     (:func:`dof_weights`; for a reduced problem, ``basis`` T and the floor ``motion``
@@ -163,7 +166,7 @@ def auto_path(system: RotorSystem, problems: tuple[SecondOrderProblem, SecondOrd
         problem, loads, profile, t0, t_end, q0, weights)
     if basis is not None:  # reduction given: weights through the basis
         return AutoPath(given, basis, None, auto_stepper(
-            system, given, loads, profile, t0, t_end, q0, rtol, basis.T, floor), None)
+            system, given, loads, profile, t0, t_end, q0, rtol, basis, floor), None)
     top = max(abs(profile.speed(t0)), abs(profile.speed(t_end)))
     reduced, new_basis, decision = auto_reduction(
         system, problem, loads, (basis_speed, top), t_end - t0, rtol, floor, weights,
@@ -173,5 +176,5 @@ def auto_path(system: RotorSystem, problems: tuple[SecondOrderProblem, SecondOrd
                         decision)
     report = {k: v for k, v in decision.items() if k not in ("reduced", "reason", "tried")}
     stepper = auto_stepper(system, reduced, loads, profile, t0, t_end, q0, rtol,
-                           new_basis.T, floor)
+                           new_basis, floor)
     return AutoPath(reduced, new_basis, report, stepper, decision)
