@@ -38,7 +38,8 @@ starts from the same static equilibrium, computed once. Ratios come from one run
 times are noisy.
 
 Run: ``.venv/bin/python benchmarks/bench_transient.py [--steps N] [--quick]
-[--models bench issue14 rotor1000]``. ``--quick`` (CI size: a minute or two) runs 5,000
+[--models bench issue14 rotor1000] [--peers-cache FILE]`` (``--steps 0`` skips the
+100,000-step and memory parts). ``--quick`` (CI size: a minute or two) runs 5,000
 steps and the models ``bench`` and ``issue14`` unless ``--models`` says otherwise; the full
 run takes about an hour, most of it solve_ivp on ``rotor1000``.
 """
@@ -46,6 +47,7 @@ run takes about an hour, most of it solve_ivp on ``rotor1000``.
 from __future__ import annotations
 
 import argparse
+import json
 import math
 import os
 import sys
@@ -228,13 +230,18 @@ def first_order(bench: BenchModel):
 
 
 def equal_accuracy(bench: BenchModel, reference_rtol: float = 1e-10,
-                   quick: bool = False) -> dict[str, float]:
+                   quick: bool = False, peers_cache: str | None = None) -> dict[str, float]:
     """Cost of rotorsim (fixed-step average acceleration over ``bench.steps``, and the
     automatic path over ``bench.auto_rtols``) and of solve_ivp (Radau, BDF, LSODA over
     ``bench.rtols``) for the same accuracy (module docstring): the error of each run, and
     for each of :data:`ACCURACIES` the cheapest run of each method that reaches it and
     rotorsim's speed-up against the fastest solve_ivp method. Every run starts from the same
-    static equilibrium (given to rotorsim as ``initial``), so no run is charged for it."""
+    static equilibrium (given to rotorsim as ``initial``), so no run is charged for it.
+
+    ``peers_cache``: a JSON file with the scales, the reference and the solve_ivp runs of
+    an earlier run on this model (written when it does not exist): the peers of
+    ``rotor1000`` take most of an hour, so rotorsim's side can be rerun against them
+    (their CPU times then come from another process on the same machine)."""
     rhs, jac, y0, probe, full = first_order(bench)
     n = y0.size // 2
     start = (full, np.zeros_like(full))
@@ -242,13 +249,19 @@ def equal_accuracy(bench: BenchModel, reference_rtol: float = 1e-10,
     times = np.linspace(0.0, t_end, 41)
     # scales of the displacements and of the velocities, as a user knows them: the motion
     # and the velocity of the probe in a fine rotorsim run
-    scout = rotorsim_run(bench, t_end, min(bench.steps), times=times, initial=start,
-                         velocities=True)
-    scales = (float(np.ptp(scout.displacement(bench.probe, "uy"))),
-              float(np.ptp(scout.velocity(bench.probe, "uy"))))
+    cached = json.loads(Path(peers_cache).read_text()) \
+        if peers_cache and Path(peers_cache).exists() else None
+    if cached is None:
+        scout = rotorsim_run(bench, t_end, min(bench.steps), times=times, initial=start,
+                             velocities=True)
+        scales = (float(np.ptp(scout.displacement(bench.probe, "uy"))),
+                  float(np.ptp(scout.velocity(bench.probe, "uy"))))
+    else:
+        scales = tuple(cached["scales"])
     per_component = np.concatenate([np.full(n, scales[0]), np.full(n, scales[1])])
-    ref = solve_ivp(rhs, (0.0, t_end), y0, method=bench.reference, jac=jac, rtol=reference_rtol,
-                    atol=reference_rtol * per_component, t_eval=times).y[probe]
+    ref = np.asarray(cached["reference"]) if cached is not None else solve_ivp(
+        rhs, (0.0, t_end), y0, method=bench.reference, jac=jac, rtol=reference_rtol,
+        atol=reference_rtol * per_component, t_eval=times).y[probe]
     motion = float(np.ptp(ref))
     runs: dict[str, list[tuple[float, float]]] = {"rotorsim": [], "rotorsim auto": [],
                                                   **{m: [] for m in IVP_METHODS}}
@@ -268,17 +281,29 @@ def equal_accuracy(bench: BenchModel, reference_rtol: float = 1e-10,
         out[f"{label} {setting}: error"] = err
         out[f"{label} {setting}: s"] = wall
         out[f"{label} {setting}: steps"] = float(res.stats["steps"])
+        decision = res.options.get("auto_reduction")
+        if decision is not None:  # 1: the automatic path chose a Craig-Bampton model
+            out[f"{label} {setting}: reduced"] = float(bool(decision["reduced"]))
+    peer_runs = [] if cached is None else cached["runs"]
     for method in IVP_METHODS:
         for rtol in (bench.rtols[:2] if quick else bench.rtols):
-            start_clock = time.process_time()
-            sol = solve_ivp(rhs, (0.0, t_end), y0, method=method, jac=jac, rtol=rtol,
-                            atol=rtol * per_component, t_eval=times)
-            wall = time.process_time() - start_clock
-            err = float(np.max(np.abs(sol.y[probe] - ref))) / motion if sol.success \
-                else math.inf
+            if cached is not None:
+                err, wall = next((e, w) for m, r, e, w in peer_runs if m == method and r == rtol)
+            else:
+                start_clock = time.process_time()
+                sol = solve_ivp(rhs, (0.0, t_end), y0, method=method, jac=jac, rtol=rtol,
+                                atol=rtol * per_component, t_eval=times)
+                wall = time.process_time() - start_clock
+                err = float(np.max(np.abs(sol.y[probe] - ref))) / motion if sol.success \
+                    else math.inf
+                peer_runs.append((method, rtol, err, wall))
             runs[method].append((err, wall))
             out[f"{method} rtol={rtol:g}: error"] = err
             out[f"{method} rtol={rtol:g}: s"] = wall
+    if peers_cache and cached is None:
+        Path(peers_cache).write_text(json.dumps({"scales": list(scales),
+                                                 "reference": ref.tolist(),
+                                                 "runs": peer_runs}))
     for target in ACCURACIES:
         cost = {m: min((w for e, w in r if e <= target), default=math.inf)
                 for m, r in runs.items()}
@@ -319,13 +344,19 @@ def main(argv: list[str] | None = None) -> dict[str, dict[str, float]]:
                         help="5,000 steps; solve_ivp at its two loosest rtol, rotorsim's "
                              "automatic path at 1e-2..1e-4 only")
     parser.add_argument("--models", nargs="+", choices=sorted(MODELS), default=None)
+    parser.add_argument("--peers-cache", default=None,
+                        help="JSON of the reference and solve_ivp runs, one model only: "
+                             "read when it exists, else written (see equal_accuracy)")
     args = parser.parse_args(argv)
     n = 5_000 if args.quick else args.steps
     models = args.models or (["bench", "issue14"] if args.quick else list(MODELS))
-    report = {"steps": steps(n),
-              **{f"accuracy {name}": equal_accuracy(MODELS[name], quick=args.quick)
+    if args.peers_cache and len(models) != 1:
+        parser.error("--peers-cache needs exactly one model")
+    report = {**({"steps": steps(n)} if n > 0 else {}),
+              **{f"accuracy {name}": equal_accuracy(MODELS[name], quick=args.quick,
+                                                    peers_cache=args.peers_cache)
                  for name in models},
-              "memory": memory(2_000 if args.quick else 10_000)}
+              **({"memory": memory(2_000 if args.quick else 10_000)} if n > 0 else {})}
     for name, values in report.items():
         print(f"\n[{name}]")
         for key, value in values.items():

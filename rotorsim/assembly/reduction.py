@@ -77,8 +77,8 @@ class ReducedBasis:
 
 
 def craig_bampton(system: RotorSystem, boundary: ArrayLike, num_modes: int, *,
-                  static_loads: Sequence[ArrayLike] = (), speed: float = 0.0
-                  ) -> ReducedBasis:
+                  static_loads: Sequence[ArrayLike] = (), speed: float = 0.0,
+                  modes: tuple[FloatArray, FloatArray] | None = None) -> ReducedBasis:
     """Build the Craig-Bampton basis of ``system`` (module docstring).
 
     Parameters
@@ -94,6 +94,9 @@ def craig_bampton(system: RotorSystem, boundary: ArrayLike, num_modes: int, *,
         Load shapes whose interior static response is added to the basis.
     speed : float
         Speed at which speed-dependent linear bearings are evaluated [rad/s].
+    modes : (frequencies, shapes), optional
+        The fixed-interface modes, already computed by :func:`fixed_interface_modes` on
+        this boundary (``num_modes`` is then ignored).
 
     Raises
     ------
@@ -120,7 +123,8 @@ def craig_bampton(system: RotorSystem, boundary: ArrayLike, num_modes: int, *,
                          "part of the rotor moves freely when the bearing DOFs are held; "
                          "add DOFs of that part to the boundary", "craig_bampton") from None
     psi = -np.asarray(lu.solve(K[inner][:, b].toarray())).reshape(inner.size, b.size)
-    freqs, phi = fixed_interface_modes(K_ii, M_ii, int(num_modes))
+    freqs, phi = fixed_interface_modes(K_ii, M_ii, int(num_modes)) if modes is None \
+        else modes
     extra = [np.asarray(lu.solve(np.asarray(f, dtype=float)[inner])).reshape(-1)
              for f in static_loads]
     statics = _independent(extra, phi, M_ii)
@@ -175,7 +179,47 @@ def _lowest_modes(K_ii: sp.spmatrix, M_ii: sp.spmatrix, k: int
     lam, vec = spl.eigsh(sp.csc_matrix(K_ii), k=k, M=sp.csc_matrix(M_ii), sigma=0.0,
                          which="LM", v0=np.ones(K_ii.shape[0]))
     order = np.argsort(lam)
-    return lam[order], vec[:, order]
+    return _complete(K_ii, M_ii, lam[order], vec[:, order])
+
+
+SUBSPACE_ITERATIONS = 60
+"""Most block shift-invert iterations of the completeness check of :func:`_complete`."""
+CHECK_ITERATIONS = 4
+"""Iterations after which the check stops when no Ritz value lies below ARPACK's highest
+eigenvalue (a missed eigenvalue below it shows up within a few iterations: its Ritz value
+converges at the ratio of it to the eigenvalues outside the block, squared)."""
+
+
+def _complete(K_ii: sp.spmatrix, M_ii: sp.spmatrix, lam: FloatArray, vec: FloatArray
+              ) -> tuple[FloatArray, FloatArray]:
+    """ARPACK's ``k`` lowest eigenpairs, checked for missed copies of repeated eigenvalues.
+
+    Lanczos from one start vector can miss copies of an eigenvalue of multiplicity above
+    two (a rotor of equal spans between several bearings has them; with the symmetric start
+    vector of ones it finds one direction per symmetric pattern). A block shift-invert
+    subspace iteration (Bathe, *Finite Element Procedures*, section 11.6) from ARPACK's
+    vectors plus ``k`` deterministic pseudo-random ones reveals them: when its ``k`` lowest
+    Ritz values agree with ARPACK's, ARPACK's pairs are returned unchanged; otherwise the
+    converged Ritz pairs are.
+    """
+    k, n = lam.size, K_ii.shape[0]
+    p = min(2 * k, n)
+    lu = factorize(sp.csc_matrix(K_ii), where="craig_bampton: subspace iteration")
+    rng = np.random.default_rng(0)
+    X = np.hstack([vec, rng.standard_normal((n, p - k))])
+    ritz = lam
+    for i in range(SUBSPACE_ITERATIONS):
+        Y = np.asarray(lu.solve(M_ii @ X)).reshape(n, p)
+        Kr, Mr = Y.T @ (K_ii @ Y), Y.T @ (M_ii @ Y)
+        new, Q = sl.eigh((Kr + Kr.T) / 2, (Mr + Mr.T) / 2)
+        X = Y @ Q
+        done = np.allclose(new[:k], ritz[:k], rtol=1e-10, atol=0.0)
+        ritz = new
+        if done or (i + 1 >= CHECK_ITERATIONS and ritz[k - 1] >= lam[-1] * (1.0 - 1e-8)):
+            break  # converged, or no Ritz value has come below ARPACK's highest
+    if np.allclose(ritz[:k], lam, rtol=1e-8, atol=0.0):
+        return lam, vec
+    return ritz[:k], X[:, :k]
 
 
 def _independent(vectors: list[FloatArray], phi: FloatArray, M: sp.csr_matrix) -> FloatArray:
@@ -212,7 +256,9 @@ def accuracy(system: RotorSystem, basis: ReducedBasis, support: sp.spmatrix,
         full = np.sqrt(np.maximum(sl.eigh(K.toarray(), M.toarray(), eigvals_only=True,
                                           subset_by_index=(0, k - 1)), 0.0))
     else:
-        lam = spl.eigsh(K.tocsc(), k=k, M=M.tocsc(), sigma=0.0, which="LM",
+        # shift below zero: a support without stiffness in some direction (ball bearings
+        # with clearance) leaves rigid-body modes, and K itself singular
+        lam = spl.eigsh(K.tocsc(), k=k, M=M.tocsc(), sigma=-1.0, which="LM",
                         return_eigenvectors=False, v0=np.ones(K.shape[0]))
         full = np.sqrt(np.maximum(np.sort(lam), 0.0))
     elastic = np.flatnonzero(full > 1e-4 * full.max())[:n_check]

@@ -18,6 +18,7 @@ that grows larger (a resonance in a run-up) raises the scale as it goes.
 
 from __future__ import annotations
 
+from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
@@ -25,6 +26,7 @@ import scipy.sparse as sp
 
 from rotorsim.analyses.transient.loads import TransientLoads
 from rotorsim.analyses.transient.speed_profile import BoundSpeed
+from rotorsim.assembly.reduction import ReducedBasis
 from rotorsim.assembly.system import RotorSystem
 from rotorsim.elements.base import DOFS_PER_NODE, FloatArray
 from rotorsim.errors import ConvergenceError, ModelError
@@ -37,32 +39,57 @@ DEFAULT_RTOL = 1e-4
 """Accuracy of ``method="auto"`` when no ``rtol`` is given."""
 
 
-def dof_weights(system: RotorSystem, n: int) -> tuple[float, ...] | None:
+def dof_weights(system: RotorSystem, n: int, basis: ReducedBasis | None = None
+                ) -> tuple[float, ...] | None:
     """Weight of every unknown in the error measure: 1 for translations, the longest shaft
-    element [m] for rotations (None for a reduced problem, whose modal coordinates are not
-    physical)."""
+    element [m] for rotations. For a reduced problem (``q = T x`` on ``basis``) the
+    boundary coordinates keep the weights of their DOFs (they are those DOFs; the interior
+    follows them statically), and the weight of any other coordinate ``j`` is the largest
+    weighted physical displacement of its column, ``max_i w_i |T_ij|``, so that a weighted
+    error of ``e`` in it moves no point of the rotor by more than ``e``. None when ``n``
+    matches neither."""
     free = np.asarray(system.dof_map.free)
-    if free.size != n:
-        return None
     lengths = np.diff(np.asarray(system.nodes_pos, dtype=float))
     length = float(np.max(lengths, initial=0.0)) or 1.0
-    return tuple(float(x) for x in np.where(free % DOFS_PER_NODE >= 3, length, 1.0))
+    w = np.where(free % DOFS_PER_NODE >= 3, length, 1.0)
+    if basis is not None and basis.T.shape == (free.size, n):
+        b = basis.boundary.size
+        rest = np.max(np.abs(basis.T[:, b:]) * w[:, None], axis=0)
+        w = np.concatenate([w[basis.boundary], np.where(rest > 0.0, rest, 1.0)])
+    elif free.size != n:
+        return None
+    return tuple(float(x) for x in w)
+
+
+def check_rtol(rtol: float) -> float:
+    """``rtol`` as a float, or ModelError naming ``transient.rtol``."""
+    if not (isinstance(rtol, int | float) and 1e-10 <= rtol <= 0.1):
+        raise ModelError(f"rtol must be a number in [1e-10, 0.1], got {rtol!r}",
+                         "transient.rtol")
+    return float(rtol)
 
 
 def auto_stepper(system: RotorSystem, problem: SecondOrderProblem, loads: TransientLoads,
                  profile: BoundSpeed, t0: float, t_end: float, q0: FloatArray,
-                 rtol: float) -> Radau:
-    """The Radau stepper at ``rtol`` with the weights and motion floor of ``system``."""
-    if not (isinstance(rtol, int | float) and 1e-10 <= rtol <= 0.1):
-        raise ModelError(f"rtol must be a number in [1e-10, 0.1], got {rtol!r}",
-                         "transient.rtol")
-    weights = dof_weights(system, problem.n)
-    floor = None
-    if weights is not None:
-        amp = unbalance_amplitude(problem, loads, profile, t0, t_end, q0)
-        if amp is not None:
-            floor = float(np.max(np.asarray(weights) * amp))
-    return Radau(rtol=float(rtol), weights=weights, motion=floor)
+                 rtol: float, basis: ReducedBasis | None = None,
+                 motion: float | None = None) -> Radau:
+    """The Radau stepper at ``rtol`` with the weights and motion floor of ``system``
+    (:func:`dof_weights`; for a reduced problem, ``basis`` T and the floor ``motion``
+    estimated on the full model)."""
+    rtol = check_rtol(rtol)
+    weights = dof_weights(system, problem.n, basis)
+    floor = motion
+    if weights is not None and floor is None and basis is None:
+        floor = motion_floor(problem, loads, profile, t0, t_end, q0, weights)
+    return Radau(rtol=rtol, weights=weights, motion=floor)
+
+
+def motion_floor(problem: SecondOrderProblem, loads: TransientLoads, profile: BoundSpeed,
+                 t0: float, t_end: float, q0: FloatArray, weights: tuple[float, ...]
+                 ) -> float | None:
+    """The largest weighted amplitude of :func:`unbalance_amplitude` (None without)."""
+    amp = unbalance_amplitude(problem, loads, profile, t0, t_end, q0)
+    return None if amp is None else float(np.max(np.asarray(weights) * amp))
 
 
 def unbalance_amplitude(problem: SecondOrderProblem, loads: TransientLoads,
@@ -105,3 +132,49 @@ def _tangents(problem: SecondOrderProblem, q0: FloatArray, t0: float) -> tuple[A
         return None, None
     kt, ct = (T.tocsr() if isinstance(T, LocalMatrix) else T for T in out[1:3])
     return kt, ct
+
+
+@dataclass(frozen=True)
+class AutoPath:
+    """What the automatic path integrates: the problem (reduced or not), its basis and
+    reduction report (None when full), the stepper and the reduction decision."""
+
+    problem: SecondOrderProblem
+    basis: ReducedBasis | None
+    report: dict[str, Any] | None
+    stepper: Radau
+    decision: dict[str, Any] | None
+
+
+def auto_path(system: RotorSystem, problems: tuple[SecondOrderProblem, SecondOrderProblem],
+              loads: TransientLoads, profile: BoundSpeed, span: tuple[float, float],
+              q0: FloatArray, rtol: float, basis: ReducedBasis | None, basis_speed: float,
+              may_reduce: bool) -> AutoPath:
+    """The stepper at ``rtol`` and, when ``may_reduce`` and no ``basis`` is given, the
+    reduction chosen by :func:`~.auto_reduction.auto_reduction`.
+
+    ``problems`` is the full problem and the one to integrate (reduced on ``basis`` when a
+    reduction was given); ``q0`` is the start on the free DOFs (on ``basis`` for a
+    continued reduced run). The motion floor comes from the full model either way."""
+    from rotorsim.analyses.transient.auto_reduction import auto_reduction
+
+    rtol = check_rtol(rtol)
+    t0, t_end = span
+    problem, given = problems
+    weights = dof_weights(system, problem.n)
+    floor = None if weights is None or q0.size != problem.n else motion_floor(
+        problem, loads, profile, t0, t_end, q0, weights)
+    if basis is not None:  # reduction given: weights through the basis
+        return AutoPath(given, basis, None, auto_stepper(
+            system, given, loads, profile, t0, t_end, q0, rtol, basis, floor), None)
+    top = max(abs(profile.speed(t0)), abs(profile.speed(t_end)))
+    reduced, new_basis, decision = auto_reduction(
+        system, problem, loads, (basis_speed, top), t_end - t0, rtol, floor, weights,
+        may_reduce)
+    if new_basis is None:
+        return AutoPath(problem, None, None, Radau(rtol=rtol, weights=weights, motion=floor),
+                        decision)
+    report = {k: v for k, v in decision.items() if k not in ("reduced", "reason", "tried")}
+    stepper = auto_stepper(system, reduced, loads, profile, t0, t_end, q0, rtol,
+                           new_basis, floor)
+    return AutoPath(reduced, new_basis, report, stepper, decision)

@@ -26,9 +26,11 @@ from rotorsim.time_integration.problem import SecondOrderProblem
 
 
 def reduce_problem(system: RotorSystem, problem: SecondOrderProblem, loads: TransientLoads,
-                   num_modes: int, speed: float) -> tuple[SecondOrderProblem, ReducedBasis,
-                                                        dict[str, Any]]:
-    """The reduced problem, its basis and the accuracy report."""
+                   num_modes: int, speed: float,
+                   modes: tuple[FloatArray, FloatArray] | None = None
+                   ) -> tuple[SecondOrderProblem, ReducedBasis, dict[str, Any]]:
+    """The reduced problem, its basis and the accuracy report (``modes``: the
+    fixed-interface modes when already computed)."""
     nl = system.nonlinear
     if nl is None or not isinstance(problem.restoring, RestoringForce):
         raise ModelError("reduction keeps the nonlinear DOFs physical: the model has none",
@@ -39,7 +41,8 @@ def reduce_problem(system: RotorSystem, problem: SecondOrderProblem, loads: Tran
     if loads.base is not None:
         shapes.append(loads.base)
     basis = craig_bampton(system, nl.dofs, num_modes,
-                          static_loads=[s for s in shapes if np.any(s)], speed=speed)
+                          static_loads=[s for s in shapes if np.any(s)], speed=speed,
+                          modes=modes)
     check = accuracy(system, basis, nominal_tangent(system), speed=speed)
     T = basis.T
     reduced = {name: None if getattr(problem, name) is None else basis.reduce(

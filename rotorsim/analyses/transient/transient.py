@@ -79,7 +79,7 @@ def transient(
     nodes: Sequence[int] | None = None,
     output: Output | None = None,
     checkpoint: str | os.PathLike[str] | Checkpointing | None = None,
-    reduction: int | None = None,
+    reduction: int | bool | None = None,
     on_failure: str = "raise",
     steady: SteadyStop | None = None,
 ) -> TransientResult:
@@ -148,10 +148,13 @@ def transient(
         As in :func:`~rotorsim.time_integration.integrate.integrate`: an HDF5 checkpoint
         every ``every`` steps (default 1000), resume from one (same result as an
         uninterrupted run).
-    reduction : int, optional
+    reduction : int or False, optional
         Craig-Bampton reduction of the linear part with this many fixed-interface modes,
         the nonlinear DOFs kept physical (:mod:`~.transient_reduction`); the accuracy check
-        is in ``result.options["reduction"]``.
+        is in ``result.options["reduction"]``. Left out on the automatic path, the
+        reduction is chosen (or not) from ``rtol`` by a-priori checks
+        (:mod:`~.auto_reduction`; the decision is in ``result.options["auto_reduction"]``);
+        ``False`` integrates the full model.
     on_failure : {"raise", "stop"}
         When a step fails: raise, or return the run up to the last accepted step with
         ``status`` ``NOT_CONVERGED`` and the error in ``options["failure"]`` (what the
@@ -190,6 +193,9 @@ def transient(
     auto = method == "auto" or (method is None and (dt is None or rtol is not None))
     if dt is not None and not (isinstance(dt, int | float) and np.isfinite(dt) and dt > 0):
         raise ModelError(f"dt must be a positive number [s], got {dt!r}", f"{WHERE}.dt")
+    if reduction is True:
+        raise ModelError("reduction is a number of modes, or False for none",
+                         f"{WHERE}.reduction")
     if rtol is not None and not auto:
         raise ModelError(f"rtol is the accuracy of method='auto', not of {method!r}",
                          f"{WHERE}.rtol")
@@ -223,9 +229,9 @@ def transient(
     if isinstance(profile, BoundTorqueDrive) and out.nodes is not None and ex.unbalance:
         # the spin-feedback report needs the motion of the unbalance nodes
         kept = np.union1d(kept, _kept_dofs(system, [int(u[0]) for u in ex.unbalance]))
-    full, basis, report = problem, None, None
+    full, basis, report, full_q0 = problem, None, None, q0
     basis_speed = profile.speed(t0) if previous is None else previous.reduction_speed
-    if reduction is not None:
+    if reduction is not None and reduction is not False:
         from rotorsim.analyses.transient.reduction import reduce_problem
 
         if problem.speed_terms is not None:
@@ -237,12 +243,26 @@ def transient(
                                                 basis_speed)
         if q0 is not None and v0 is not None:
             q0, v0 = basis.project(q0), basis.project(v0)
+    decision = None
     if stepper is None:
-        from rotorsim.analyses.transient.auto import DEFAULT_RTOL, auto_stepper
+        from rotorsim.analyses.transient.auto import DEFAULT_RTOL, auto_path
 
-        start_q = q0 if q0 is not None else previous.stepper.q  # type: ignore[union-attr]
-        stepper = auto_stepper(system, problem, loads_fn, profile, t0, t_end, start_q,
-                               DEFAULT_RTOL if rtol is None else rtol)
+        if previous is not None and previous.reduction and reduction is None:
+            raise ModelError(f"the run being continued was reduced to {previous.reduction} "
+                             "coordinates: give its reduction (the modes of "
+                             "options['reduction']) again", f"{WHERE}.reduction")
+        may_reduce = reduction is None and previous is None and \
+            not isinstance(profile, BoundTorqueDrive)
+        start_q = full_q0 if full_q0 is not None else \
+            previous.stepper.q  # type: ignore[union-attr]
+        path = auto_path(system, (full, problem), loads_fn, profile, (t0, t_end), start_q,
+                         DEFAULT_RTOL if rtol is None else rtol, basis, basis_speed,
+                         may_reduce)
+        stepper, decision = path.stepper, path.decision
+        if path.basis is not None and basis is None:
+            problem, basis, report = path.problem, path.basis, path.report
+            if q0 is not None and v0 is not None:
+                q0, v0 = basis.project(q0), basis.project(v0)
     identity = model_identity(system, full)
     resumed = None if previous is None else cont.start_state(previous, identity, problem,
                                                             stepper, dt, basis)
@@ -262,6 +282,8 @@ def transient(
                "initial": initial if isinstance(initial, str) else
                "given" if previous is None else "continued",
                "every": out.every, "reduction": report}
+    if decision is not None:
+        options["auto_reduction"] = decision
     if out.reducers:
         options["reducers"] = {"names": list(out.reducers), "after": out.after}
     if run.message:

@@ -131,3 +131,55 @@ def test_auto_run_up_of_a_gyroscopic_rotor_against_solve_ivp():
     ref = sol.y[probe]
     err = np.max(np.abs(res.displacement(2, "uy") - ref)) / np.ptp(ref)
     assert err <= 1e-5
+
+
+@pytest.fixture()
+def reduce_any_run(monkeypatch):
+    """The automatic reduction's size and length gates opened, so that the small rotor's
+    short run is reduced when the accuracy checks pass."""
+    import rotorsim.analyses.transient.auto_reduction as auto_red
+
+    for name, value in (("MIN_FREE", 0), ("MIN_REVOLUTIONS", 0.0), ("MAX_FRACTION", 1.0)):
+        monkeypatch.setattr(auto_red, name, value)
+
+
+@pytest.mark.validation
+@pytest.mark.parametrize("rtol", [1e-2, 1e-3])
+def test_automatic_reduction_meets_the_accuracy_asked(reference, reduce_any_run, rtol):
+    # the a-priori checks pick the modes; against the full-model LSODA reference the error
+    # relative to the probe's motion stays below rtol
+    times, ref = reference
+    rotor, bearings = small_rolling_rotor()
+    res = transient(rotor, T_END, nonlinear=bearings, speed=SPEED, unbalance=UNBALANCE,
+                    rtol=rtol, nodes=[PROBE], output=rs.Output(times=times))
+    decision = res.options["auto_reduction"]
+    assert decision["reduced"], decision
+    assert res.options["reduction"]["size"] < res.options["reduction"]["full_size"]
+    assert decision["tried"][-1]["estimate"] <= 0.2 * rtol  # RINGING_SHARE
+    err = np.max(np.abs(res.displacement(PROBE, "uy") - ref)) / np.ptp(ref)
+    assert err <= rtol
+
+
+def test_small_or_short_runs_stay_full_and_say_why():
+    rotor, bearings = small_rolling_rotor()
+    kw = dict(nonlinear=bearings, speed=SPEED, unbalance=UNBALANCE, rtol=1e-3, nodes=[PROBE])
+    res = transient(rotor, 5e-4, **kw)
+    assert res.options["auto_reduction"]["reduced"] is False
+    assert "revolutions" in res.options["auto_reduction"]["reason"]
+    assert res.options["reduction"] is None
+    off = transient(rotor, 5e-4, reduction=False, **kw)
+    np.testing.assert_array_equal(off.q, res.q)  # the same run, in the same process
+    with pytest.raises(ModelError, match=r"transient\.reduction"):
+        transient(rotor, 5e-4, reduction=True, **kw)
+
+
+def test_an_automatically_reduced_run_continues_with_its_reduction(reduce_any_run):
+    rotor, bearings = small_rolling_rotor()
+    kw = dict(nonlinear=bearings, speed=SPEED, unbalance=UNBALANCE, rtol=1e-2, nodes=[PROBE])
+    first = transient(rotor, 5e-4, **kw)
+    assert first.options["auto_reduction"]["reduced"]
+    with pytest.raises(ModelError, match=r"transient\.reduction"):
+        transient(rotor, 1e-3, initial=first, **kw)
+    modes = first.options["reduction"]["requested_modes"]
+    more = transient(rotor, 1e-3, initial=first, reduction=modes, **kw)
+    assert more.t[-1] == pytest.approx(1e-3)

@@ -82,3 +82,40 @@ def test_reduction_needs_nonlinear_dofs_and_a_valid_mode_count(default_rotor):
             0.001, 1e-4, reduction=4, excitation=rs.Excitation(gravity=None), initial="zero")
     with pytest.raises(ModelError, match="num_modes"):
         rs.transient(rotor, 0.001, 1e-4, reduction=10_000)
+
+
+def _three_equal_spans():
+    """A shaft of three equal spans on four ball bearings: its fixed-interface modes come
+    in clusters of six (x and y bending of three identical spans)."""
+    steel = rs.Material(name="steel", E=211e9, G_s=81.2e9, rho=7810)
+    from rotorsim.elements.rolling.ball.bearing import BallBearing
+    from rotorsim.elements.rolling.element import RollingBearing
+
+    ball = BallBearing(n_balls=8, pitch_diameter=0.035, ball_diameter=0.007, Kn=8e9,
+                       diametral_clearance=10e-6, f_i=0.52, f_o=0.52)
+    shaft = [rs.ShaftElement(L=0.04, idl=0.0, odl=0.03, material=steel) for _ in range(12)]
+    bearings = [RollingBearing(ball, n=n) for n in (0, 4, 8, 12)]
+    return rs.assemble(rs.Rotor(shaft).with_nonlinear(bearings))
+
+
+def test_repeated_fixed_interface_frequencies_are_all_found_by_the_sparse_path(monkeypatch):
+    # ARPACK from a symmetric start vector found 4 of a 6-fold cluster on such a rotor
+    # (benchmarks/bench_transient.py rotor1000); the block subspace check completes it.
+    import scipy.linalg as sl
+    import scipy.sparse as sp
+
+    import rotorsim.assembly.reduction as red
+
+    system = _three_equal_spans()
+    inner = np.setdiff1d(np.arange(system.n_free), system.nonlinear.dofs)
+    mats = system.matrices(0.0)
+    K = sp.csr_matrix(mats.K)[inner][:, inner]
+    M = sp.csr_matrix(mats.M)[inner][:, inner]
+    exact = np.sqrt(sl.eigh(K.toarray(), M.toarray(), eigvals_only=True,
+                            subset_by_index=(0, 11)))
+    monkeypatch.setattr(red, "DENSE_EIGEN", 10)  # force the sparse (ARPACK) path
+    w, phi = red.fixed_interface_modes(K, M, 8)
+    # eigenvalues of well separated clusters: shift-invert converges to round-off; 1e-8
+    # leaves room for the clustered copies' conditioning
+    np.testing.assert_allclose(w[:12], exact[:w[:12].size], rtol=1e-8)
+    np.testing.assert_allclose(phi.T @ (M @ phi), np.eye(w.size), atol=1e-9)
