@@ -12,10 +12,10 @@ as follows:
   (3 for ``H >= 7``, 2 for ``H >= 4``, else 1); ``Harmonics.samples`` is not used (the
   torus grid follows the box);
 * ``continuation``: ``max_points`` caps the points; the largest speed step where the
-  response is flat is the range over :data:`STEPS`, or over half of ``max_points`` when
-  that is fewer (pseudo-arclength continuation
-  shortens it through resonances and turns at folds; ``max_step`` is not used: a step of
-  a fifth of the range can leap over a lightly damped resonance);
+  response is flat is ``max_step`` of the range, at most :data:`MAX_STEP` (a step of a
+  fifth of the range can leap over a lightly damped resonance), and at least the range over
+  half of ``max_points`` (room to refine); pseudo-arclength continuation shortens it
+  through resonances and turns at folds;
 * ``stability``: any method gives the characteristic exponents by the quasi-periodic Hill
   method; None skips them.
 
@@ -38,8 +38,10 @@ from rotorsim.errors import ModelError
 from rotorsim.options import Excitation
 from rotorsim.results.quasi_periodic import QuasiPeriodicResult
 
-STEPS = 50
-"""Speed steps over the range (natural-parameter continuation)."""
+MAX_STEP = 0.05
+"""Largest step where the response is flat, as a fraction of the speed range (the periodic
+default): a fifth of the range leaps over the default model's lightly damped resonance
+(measured: 0.1 leaps, 0.05 passes it in 190 points, 0.02 in 477)."""
 FREEZE = "; set varying_compliance=False to freeze the rolling elements instead"
 
 
@@ -69,8 +71,10 @@ def torus_branch(model: Any, nonlinear: Any, *, start: float, stop: float, opts:
     h, e, st = opts.harmonics, opts.excitation, opts.stability
     box = (int(h.count), vc_order(int(h.count)))
     span = abs(float(stop) - float(start))
-    max_points = int(opts.stepping().max_points)
-    step = span / min(STEPS, max(1, (max_points - 1) // 2))   # room to refine
+    stepping = opts.stepping()
+    max_points = int(stepping.max_points)
+    fraction = min(float(stepping.max_step), MAX_STEP)
+    step = span * max(fraction, 1.0 / max(1, (max_points - 1) // 2))   # room to refine
     branch = quasi_periodic(
         model, start=float(start), stop=float(stop), step=step, unbalance=list(e.unbalance),
         harmonics=box, truncation="box",
