@@ -63,6 +63,7 @@ from rotorsim.analyses.periodic.problem import (
 from rotorsim.analyses.periodic.resume import finished_result, resumed
 from rotorsim.analyses.periodic.stability import DEFAULT_TOL, stability_model
 from rotorsim.analyses.periodic.torus import one_vc_order, refuse_unsupported, torus_branch
+from rotorsim.analyses.quasiperiodic.output import check_nodes
 from rotorsim.analyses.statics.linearized_rotor import rolling_start
 from rotorsim.analyses.statics.nonlinear_static import start_point
 from rotorsim.analyses.system_input import nonlinear_system
@@ -247,6 +248,7 @@ def periodic(
         refuse_unsupported(WHERE, fold_map=fold_map is not False, peaks=bool(peaks),
                            checkpoint=ck.path is not None or ck.resume is not None,
                            x0=x0 is not None)
+        check_nodes(system.dof_map.n_nodes, opts.output.nodes)
         return torus_branch(model, nonlinear, start=start, stop=stop, opts=opts, clock=clock,
                             described={"parameter": parameter, "start": float(start),
                                        "stop": float(stop), "harmonics": int(h.count),

@@ -19,6 +19,13 @@ IntArray = NDArray[np.int64]
 DOFS_PER_NODE = 6
 
 
+def check_nodes(n_nodes: int, nodes: Sequence[int] | None) -> None:
+    """ModelError for a kept node outside ``0 .. n_nodes - 1`` (before any solve)."""
+    for node in nodes or ():
+        if isinstance(node, bool) or not 0 <= int(node) < n_nodes:
+            raise ModelError(f"node {node!r} outside 0..{n_nodes - 1}", "periodic.nodes")
+
+
 def kept_columns(branch: Any, nodes: Sequence[int] | None) -> tuple[IntArray, IntArray]:
     """Active columns and ALL-DOF indices of the kept DOFs: those of ``nodes`` (all when
     None) plus the bearing DOFs."""
@@ -28,11 +35,9 @@ def kept_columns(branch: Any, nodes: Sequence[int] | None) -> tuple[IntArray, In
     if nodes is None:
         keep = np.ones(active_all.size, dtype=bool)
     else:
+        check_nodes(dm.n_nodes, nodes)
         chosen = [np.zeros(0, dtype=np.int64)]
         for node in nodes:
-            if isinstance(node, bool) or not 0 <= int(node) < dm.n_nodes:
-                raise ModelError(f"node {node!r} outside 0..{dm.n_nodes - 1}",
-                                 "periodic.nodes")
             chosen.append(DOFS_PER_NODE * int(node) + np.arange(DOFS_PER_NODE))
         keep = np.isin(active_all, np.concatenate(chosen))
         keep[point.rotor_problem.problem.nl_dofs] = True
