@@ -94,7 +94,8 @@ def test_exit_code_follows_the_status_of_a_periodic_branch(tmp_path, capsys):
                  "--stop", "3000 rpm", "--harmonics", "3", "--max-points", "3",
                  "--no-stability", "--out", str(tmp_path), "--no-plots"])
     result = rs.load(tmp_path / "rolling_ball" / "periodic.h5")
-    assert result.speed[-1] < 3000 * np.pi / 30  # stopped short of its bound
+    # unbalance with the balls' VC: a branch of tori, which may reach its bound in 3 points
+    assert result.speed[-1] <= 3000 * np.pi / 30 * (1 + 1e-12)
     err = capsys.readouterr().err
     if result.status == Status.OK:  # a branch ended by max_points counts as complete ...
         assert code == EXIT_OK and err == ""
@@ -195,6 +196,7 @@ type = "periodic"
 start = "1000 rpm"
 stop = "3000 rpm"
 harmonics = 3
+varying_compliance = false          # the periodic problem: checkpoints (a torus has none)
 max_points = 8
 checkpoint = true
 resume = true
