@@ -19,7 +19,9 @@ run: $(STAMP)
 test: $(STAMP)
 	MPLBACKEND=Agg $(PY) -m ruff check rotorsim tests benchmarks examples
 	$(PY) -m mypy
-	OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1 MPLBACKEND=Agg $(PY) -m pytest -q
+	# two workers (pytest-xdist), each test module kept on one worker so that its
+	# module-scoped fixtures are built once; one BLAS thread per worker
+	OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1 MPLBACKEND=Agg $(PY) -m pytest -q -n 2 --dist loadscope
 
 lint: $(STAMP)
 	$(PY) -m ruff check rotorsim tests benchmarks examples

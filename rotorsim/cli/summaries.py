@@ -31,7 +31,8 @@ def _fixed(value: float, digits: int) -> str:
     return f"{round(float(value), digits) + 0.0:.{digits}f}"
 
 
-def _factor(units: str) -> float:
+def speed_factor(units: str) -> float:
+    """Factor from rad/s to ``units`` (``SPEED_UNITS``)."""
     try:
         return SPEED_UNITS[units]
     except KeyError:
@@ -39,7 +40,7 @@ def _factor(units: str) -> float:
 
 
 def modal_summary(result: Any, units: str = "Hz") -> str:
-    f = _factor(units)
+    f = speed_factor(units)
     rows = [(i, f"{result.wn[i] * f:.3f}", f"{result.wd[i] * f:.3f}",
              _fixed(result.damping_ratio[i], 4), _fixed(result.log_dec[i], 4), result.whirl[i],
              result.kind[i]) for i in range(result.num_modes)]
@@ -51,7 +52,7 @@ def modal_summary(result: Any, units: str = "Hz") -> str:
 
 
 def critical_speeds_summary(crit: Any, units: str = "rpm", title: str = "") -> str:
-    f = _factor(units)
+    f = speed_factor(units)
     kinds = getattr(crit, "kind", None)
     excitation = getattr(crit, "excitation", None)
     rows = []
@@ -75,7 +76,7 @@ def critical_speeds_summary(crit: Any, units: str = "rpm", title: str = "") -> s
 
 def campbell_summary(result: Any, units: str = "rpm",
                      harmonics: Sequence[float] = (1.0,)) -> str:
-    f = _factor(units)
+    f = speed_factor(units)
     parts = [f"Campbell: {len(result.speeds)} speeds from {result.speeds[0] * f:.4g} to "
              f"{result.speeds[-1] * f:.4g} {units}, {result.wd.shape[1]} tracked modes"]
     failed = int(np.sum(np.asarray(result.status) != 0))
@@ -111,7 +112,7 @@ def response_summary(result: Any, units: str = "rpm", amplitude_units: str = "um
 
 def _peak_table(result: Any, column: int, units: str, amplitude_units: str,
                 nodes: Sequence[int] | None) -> str:
-    f = _factor(units)
+    f = speed_factor(units)
     scale = {"m": 1.0, "mm": 1e3, "um": 1e6}[amplitude_units]
     n_nodes = result.dof_map.n_nodes
     amp = np.nan_to_num(np.abs(result.response[:, :, column])).reshape(
@@ -145,7 +146,7 @@ def static_summary(result: Any) -> str:
 
 
 def map_summary(result: Any, units: str = "rpm") -> str:
-    f = _factor(units)
+    f = speed_factor(units)
     lines = [f"critical-speed map: {len(result.stiffness)} stiffness values "
              f"{result.stiffness[0]:.3g}..{result.stiffness[-1]:.3g} N/m"]
     rows = [(f"{k:.3g}", *(f"{w * f:.1f}" for w in row))
@@ -242,7 +243,7 @@ def linearization_summary(linear: Any) -> str:
 
 def transient_summary(result: Any, units: str = "rpm") -> str:
     """Cost, speed range and the largest responses and bearing loads of a transient."""
-    f = _factor(units)
+    f = speed_factor(units)
     s = result.stats
     head = (f"transient ({result.method}): {int(s.get('steps', 0))} steps to "
             f"t = {result.t[-1]:.4g} s, speed {result.speed[0] * f:.1f} -> "
@@ -281,83 +282,20 @@ def transient_summary(result: Any, units: str = "rpm") -> str:
     return "\n".join(lines)
 
 
-def _largest_uy(result: Any) -> list[tuple[int, Any, int]]:
-    """``(node, uy peak-to-peak over the branch, index of its largest)`` of every kept node
-    with ``uy``."""
-    out = []
-    for node in sorted({int(i) // 6 for i in result.dofs}):
-        try:
-            amp = result.amplitude(node, "uy", "peak_to_peak")
-        except Exception:  # a node without uy kept
-            continue
-        out.append((node, amp, int(np.argmax(amp))))
-    return out
+def periodic_summary(result: Any, units: str = "rpm") -> str:
+    """Points, status, stability and bifurcations of a harmonic-balance branch
+    (:func:`rotorsim.cli.branch_summaries.periodic_summary`)."""
+    from rotorsim.cli.branch_summaries import periodic_summary as summary
+
+    return summary(result, units)
 
 
 def quasi_periodic_summary(result: Any, units: str = "rpm") -> str:
-    """Points, status, stability and stability changes of a branch of tori, and the largest
-    responses of the kept nodes with their 1X and VC tones."""
-    f = _factor(units)
-    head = (f"quasi-periodic branch: {len(result)} points, speed {result.speed[0] * f:.1f} "
-            f"-> {result.speed[-1] * f:.1f} {units}, VC order {result.vc_order:.6g}, "
-            f"{len(result.tones)} tones, status {result.status.name}"
-            + (f" ({result.reason})" if result.reason else ""))
-    lines = [head]
-    if result.has_stability:
-        lines.append(f"stable tori: {int(result.stable.sum())} of {len(result)} (largest "
-                     f"exponent {np.nanmax(result.exponents):.4g} 1/s; "
-                     f"{result.stability_method})")
-        if not result.exponents_converged.all():
-            lines.append(f"exponents not converged in the stability box at "
-                         f"{int((~result.exponents_converged).sum())} points")
-    rows = [(node, f"{amp[k] * 1e6:.3f}",
-             f"{abs(result.tone(node, 'uy', 1, 0)[k]) * 1e6:.3f}",
-             f"{abs(result.tone(node, 'uy', 0, 1)[k]) * 1e6:.4f}",
-             f"{result.speed[k] * f:.6g}") for node, amp, k in _largest_uy(result)]
-    rows.sort(key=lambda r: -float(r[1]))
-    lines.append(table(rows[:6], ("node", "max uy p-p [um]", "1X [um]", "VC [um]",
-                                  f"at speed [{units}]")))
-    if result.events:
-        lines.append(table([(e.kind, f"{e.parameter * f:.6g}",
-                             f"{e.exponents[0]:.4g} -> {e.exponents[1]:.4g}")
-                            for e in result.events],
-                           ("stability change", f"speed [{units}]", "exponent [1/s]")))
-    return "\n".join(lines)
+    """Points, status and stability of a branch of tori
+    (:func:`rotorsim.cli.branch_summaries.quasi_periodic_summary`)."""
+    from rotorsim.cli.branch_summaries import quasi_periodic_summary as summary
 
-
-def periodic_summary(result: Any, units: str = "rpm") -> str:
-    """Points, status, stability and bifurcations of a harmonic-balance branch, and the
-    largest responses of the kept nodes (over the speed, or over the model parameter of
-    ``rs.periodic_parameter``)."""
-    p = result.parameter
-    if result.parameter_name in ("speed", "frequency"):
-        f, label = _factor(units), f"{result.parameter_name} [{units}]"
-        span = f"speed {result.speed[0] * f:.1f} -> {result.speed[-1] * f:.1f} {units}"
-    else:   # a model parameter at a fixed speed, in SI
-        f, label = 1.0, str(result.parameter_name)
-        span = (f"{label} {p[0]:.6g} -> {p[-1]:.6g} at "
-                f"{result.speed[0] * _factor(units):.1f} {units}")
-    head = (f"periodic branch: {len(p)} points, {span}, H = {result.harmonics}, status "
-            f"{result.status.name}" + (f" ({result.reason})" if result.reason else ""))
-    lines = [head]
-    if result.approximation:
-        lines.append(f"approximation: {result.approximation}")
-    if result.has_stability:
-        lines.append(f"stable points: {int(result.stable.sum())} of {len(p)} "
-                     f"({result.stability_method})")
-    rows = [(node, f"{amp[k] * 1e6:.3f}", f"{p[k] * f:.6g}")
-            for node, amp, k in _largest_uy(result)]
-    rows.sort(key=lambda r: -float(r[1]))
-    lines.append(table(rows[:6], ("node", "max uy p-p [um]", f"at {label}")))
-    if result.bifurcations:
-        lines.append(table([(b.kind, f"{b.parameter * f:.6g}", "yes" if b.located else "no")
-                            for b in result.bifurcations],
-                           ("bifurcation", label, "located")))
-    unresolved = getattr(result, "unresolved", ())
-    if unresolved:
-        lines.append(f"not bifurcations: {len(unresolved)} sign changes of a test function "
-                     "did not survive confirmation (result.unresolved says where and why)")
-    return "\n".join(lines)
+    return summary(result, units)
 
 
 SUMMARIES: dict[str, Callable[..., str]] = {

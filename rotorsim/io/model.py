@@ -141,6 +141,7 @@ def model_from_dict(data: Mapping[str, Any], *, source: str | os.PathLike[str] |
     from rotorsim.io.model_schema import validate_model
     from rotorsim.io.rating_build import rating_options
     from rotorsim.io.rolling_schema import validate_rolling_bearings
+    from rotorsim.io.spec_build import build_spec
 
     table = validate_model(dict(data) if isinstance(data, Mapping) else data)
     rolling_tables = validate_rolling_bearings(table.rolling_bearings)
@@ -152,7 +153,7 @@ def model_from_dict(data: Mapping[str, Any], *, source: str | os.PathLike[str] |
     rolling, points = build.build_rolling(rolling_tables, nodes)
     loads = build.build_loads(table, nodes)
     tags = tuple(rb.tag for rb in rolling)
-    specs = {key: build.build_spec(t, loc, nodes, rotor, loads, tags)
+    specs = {key: build_spec(t, loc, nodes, rotor, loads, tags)
              for key, loc, t in analyses}
     model = Model(name=name, rotor=rotor, loads=loads, analyses=specs,
                   description=table.model.description, source=src, rolling_bearings=rolling,

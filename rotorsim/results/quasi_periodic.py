@@ -58,9 +58,10 @@ class QuasiPeriodicResult(KeptDofs):
     speed : array (P,)
         Spin speed ``W`` [rad/s] (the shaft frequency ``w1``).
     vc_frequency : array (P,)
-        ``w2 = vc_order W`` [rad/s].
+        The second base frequency ``w2 = vc_order W`` [rad/s].
     vc_order : float
-        ``Z kappa`` of the rolling bearings.
+        ``w2 / W``: ``Z kappa`` of the rolling bearings, or ``|r|`` of a second spool
+        (``second``).
     tones : int array (T, 2)
         ``(k1, k2)`` of each tone (one of each pair ``+-k``).
     dofs : int array (m,)
@@ -84,8 +85,12 @@ class QuasiPeriodicResult(KeptDofs):
     iterations : int array (P,)
     residuals : array (P,)
         Scaled residual of each point.
+    second : str
+        ``"vc"`` (``w2`` the varying compliance) or ``"spool"`` (the 1X of a second spool
+        at ``|r| W``, its unbalance in the tone ``(0, 1)``).
     approximation : str
-        Always "" (nothing is frozen; kept for code that reads periodic results).
+        "" when nothing is frozen (the VC torus); with two spools, rolling elements with
+        turning cages are frozen (their VC would be a third frequency) and this says so.
     stability_tol : float
         A torus is stable when its growth per shaft revolution ``exponent 2 pi / W`` is
         below this (an undamped mode's exponent is zero to round-off).
@@ -110,6 +115,7 @@ class QuasiPeriodicResult(KeptDofs):
     held_dofs: IntArray
     dof_map: DofMap
     nodes_pos: FloatArray
+    second: str = "vc"
     approximation: str = ""
     stability_tol: float = 1e-5
     options: dict[str, Any] = field(default_factory=dict)

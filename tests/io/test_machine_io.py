@@ -64,9 +64,11 @@ def test_info_lists_the_lines(capsys) -> None:
     assert "line HP" in out and "speed ratio 1.45" in out and "line casing" in out
 
 
-def test_periodic_refuses_the_quasi_periodic_unbalance_of_two_spools(machine) -> None:
+def test_periodic_refuses_the_two_spool_unbalance_of_a_linear_machine(machine) -> None:
+    """On a nonlinear machine it is a torus (tests/analyses/test_quasi_periodic_spools.py);
+    on this linear one it is the sum of two unbalance responses."""
     rotor, loads = machine.rotor, machine.loads
-    with pytest.raises(ModelError, match="quasi-periodic"):
+    with pytest.raises(ModelError, match=r"quasi-periodic.*rs\.unbalance_response"):
         rs.periodic(rotor, start=200.0, stop=210.0, unbalance=list(loads.unbalance),
                     harmonics=1)
 

@@ -62,7 +62,12 @@ from rotorsim.analyses.periodic.problem import (
 )
 from rotorsim.analyses.periodic.resume import finished_result, resumed
 from rotorsim.analyses.periodic.stability import DEFAULT_TOL, stability_model
-from rotorsim.analyses.periodic.torus import one_vc_order, refuse_unsupported, torus_branch
+from rotorsim.analyses.periodic.torus import (
+    one_vc_order,
+    refuse_unsupported,
+    torus_branch,
+    two_spools,
+)
 from rotorsim.analyses.quasiperiodic.output import check_nodes
 from rotorsim.analyses.statics.linearized_rotor import rolling_start
 from rotorsim.analyses.statics.nonlinear_static import start_point
@@ -239,17 +244,24 @@ def periodic(
     system = _system(model, nonlinear)
     frequency = _check_parameter(parameter, start, stop, speed)
     elements = () if system.nonlinear is None else system.nonlinear.elements
-    plan = plan_excitation(elements, unbalance=bool(e.unbalance), base=opts.base,
-                           varying_compliance=varying_compliance, fundamental=h.fundamental,
-                           frequency_parameter=frequency,
-                           unbalance_ratio=spool_ratio(system, list(e.unbalance)))
-    if plan.quasi_periodic and opts.base is None and plan.unbalance_ratio == 1.0 \
-            and one_vc_order(elements):
-        refuse_unsupported(WHERE, fold_map=fold_map is not False, peaks=bool(peaks),
+    spools = not frequency and opts.base is None and two_spools(system, list(e.unbalance))
+    if spools and system.nonlinear is None:
+        raise ModelError("the unbalances of two spools on a linear machine: the response is "
+                         "not a quasi-periodic torus to solve for but the sum of each "
+                         "spool's unbalance response (rs.unbalance_response keeps the "
+                         "spools' parts apart)", f"{WHERE}.unbalance")
+    plan = None if spools else plan_excitation(
+        elements, unbalance=bool(e.unbalance), base=opts.base,
+        varying_compliance=varying_compliance, fundamental=h.fundamental,
+        frequency_parameter=frequency, unbalance_ratio=spool_ratio(system, list(e.unbalance)))
+    if plan is None or (plan.quasi_periodic and opts.base is None
+                        and plan.unbalance_ratio == 1.0 and one_vc_order(elements)):
+        refuse_unsupported(WHERE, spools, fold_map=fold_map is not False, peaks=bool(peaks),
                            checkpoint=ck.path is not None or ck.resume is not None,
                            x0=x0 is not None)
         check_nodes(system.dof_map.n_nodes, opts.output.nodes)
         return torus_branch(model, nonlinear, start=start, stop=stop, opts=opts, clock=clock,
+                            spools=spools,
                             described={"parameter": parameter, "start": float(start),
                                        "stop": float(stop), "harmonics": int(h.count),
                                        "varying_compliance": varying_compliance})

@@ -1,5 +1,6 @@
 """``rs.periodic`` on a quasi-periodic problem: unbalance with the varying compliance (VC)
-of rolling bearings whose cages turn, at incommensurate orders.
+of rolling bearings whose cages turn, at incommensurate orders, or the unbalances of two
+spools turning at different speeds.
 
 The response is then a 2-torus, not a periodic orbit. Rather than freezing the rolling
 elements (an answer that depends on an arbitrary cage angle, issue 17), ``rs.periodic``
@@ -9,8 +10,9 @@ hands the problem to the two-frequency harmonic balance
 as follows:
 
 * ``harmonics=H``: the box ``(H, H2)`` of tones ``k1 W + k2 w2``, ``H2 =`` :func:`vc_order`
-  (3 for ``H >= 7``, 2 for ``H >= 4``, else 1); ``Harmonics.samples`` is not used (the
-  torus grid follows the box);
+  (3 for ``H >= 7``, 2 for ``H >= 4``, else 1) for the VC, whose tones decay fast, and
+  ``H2 = H`` for two spools, whose unbalances both force the nonlinear bearings;
+  ``Harmonics.samples`` is not used (the torus grid follows the box);
 * ``continuation``: ``max_points`` caps the points; the largest speed step where the
   response is flat is ``max_step`` of the range, at most :data:`MAX_STEP` (a step of a
   fifth of the range can leap over a lightly damped resonance), and at least the range over
@@ -34,6 +36,7 @@ from rotorsim.analyses.quasiperiodic.branch import quasi_periodic
 from rotorsim.analyses.quasiperiodic.output import quasi_periodic_result
 from rotorsim.analyses.quasiperiodic.problem import SAME_ORDER
 from rotorsim.analyses.varying_compliance import vc_orders
+from rotorsim.assembly.loads import spool_groups
 from rotorsim.errors import ModelError
 from rotorsim.options import Excitation
 from rotorsim.results.quasi_periodic import QuasiPeriodicResult
@@ -52,24 +55,35 @@ def one_vc_order(elements: Any) -> bool:
     return bool(orders) and max(orders) - min(orders) <= SAME_ORDER * max(orders)
 
 
+def two_spools(system: Any, unbalance: list[tuple[int, float, float]]) -> bool:
+    """The unbalances sit on two spools turning at different speeds (a torus of their two
+    1X frequencies)."""
+    return bool(unbalance) and len(spool_groups(system, unbalance)) == 2
+
+
 def vc_order(harmonics: int) -> int:
     """VC harmonics ``H2`` that go with ``H`` shaft harmonics."""
     return 3 if harmonics >= 7 else 2 if harmonics >= 4 else 1
 
 
-def refuse_unsupported(where: str, **given: Any) -> None:
-    """ModelError naming the first option a torus does not support."""
+def refuse_unsupported(where: str, spools: bool = False, **given: Any) -> None:
+    """ModelError naming the first option a torus does not support (``spools``: the torus
+    of two spools' unbalances, which no option turns into a periodic problem)."""
+    what = ("the unbalances of two spools at incommensurate speeds" if spools else
+            f"unbalance with varying compliance{FREEZE}")
     for name, value in given.items():
         if value:
             raise ModelError(f"{name} is not available for a quasi-periodic response "
-                             f"(unbalance with varying compliance){FREEZE}", f"{where}.{name}")
+                             f"({what})", f"{where}.{name}")
 
 
 def torus_branch(model: Any, nonlinear: Any, *, start: float, stop: float, opts: Any,
-                 described: dict[str, Any], clock: float) -> QuasiPeriodicResult:
-    """The branch of tori for ``rs.periodic``'s arguments (module docstring)."""
+                 described: dict[str, Any], clock: float,
+                 spools: bool = False) -> QuasiPeriodicResult:
+    """The branch of tori for ``rs.periodic``'s arguments (module docstring); ``spools``:
+    the second frequency is a second spool's 1X (else the VC)."""
     h, e, st = opts.harmonics, opts.excitation, opts.stability
-    box = (int(h.count), vc_order(int(h.count)))
+    box = (int(h.count), int(h.count) if spools else vc_order(int(h.count)))
     span = abs(float(stop) - float(start))
     stepping = opts.stepping()
     max_points = int(stepping.max_points)

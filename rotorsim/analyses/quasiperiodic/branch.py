@@ -146,7 +146,7 @@ def quasi_periodic(model: Any, *, start: float, stop: float, step: float | None 
         initial_step=min(0.5 * h, h) / span, max_step=h / span, min_step=1e-6,
         direction=1 if stop > start else -1, lam_min=min(start, stop),
         lam_max=max(start, stop), max_points=int(max_points), tol=tol,
-        x_scale=float(np.abs(x0).max()) or 1.0, r_scale="auto", lam_scale=span,
+        x_scale=float(np.abs(x0).max(initial=0.0)) or 1.0, r_scale="auto", lam_scale=span,
         relative_step=True, stall_tol=max(STALL_TOL, tol))
     branch = continue_branch(fun, x0, float(start), options)
     points = tuple(_point(fun, first, x, float(w), float(r), int(it)) for x, w, r, it in
@@ -172,6 +172,6 @@ def _point(fun: SpeedResidual, first: QuasiPeriodicPoint, x: FloatArray, speed: 
     w2 = first.rotor_problem.vc_order * speed
     base = first.rotor_problem
     rp = RotorQuasiProblem(fun.problem_at(speed), base.active, base.static, base.vc_order,
-                           speed)
+                           speed, base.plan)
     solution = QuasiSolution(fun.full(x, speed), fun.aft, speed, w2, residual, iterations)
     return QuasiPeriodicPoint(speed, w2, solution, rp, first.system)

@@ -29,8 +29,12 @@ import numpy as np
 import scipy.sparse as sp
 from numpy.typing import NDArray
 
-from rotorsim.analyses.quasiperiodic.problem import RotorQuasiProblem, TorusBearingForce
-from rotorsim.assembly.loads import unbalance_amplitudes
+from rotorsim.analyses.quasiperiodic.problem import (
+    RotorQuasiProblem,
+    TorusBearingForce,
+    forcing_rows,
+    torus_plan,
+)
 from rotorsim.assembly.system import RotorSystem
 from rotorsim.harmonic_balance.quasi import QuasiProblem, TorusAFT
 from rotorsim.harmonic_balance.quasi.residual import (
@@ -59,9 +63,8 @@ class SpeedResidual:
         pb = base.problem
         self.rows, self.d = aft.harmonics.rows, int(np.size(pb.nl_dofs))
         self.constant = np.asarray(pb.excitation)[0].copy()
-        self.unbalance = (unbalance_amplitudes(system, list(unbalance))[self.active]
-                          if unbalance else np.zeros(self.active.size, dtype=complex))
-        self.tone = 1 + 2 * aft.harmonics.index(1, 0)
+        plan = base.plan if base.plan is not None else torus_plan(system, unbalance)
+        self.forcing = forcing_rows(system, plan, aft.harmonics, self.active)
         self.speed_dependent = bool(system.variable_bearings)
         self._cache: OrderedDict[float, tuple[QuasiProblem, CondensedTones]] = OrderedDict()
         self.blocks = None if self.speed_dependent else LinearBlocks.of(pb)
@@ -72,8 +75,9 @@ class SpeedResidual:
         pb = self.base.problem
         P = np.zeros((self.rows, self.active.size))
         P[0] = self.constant
-        U = self.unbalance * speed**2
-        P[self.tone], P[self.tone + 1] = U.real, -U.imag
+        for row, U in self.forcing:
+            P[row] += U.real * speed**2
+            P[row + 1] += -U.imag * speed**2
         f = pb.force
         assert isinstance(f, TorusBearingForce)
         force = replace(f, speed=float(speed))
@@ -117,7 +121,8 @@ class SpeedResidual:
         harmonics = self.aft.harmonics
         orders = np.concatenate([[0.0], harmonics.frequencies(1.0, self.base.vc_order)])
         dF = np.zeros((orders.size, self.active.size), dtype=complex)
-        dF[1 + harmonics.index(1, 0)] = 2.0 * W * self.unbalance   # d(me W^2)/dW
+        for row, U in self.forcing:
+            dF[(row + 1) // 2] += 2.0 * W * U                     # d(me (r W)^2)/dW
         linear = speed_derivative(self.blocks, tones, orders, W, Y, dF)
         return r, J, (linear + (self._force(problem, Y, W + h) -
                                 self._force(problem, Y, W - h)) / (2 * h)).ravel()

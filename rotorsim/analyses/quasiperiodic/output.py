@@ -74,7 +74,7 @@ def quasi_periodic_result(branch: Any, nodes: Sequence[int] | None, options: dic
     speed = branch.speeds
     freq = np.array([s.exponents.critical_frequency if s is not None else np.nan
                      for s in branch.stability])
-    system = first.system
+    system, plan = first.system, first.rotor_problem.plan
     held = np.setdiff1d(np.arange(system.n_free), first.rotor_problem.active)
     return QuasiPeriodicResult(
         speed=speed, vc_frequency=np.array([p.vc_frequency for p in branch.points]),
@@ -89,7 +89,9 @@ def quasi_periodic_result(branch: Any, nodes: Sequence[int] | None, options: dic
         iterations=np.array([p.solution.iterations for p in branch.points], dtype=np.int64),
         residuals=np.array([p.solution.residual for p in branch.points]),
         held_dofs=system.dof_map.free[held].astype(np.int64), dof_map=system.dof_map,
-        nodes_pos=np.asarray(system.nodes_pos, dtype=float), options=options,
+        nodes_pos=np.asarray(system.nodes_pos, dtype=float),
+        second="vc" if plan is None else plan.second,
+        approximation="" if plan is None else plan.approximation, options=options,
         stats={"points": float(len(branch)), "stability_time": branch.stability_time,
                "wall_time": time.perf_counter() - clock},
         status=Status.OK if branch.status == "ok" else Status.NOT_CONVERGED, reason=branch.reason,
