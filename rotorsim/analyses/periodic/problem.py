@@ -215,8 +215,9 @@ def spool_ratio(system: RotorSystem, unbalance: Any) -> float:
     """Speed ratio of the spool that carries ``unbalance`` (1 without lines or unbalance).
 
     The unbalances of two spools turning at different speeds force two incommensurate
-    frequencies in general: the response is quasi-periodic (a 2-torus), which needs the
-    two-frequency harmonic balance, and is refused. One spool's unbalance at a ratio ``r``
+    frequencies in general: the response is quasi-periodic (a 2-torus), which the
+    two-frequency harmonic balance computes (``rs.periodic`` dispatches it before this
+    plan); here it is refused. One spool's unbalance at a ratio ``r``
     is periodic at ``|r| W``.
     """
     if not unbalance:
