@@ -40,9 +40,9 @@ from rotorsim.errors import ConvergenceError, InconsistentModelError, RotorsimEr
 from rotorsim.solvers.bordered import BORDER_WEIGHT as BORDER_WEIGHT
 from rotorsim.solvers.bordered import Tangent as Tangent
 from rotorsim.solvers.bordered import bordered as bordered
+from rotorsim.solvers.bordered import factor_bordered
 from rotorsim.solvers.bordered import signed_log_det as signed_log_det
 from rotorsim.solvers.bordered import tangent as tangent
-from rotorsim.solvers.linear import factorize
 from rotorsim.solvers.stats import Stats
 
 FloatArray = NDArray[np.float64]
@@ -258,7 +258,7 @@ def correct(system: ScaledSystem, y_start: FloatArray, border: FloatArray, targe
         stats.iterations += 1
         matrix, weight = bordered(ev.jh, ev.jlh, border)
         try:
-            fact = factorize(matrix, stats=stats, where="corrector")
+            fact = factor_bordered(matrix, stats, "corrector")
         except ConvergenceError as exc:
             return Correction(y, ev, iteration, False, str(exc))
         step = -fact.solve(np.concatenate([ev.rh, [weight * g]]))

@@ -148,25 +148,31 @@ class TorusAFT:
         """
         d = tangent.shape[1]
         K = self._spectrum(tangent)              # (N, d, d) complex
+        diff, summ = self._pair_positions
+        A, B = K[diff], K[summ]                  # (n_h, n_h, d, d)
+        plus, _ = self._positions
+        rows, n_h = self.harmonics.rows, self.harmonics.size
+        # built in the (row, DOF, row, DOF) layout: advanced indices on both row axes put
+        # the (n_h, n_h) axes first, matching A and B, and the final reshape is a view
+        J = np.zeros((rows, d, rows, d))
+        J[0, :, 0, :] = K[0].real
+        J[0, :, 1::2, :] = K[plus].real.transpose(1, 0, 2)
+        J[0, :, 2::2, :] = -K[plus].imag.transpose(1, 0, 2)
+        J[1::2, :, 0, :] = 2 * K[plus].real
+        J[2::2, :, 0, :] = -2 * K[plus].imag
+        cos = (1 + 2 * np.arange(n_h))[:, None]
+        sin = cos + 1
+        J[cos, :, cos.T, :] = (A + B).real
+        J[cos, :, sin.T, :] = (A - B).imag
+        J[sin, :, cos.T, :] = -(A + B).imag
+        J[sin, :, sin.T, :] = (A - B).real
+        return J.reshape(rows * d, rows * d)
+
+    @cached_property
+    def _pair_positions(self) -> tuple[IntArray, IntArray]:
+        """Grid indices of ``k_i - k_j`` and ``k_i + k_j`` ``(n_h, n_h)``."""
         n1, n2 = self.grid
         k = self.harmonics.k
         diff = ((k[:, None, 0] - k[None, :, 0]) % n1) * n2 + (k[:, None, 1] - k[None, :, 1]) % n2
         summ = ((k[:, None, 0] + k[None, :, 0]) % n1) * n2 + (k[:, None, 1] + k[None, :, 1]) % n2
-        A, B = K[diff], K[summ]                  # (n_h, n_h, d, d)
-        plus, _ = self._positions
-        rows, n_h = self.harmonics.rows, self.harmonics.size
-        J = np.zeros((rows, rows, d, d))
-        J[0, 0] = K[0].real
-        J[0, 1::2] = K[plus].real
-        J[0, 2::2] = -K[plus].imag
-        J[1::2, 0] = 2 * K[plus].real
-        J[2::2, 0] = -2 * K[plus].imag
-        cc = np.ix_(1 + 2 * np.arange(n_h), 1 + 2 * np.arange(n_h))
-        cs = np.ix_(1 + 2 * np.arange(n_h), 2 + 2 * np.arange(n_h))
-        sc = np.ix_(2 + 2 * np.arange(n_h), 1 + 2 * np.arange(n_h))
-        ss = np.ix_(2 + 2 * np.arange(n_h), 2 + 2 * np.arange(n_h))
-        J[cc] = (A + B).real
-        J[cs] = (A - B).imag
-        J[sc] = -(A + B).imag
-        J[ss] = (A - B).real
-        return J.transpose(0, 2, 1, 3).reshape(rows * d, rows * d)
+        return diff, summ

@@ -127,21 +127,40 @@ class LinearBlocks:
         out = {}
         for name in ("M", "C", "G", "K"):
             A = getattr(problem, name)
-            if A is None:
-                continue
-            A = sp.csr_matrix(A)
+            A = sp.csr_matrix((problem.n, problem.n)) if A is None else sp.csr_matrix(A)
             rows_N, rows_L = A[N], A[L]
             LL = rows_L[:, L]
             out[name] = (rows_N[:, N].toarray(), rows_N[:, L].toarray(),
                          rows_L[:, N].toarray(), LL.toarray() if dense else LL.tocsc())
         return cls(N, L, out, dense)
 
-    def z(self, w: float, s: float) -> tuple[Any, Any, Any, Any]:
-        """``(Z_NN, Z_NL, Z_LN, Z_LL)`` at the frequency ``w`` [rad/s] and spin ``s``."""
-        coef = {"K": 1.0, "M": -w * w, "C": 1j * w, "G": 1j * w * s}
-        parts = [name for name in ("K", "M", "C", "G") if name in self.blocks]
-        return tuple(sum(coef[name] * self.blocks[name][b] for name in parts)
-                     for b in range(4))
+    def block(self, name: str, b: int) -> Any:
+        """Block ``b`` (0 NN, 1 NL, 2 LN, 3 LL) of matrix ``name`` (zero when the problem
+        has none)."""
+        return self.blocks[name][b]
+
+    def damping(self, s: float) -> tuple[Any, Any, Any, Any]:
+        """The four blocks of ``D = C + s G`` at the spin ``s`` [rad/s] (formed once per
+        speed; every tone uses them)."""
+        return tuple(self.block("C", b) + s * self.block("G", b) for b in range(4))
+
+    def z(self, w: float, s: float, damping: tuple[Any, ...] | None = None,
+          which: tuple[int, ...] = (0, 1, 2, 3)) -> tuple[Any, ...]:
+        """Blocks ``which`` of ``Z = K - w^2 M + i w D`` (0 ``Z_NN``, 1 ``Z_NL``, 2 ``Z_LN``,
+        3 ``Z_LL``) at the frequency ``w`` [rad/s] and spin ``s`` (``damping``: the blocks
+        of ``D`` at ``s``, from :meth:`damping`)."""
+        D = self.damping(s) if damping is None else damping
+        out = []
+        for b in which:
+            real = self.block("K", b) - (w * w) * self.block("M", b)
+            if sp.issparse(real) or sp.issparse(D[b]):
+                out.append(sp.csc_matrix(real + (1j * w) * D[b]))
+                continue
+            Z = np.empty(np.shape(real), dtype=complex)
+            Z.real = real
+            Z.imag = w * D[b]
+            out.append(Z)
+        return tuple(out)
 
 
 def condense(problem: QuasiProblem, aft: TorusAFT, w1: float, w2: float,
@@ -153,17 +172,19 @@ def condense(problem: QuasiProblem, aft: TorusAFT, w1: float, w2: float,
     omega = np.concatenate([[0.0], aft.harmonics.frequencies(w1, w2)])
     F = _complex_excitation(problem, aft)
     spin = problem.spin + problem.spin_ratio * w1
+    D = lb.damping(spin)
     S = np.empty((omega.size, N.size, N.size), dtype=complex)
     load = np.empty((omega.size, N.size), dtype=complex)
     linear, factors = [], []
     for j, w in enumerate(omega):
-        ZNN, ZNL, ZLN, ZLL = lb.z(float(w), spin)
+        ZNN, ZNL, ZLN, ZLL = lb.z(float(w), spin, D)
         if L.size == 0:
             S[j], load[j] = ZNN, F[j, N]
             linear.append(np.zeros((0, N.size + 1), dtype=complex))
             continue
         lu = factorize(ZLL, where=f"quasi-periodic HB, linear DOFs at tone {j} "
-                             f"(Omega = {w:.6g} rad/s)", dense_threshold=DENSE_LINEAR)
+                             f"(Omega = {w:.6g} rad/s)", dense_threshold=DENSE_LINEAR,
+                        check_condition=j == 0)   # K_LL may be singular; damped tones not
         Y = lu.solve(np.column_stack([ZLN, F[j, L]]))
         S[j] = ZNN - ZNL @ Y[:, :-1]
         load[j] = F[j, N] - ZNL @ Y[:, -1]
@@ -184,17 +205,19 @@ def speed_derivative(blocks: LinearBlocks, tones: CondensedTones, orders: FloatA
     N, L = blocks.N, blocks.L
     Zc = np.concatenate([Y[:1].astype(complex), Y[1::2] - 1j * Y[2::2]])
     out = np.zeros(Zc.shape, dtype=complex)
-    b = blocks.blocks
+    D = blocks.damping(speed)
+    M = [blocks.block("M", k) for k in range(4)]
+    G = [blocks.block("G", k) for k in range(4)]
     for j in range(Zc.shape[0]):
         c, w = float(orders[j]), float(orders[j]) * speed
-        coef = {"M": -2.0 * w * c, "C": 1j * c, "G": 1j * c * speed + 1j * w}
-        parts = [name for name in ("M", "C", "G") if name in b]
-        dZ = [sum(coef[name] * b[name][k] for name in parts) for k in range(4)]
+        # dZ = -2 w c M + i (c D + w G), applied block by block to (X_N, X_L)
         XN = Zc[j]
         XL = tones.linear[j][:, -1] - tones.linear[j][:, :-1] @ XN
-        gN = dZ[0] @ XN + dZ[1] @ XL - dF[j, N]
-        gL = dZ[2] @ XN + dZ[3] @ XL - dF[j, L]
-        ZNL = blocks.z(w, speed)[1]
+        g = [M[k] @ X * (-2.0 * w * c) + 1j * (c * (D[k] @ X) + w * (G[k] @ X))
+             for k, X in ((0, XN), (1, XL), (2, XN), (3, XL))]
+        gN = g[0] + g[1] - dF[j, N]
+        gL = g[2] + g[3] - dF[j, L]
+        (ZNL,) = blocks.z(w, speed, D, which=(1,))
         out[j] = gN - ZNL @ tones.factors[j].solve(gL)
     R = np.empty(Y.shape)
     R[0] = out[0].real
@@ -240,8 +263,19 @@ def residual(problem: QuasiProblem, aft: TorusAFT, tones: CondensedTones, w1: fl
         R += aft.to_coefficients(f)
         J += aft.jacobian(dfdq)
         if dfdv is not None:
-            J += aft.jacobian(dfdv) @ np.kron(Dm, np.eye(d))
+            J += times_derivative(aft.jacobian(dfdv), Dm, d)
     return R.ravel(), J
+
+
+def times_derivative(Jv: FloatArray, Dm: FloatArray, d: int) -> FloatArray:
+    """``Jv @ kron(Dm, I_d)`` (the chain rule through the velocity coefficients ``Dm Y``)
+    without the dense product: ``Dm`` has one entry per column (a tone's cosine and sine
+    exchanged), so each column block of the result is one column block of ``Jv`` scaled.
+    Exact: the same products, none of the zeros."""
+    P, rows = Jv.shape[0], Dm.shape[0]
+    blocks = Jv.reshape(P, rows, d).transpose(1, 0, 2).reshape(rows, P * d)
+    out = sp.csr_matrix(Dm.T) @ blocks                      # (rows, P d)
+    return np.ascontiguousarray(out.reshape(rows, P, d).transpose(1, 0, 2).reshape(P, rows * d))
 
 
 def full_coefficients(problem: QuasiProblem, tones: CondensedTones, Y: FloatArray
