@@ -53,9 +53,11 @@ def quasi_periodic_summary(result: Any, units: str = "rpm") -> str:
                                   f"at speed [{units}]")))
     if result.events:
         lines.append(table([(e.kind, f"{e.parameter * f:.6g}",
-                             f"{e.exponents[0]:.4g} -> {e.exponents[1]:.4g}")
+                             f"{e.exponents[0]:.4g} -> {e.exponents[1]:.4g}",
+                             f"{e.lyapunov:.4g}", e.character or "-")
                             for e in result.events],
-                           ("stability change", f"speed [{units}]", "exponent [1/s]")))
+                           ("stability change", f"speed [{units}]", "exponent [1/s]",
+                            "Lyapunov [1/s]", "character")))
     return "\n".join(lines)
 
 

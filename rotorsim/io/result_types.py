@@ -105,7 +105,7 @@ register_result_type(PeriodicResult, {
     "multipliers": "1", "stability_tol": "1", "iterations": "1", "residuals": "1",
     "held_dofs": "1", "nodes_pos": "m"})
 register_result_type(TorusEvent, {"parameter": _ANGULAR, "exponents": "1/s",
-                                  "frequency": _ANGULAR})
+                                  "frequency": _ANGULAR, "lyapunov": "1/s"})
 register_result_type(QuasiPeriodicResult, {
     "speed": _ANGULAR, "vc_frequency": _ANGULAR, "vc_order": "1", "tones": "1", "dofs": "1",
     "coefficients": "m, rad", "max_abs": "m, rad", "peak_to_peak": "m, rad",

@@ -37,6 +37,16 @@ class TorusEvent:
     frequency : float
         ``|Im lam|`` [rad/s] of the critical exponent after the crossing: a perturbation
         growing at this frequency (modulo the tones) replaces the torus.
+    lyapunov : float
+        Largest Lyapunov exponent [1/s] on the unstable side, from a short integration of
+        the variational equation along that torus (independent evidence of the growth;
+        NaN when not computed).
+    character : str
+        What the critical exponent says the motion turns into, from ``frequency`` modulo
+        the tones ``k1 W + k2 w2``: ``"fold"`` (a real exponent: the branch folds or
+        branches, the response jumps), ``"doubling"`` (half a tone: a subharmonic torus),
+        ``"third frequency"`` (a new frequency: a 3-torus, phase locking or chaos; only an
+        integration in time says which), or ``""``.
     """
 
     kind: str
@@ -44,6 +54,8 @@ class TorusEvent:
     index: int
     exponents: tuple[float, float]
     frequency: float
+    lyapunov: float = float("nan")
+    character: str = ""
 
 
 @dataclass(frozen=True, eq=False)

@@ -3,6 +3,7 @@ branch: kept DOFs, amplitudes on the torus grid, stability events."""
 
 from __future__ import annotations
 
+import dataclasses
 import time
 from collections.abc import Sequence
 from typing import Any
@@ -63,6 +64,45 @@ def stability_events(speed: FloatArray, exponents: FloatArray, frequencies: Floa
     return tuple(out)
 
 
+LYAPUNOV_PERIODS = 20
+"""Shaft revolutions of the Lyapunov estimate attached to a stability change (its
+resolution is about ``1 / T``: growth rates of the order of ``W / 20`` and up)."""
+TONE_TOL = 1e-3
+"""A critical frequency within this fraction of ``W`` of a tone (or half a tone) is that
+tone (or half)."""
+
+
+def character(frequency: float, tones: FloatArray, w1: float) -> str:
+    """``"fold"``, ``"doubling"`` or ``"third frequency"`` of a critical exponent with
+    ``|Im lam| = frequency`` [rad/s] against the tone frequencies ``tones`` [rad/s]
+    (:class:`~rotorsim.results.quasi_periodic.TorusEvent`)."""
+    if not np.isfinite(frequency):
+        return ""
+    lattice = np.abs(np.concatenate([[0.0], np.asarray(tones, dtype=float)]))
+    tol = TONE_TOL * w1
+    if np.min(np.abs(frequency - lattice)) <= tol:
+        return "fold"
+    if np.min(np.abs(frequency - lattice / 2)) <= tol:
+        return "doubling"
+    return "third frequency"
+
+
+def with_evidence(events: Sequence[TorusEvent], branch: Any) -> tuple[TorusEvent, ...]:
+    """``events`` with the Lyapunov exponent of the unstable side's torus and the
+    character of the critical exponent."""
+    out = []
+    for ev in events:
+        unstable = ev.index + 1 if ev.kind == "loss_of_stability" else ev.index
+        point = branch.points[unstable]
+        h = point.solution.aft.harmonics
+        estimate = point.stability(periods=LYAPUNOV_PERIODS)
+        out.append(dataclasses.replace(
+            ev, lyapunov=float(estimate.exponent),
+            character=character(ev.frequency, h.frequencies(point.speed, point.vc_frequency),
+                                point.speed)))
+    return tuple(out)
+
+
 def quasi_periodic_result(branch: Any, nodes: Sequence[int] | None, options: dict[str, Any],
                           clock: float) -> QuasiPeriodicResult:
     """The result of ``branch`` (a :class:`~.branch.QuasiPeriodicBranch`) keeping ``nodes``
@@ -85,7 +125,8 @@ def quasi_periodic_result(branch: Any, nodes: Sequence[int] | None, options: dic
         exponents_converged=np.array([s is not None and s.converged
                                       for s in branch.stability]),
         stability_method="hill" if np.isfinite(branch.exponents).any() else "none",
-        events=stability_events(speed, branch.exponents, freq), stability_tol=STABILITY_TOL,
+        events=with_evidence(stability_events(speed, branch.exponents, freq), branch),
+        stability_tol=STABILITY_TOL,
         iterations=np.array([p.solution.iterations for p in branch.points], dtype=np.int64),
         residuals=np.array([p.solution.residual for p in branch.points]),
         held_dofs=system.dof_map.free[held].astype(np.int64), dof_map=system.dof_map,

@@ -216,6 +216,9 @@ def speed_derivative(blocks: LinearBlocks, tones: CondensedTones, orders: FloatA
         g = [M[k] @ X * (-2.0 * w * c) + 1j * (c * (D[k] @ X) + w * (G[k] @ X))
              for k, X in ((0, XN), (1, XL), (2, XN), (3, XL))]
         gN = g[0] + g[1] - dF[j, N]
+        if L.size == 0:        # every DOF nonlinear (a rigid rotor): nothing condensed
+            out[j] = gN
+            continue
         gL = g[2] + g[3] - dF[j, L]
         (ZNL,) = blocks.z(w, speed, D, which=(1,))
         out[j] = gN - ZNL @ tones.factors[j].solve(gL)
