@@ -152,7 +152,11 @@ def quasi_periodic(model: Any, *, start: float, stop: float, step: float | None 
     points = tuple(_point(fun, first, x, float(w), float(r), int(it)) for x, w, r, it in
                    zip(branch.x, branch.lam, branch.residuals, branch.iterations, strict=True))
     status = "ok" if branch.status == Status.OK else "stopped"
-    reason = "" if status == "ok" else f"{branch.reason} (at {branch.lam[-1]:.6g} rad/s)"
+    end = float(branch.lam[-1])
+    reason = ""
+    if status != "ok" or abs(end - stop) > 1e-9 * max(abs(stop), 1.0):  # short of stop
+        hint = ", raise max_points" if branch.reason == "max_points reached" else ""
+        reason = f"{branch.reason or 'ended'} (at {end:.6g} rad/s, stop {stop:.6g}{hint})"
     clock = time.perf_counter()
     checks: list[TorusStability | None] = [None] * len(points)
     if stability == "lyapunov":
