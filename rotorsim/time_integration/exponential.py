@@ -1,0 +1,469 @@
+"""Exponential collocation condensed onto the nonlinear DOFs, with step control.
+
+For a rotor at constant speed whose only nonlinearity is local (rolling bearings) and whose
+loads are constant plus an unbalance, the linear part is integrated exactly in the
+eigenbasis of the shifted linear rotor (:mod:`~.exponential_modes`), and only the
+nonlinear remainder ``rho`` on the ``k`` nonlinear DOFs is approximated: by its
+interpolation polynomial through its value at the start of the step and at ``s`` stage
+points (the Gauss-Lobatto nodes ``0 = c_0 < c_1 < ... < c_s = 1``). Each step's Newton
+iteration works on the ``s k`` stage values of ``rho`` alone (36 unknowns for two bearings
+with 6 DOFs each and ``s = 3``): the bearing displacements at the stages are affine in
+them through ``k x k`` blocks precomputed per step size. Nothing of size ``n`` is
+factorised after the start; a step costs ``O(n k)`` plus two products with the
+eigenbasis.
+
+Order: the interpolant of degree ``s`` has a local error ``O(h^{s+2})`` (global order
+``s + 1``, 4 by default; ``tests/time_integration/test_exponential.py`` measures it). The
+error estimate is the difference to the interpolant of degree ``s - 1`` through the stage
+nodes only (the error of the lower-order interpolant, so the estimate is conservative),
+measured per unknown against ``rtol`` times the motion (:mod:`~.motion_scale`), with the
+step-size ladder of :mod:`~.radau`.
+
+References
+----------
+M. Hochbruck, A. Ostermann, *Exponential integrators*, Acta Numerica 19 (2010) 209-286,
+section 2.3 (exponential collocation); E. Hairer, G. Wanner, *Solving Ordinary
+Differential Equations II*, IV.8 (step-size control).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from rotorsim.errors import ConvergenceError, ModelError
+from rotorsim.time_integration.base import Counters, FloatArray, IntArray, State
+from rotorsim.time_integration.exponential_modes import (
+    HarmonicLoad,
+    LinearModes,
+    StepWeights,
+    lagrange_coefficients,
+)
+from rotorsim.time_integration.finite_checks import finite_vector
+from rotorsim.time_integration.motion_scale import MotionScale
+from rotorsim.time_integration.problem import SecondOrderProblem
+
+LADDER = 4
+"""Step sizes lie on ``h0 * 2^(j / LADDER)`` (the weights of a few sizes are reused)."""
+CACHED_STEPS = 12
+"""Step sizes whose weights are kept."""
+NEWTON_KAPPA = 0.03
+"""Newton stops when its correction of the bearing displacements is below this fraction of
+the local tolerance."""
+LOCAL_FRACTION = 0.1
+"""The local error per step is held to this fraction of ``rtol`` (as in :mod:`~.radau`)."""
+
+
+def lobatto_nodes(s: int) -> FloatArray:
+    """The ``s + 1`` Gauss-Lobatto nodes on [0, 1].
+
+    Examples
+    --------
+    >>> [round(float(x), 6) for x in lobatto_nodes(2)]
+    [0.0, 0.5, 1.0]
+    """
+    inner = np.polynomial.legendre.Legendre.basis(s).deriv().roots()
+    return np.concatenate([[0.0], np.sort((inner.real + 1.0) / 2.0), [1.0]])
+
+
+@dataclass(frozen=True)
+class Exponential:
+    """Options of the exponential collocation stepper (module docstring).
+
+    Parameters
+    ----------
+    load : HarmonicLoad
+        The problem's load as ``constant + Re(amplitude e^{i W t})``; ``init`` checks it
+        against the problem's load at the start.
+    rtol : float
+        Accuracy asked of the displacements relative to the motion.
+    weights : tuple of float, optional
+        Weight of every unknown in the error and the motion (1 if omitted).
+    motion : float, optional
+        A-priori estimate of the motion (the floor of the scale).
+    stages : int
+        ``s``: stage points per step (order ``s + 1``).
+    max_newton : int
+        Newton iterations per attempt before the step is retried smaller.
+    max_growth, min_shrink : float
+        Bounds of one change of the step size.
+    dt_max : float
+        Largest step [s].
+    max_rejections : int
+        Consecutive rejections allowed in one step.
+
+    Examples
+    --------
+    >>> f = HarmonicLoad(np.zeros(1), np.zeros(1, complex), 0.0)
+    >>> Exponential(f, rtol=1e-5).name, Exponential(f).order
+    ('exponential', 4)
+    """
+
+    load: HarmonicLoad = field(repr=False, compare=False)
+    rtol: float = 1e-4
+    weights: tuple[float, ...] | None = field(default=None, repr=False)
+    motion: float | None = None
+    stages: int = 3
+    max_newton: int = 8
+    max_growth: float = 4.0
+    min_shrink: float = 0.2
+    dt_max: float = math.inf
+    max_rejections: int = 40
+
+    def __post_init__(self) -> None:
+        checks = [(1e-12 <= self.rtol < 1.0, f"1e-12 <= rtol < 1, got {self.rtol!r}"),
+                  (2 <= self.stages <= 6, f"2 <= stages <= 6, got {self.stages!r}"),
+                  (self.max_newton >= 2, "max_newton >= 2"),
+                  (self.max_growth > 1.0 > self.min_shrink > 0.0,
+                   "max_growth > 1 > min_shrink > 0"),
+                  (self.dt_max > 0, "dt_max > 0"),
+                  (self.max_rejections >= 1, "max_rejections >= 1")]
+        for ok, text in checks:
+            if not ok:
+                raise ModelError(f"need {text}", "Exponential")
+
+    @property
+    def name(self) -> str:
+        """``"exponential"``."""
+        return "exponential"
+
+    @property
+    def order(self) -> int:
+        """``stages + 1``."""
+        return self.stages + 1
+
+    @property
+    def local_tol(self) -> float:
+        return LOCAL_FRACTION * self.rtol
+
+    def init(self, problem: SecondOrderProblem, t0: float, q0: FloatArray, v0: FloatArray,
+             *, dt: float, a0: FloatArray | None = None) -> State:
+        """State at ``t0`` with first trial step ``dt`` (``a0`` is recomputed: the
+        method needs the force balance at the start)."""
+        n = problem.n
+        q, v = finite_vector(q0, n, "q0"), finite_vector(v0, n, "v0")
+        if not (math.isfinite(dt) and dt > 0):
+            raise ModelError(f"dt must be positive and finite, got {dt!r}", "init")
+        cache = _Cache.build(self, problem, q, v, float(t0), float(dt))
+        rho0, r0 = cache.rho_at(q, v, float(t0))
+        state = State(float(t0), q, v, np.zeros(n), np.zeros(n), dt=min(float(dt),
+                                                                        self.dt_max),
+                      peak=np.zeros(n), cache=cache,
+                      counters=Counters(factorizations=1, residual_evaluations=1))
+        history = cache.pack(np.repeat(rho0[None, :], self.stages + 1, axis=0),
+                             np.stack([q, v]), float(t0))
+        force = cache.net_force(q, v, r0, float(t0))
+        return dataclasses.replace(state, a=-cache.modes.minv @ force, force=force,
+                                   history=history)
+
+    def step(self, problem: SecondOrderProblem, state: State) -> State:
+        """One accepted step; rejected attempts are retried with a smaller step.
+
+        Raises
+        ------
+        ConvergenceError
+            After ``max_rejections`` consecutive rejections.
+        """
+        cache = state.cache if isinstance(state.cache, _Cache) else _Cache.build(
+            self, problem, state.history[-2], state.history[-1],
+            float(state.history[-3, 2]), float(state.history[-3, 0]))
+        h, rejected, tally = state.dt, False, Counters()
+        for _ in range(self.max_rejections + 1):
+            attempt = _Attempt(self, cache, state, h)
+            out = attempt.run()
+            tally = tally.plus(attempt.tally)
+            if out is not None and out[-1] <= 1.0:
+                factor = 0.9 * out[-1] ** (-1.0 / (self.stages + 1)) if out[-1] > 0 \
+                    else self.max_growth
+                grow = min(self.max_growth, factor) if not rejected else min(1.0, factor)
+                return self._accepted(state, attempt, out, grow, tally)
+            err = math.inf if out is None else out[-1]
+            factor = 0.5 if out is None else 0.9 * err ** (-1.0 / (self.stages + 1))
+            tally = tally.plus(Counters(rejected_steps=1, newton_failures=int(out is None)))
+            h = cache.ladder(h * max(self.min_shrink, min(factor, 0.9)), self.dt_max)
+            rejected = True
+            if h < 1e-14 * max(abs(state.t), 1e-300):
+                break
+        raise ConvergenceError(f"step size {h:.3e} s after {self.max_rejections} "
+                               f"rejections at t = {state.t:.9g} s", self.name,
+                               step=state.step + 1)
+
+    def _accepted(self, old: State, attempt: _Attempt, out: tuple[Any, ...], factor: float,
+                  tally: Counters) -> State:
+        q, v, rho, force, err = out
+        cache, h = attempt.cache, attempt.h
+        history = cache.pack(rho, old.history[-2:], float(old.history[-3, 2]),
+                             attempt.theta)
+        motion = np.maximum(old.peak, np.abs(q - old.history[-2]))
+        counters = old.counters.plus(dataclasses.replace(
+            tally, max_iterations=attempt.tally.max_iterations))
+        return dataclasses.replace(old, t=old.t + h, q=q, v=v, a=-cache.modes.minv @ force,
+                                   force=force, step=old.step + 1,
+                                   dt=cache.ladder(h * factor, self.dt_max), error=err,
+                                   peak=motion, history=history, history_dt=h,
+                                   counters=counters, cache=cache)
+
+    def interpolate(self, old: State, new: State, t: FloatArray,
+                    dofs: IntArray) -> tuple[FloatArray, FloatArray]:
+        """``q`` and its slope from the step's own formula (exact linear part, the
+        interpolant of ``rho``) at the times ``t``."""
+        cache = new.cache if isinstance(new.cache, _Cache) else None
+        if cache is None:
+            raise ModelError("interpolation needs the run's cache", self.name)
+        h = new.history_dt
+        x = (np.asarray(t, dtype=float) - old.t) / h
+        rho = new.history[:self.stages + 1, :cache.modes.dofs.size]
+        z = cache.propagate(old, h, x, rho)
+        n = cache.modes.n
+        return (np.asarray((z @ cache.modes.V[dofs].T).real),
+                np.asarray((z @ cache.modes.V[n + np.asarray(dofs)].T).real))
+
+
+@dataclass(frozen=True, eq=False)
+class _Ops:
+    """What a step of size ``h`` needs: the weights at the stage nodes, the maps ``Hq``,
+    ``Hv`` (s k, s k) of the stage values of ``rho`` (nodes 1..s) to the bearing
+    displacements and velocities at the stages, and the error weights ``D`` (s + 1, N)."""
+
+    weights: StepWeights
+    Hq: FloatArray
+    Hv: FloatArray
+    D: Any
+
+
+@dataclass(eq=False)
+class _Cache:
+    """Runtime state of a run: the modes, the motion scale, the step-size weights."""
+
+    method: Exponential
+    problem: SecondOrderProblem
+    modes: LinearModes
+    scales: MotionScale
+    h0: float
+    nodes: FloatArray
+    L: FloatArray
+    L_error: FloatArray
+    damping: Any
+    ops: dict[float, _Ops] = field(default_factory=dict)
+    z: dict[tuple[float, int], Any] = field(default_factory=dict)
+
+    @classmethod
+    def build(cls, method: Exponential, problem: SecondOrderProblem, q: FloatArray,
+              v: FloatArray, t0: float, h0: float) -> _Cache:
+        """Modes about the start ``(q, v)`` at ``t0`` (after a resume: the start kept in
+        the history, so that the run continues with the same modes)."""
+        where = f"{method.name}: linear part"
+        batch = getattr(problem.restoring, "batch", None)
+        if batch is None or problem.speed_terms is not None:
+            raise ModelError("needs a restoring force with batch evaluation and no "
+                             "speed-dependent linear terms", method.name)
+        spin = problem.spin(t0)
+        n = problem.n
+        dense = (lambda A: np.zeros((n, n)) if A is None else  # noqa: E731
+                 np.asarray(A.toarray() if hasattr(A, "toarray") else A, dtype=float))
+        D = dense(problem.damping) + spin * dense(problem.gyroscopic)
+        f0 = problem.external(t0)
+        if not np.allclose(method.load(t0), f0, rtol=1e-10,
+                           atol=1e-12 * float(np.max(np.abs(f0), initial=1.0))):
+            raise ModelError("load does not match the problem's load", method.name)
+        dofs, _, K0, C0 = batch(q[None, :], v[None, :], np.array([t0]))
+        modes = LinearModes.build(dense(problem.mass), dense(problem.stiffness), D,
+                                  np.asarray(dofs, dtype=np.int64), K0[0], C0[0],
+                                  method.load, where)
+        s = method.stages
+        nodes = lobatto_nodes(s)
+        L = lagrange_coefficients(nodes)
+        low = np.zeros_like(L)
+        low[1:, :s] = lagrange_coefficients(nodes[1:])
+        weights = None if method.weights is None else np.asarray(method.weights)
+        return cls(method, problem, modes, MotionScale.of(weights, q, method.motion),
+                   h0, nodes, L, L - low, D)
+
+    def ladder(self, h: float, h_max: float) -> float:
+        """The largest ``h0 * 2^(j / LADDER) <= min(h, h_max)``."""
+        h = min(h, h_max)
+        j = math.floor(LADDER * math.log2(h / self.h0) + 1e-9)
+        return self.h0 * 2.0 ** (j / LADDER)
+
+    def pack(self, rho: FloatArray, start: FloatArray, t0: float, theta: float = 1.0
+             ) -> FloatArray:
+        """History rows: ``rho`` at the nodes (s + 1 rows); the ladder base, the last
+        Newton contraction and the start time ``t0``; the start ``q0``, ``v0`` (``start``,
+        2 rows: after a resume the modes are rebuilt from them, identical)."""
+        n = start.shape[1]
+        out = np.zeros((rho.shape[0] + 3, n))
+        out[:rho.shape[0], :rho.shape[1]] = rho
+        out[-3, :3] = self.h0, theta, t0
+        out[-2:] = start
+        return out
+
+    def step_ops(self, h: float) -> _Ops:
+        found = self.ops.get(h)
+        if found is not None:
+            return found
+        m = self.modes
+        n = m.n
+        w = StepWeights.of(m, h, self.nodes[1:], self.L)
+        Cq, Cv = m.V[m.dofs], m.V[n + m.dofs]
+        s, k = self.nodes.size - 1, m.dofs.size
+        # block (i, j) = Re(C diag(W_ij) Bp): stage i's bearing motion per unit rho_j
+        blocks = [np.matmul(C[None, None, :, :] * w.W[:, 1:, None, :], m.Bp).real
+                  .transpose(0, 2, 1, 3).reshape(s * k, s * k) for C in (Cq, Cv)]
+        D = StepWeights.of(m, h, np.ones(1), self.L_error).W[0]
+        if len(self.ops) >= CACHED_STEPS:
+            self.ops.pop(next(iter(self.ops)))
+        self.ops[h] = _Ops(w, blocks[0], blocks[1], D)
+        return self.ops[h]
+
+    def modal(self, state: State) -> Any:
+        """``z`` of ``state`` (kept for the last two states: each is needed twice)."""
+        key = (state.t, state.step)
+        z = self.z.get(key)
+        if z is None:
+            z = self.modes.modal(state.q, state.v)
+            self.keep_modal(key, z)
+        return z
+
+    def keep_modal(self, key: tuple[float, int], z: Any) -> None:
+        """Remember ``z`` of the state at ``key`` (time, step); three are kept."""
+        if len(self.z) >= 3:
+            self.z.pop(next(iter(self.z)))
+        self.z[key] = z
+
+    def rho_at(self, q: FloatArray, v: FloatArray, t: float) -> tuple[FloatArray, FloatArray]:
+        """``rho`` and ``r`` on the nonlinear DOFs at one point."""
+        m = self.modes
+        _, r, _, _ = self.problem.restoring.batch(  # type: ignore[union-attr]
+            q[None, :], v[None, :], np.array([t]))
+        qb, vb = q[m.dofs], v[m.dofs]
+        return m.K0 @ qb + m.C0 @ vb - r[0], r[0]
+
+    def net_force(self, q: FloatArray, v: FloatArray, r: FloatArray, t: float) -> FloatArray:
+        """``K q + D v + r - f`` [N]."""
+        p = self.problem
+        g = p.stiffness @ q + self.damping @ v - self.method.load(t)
+        g[self.modes.dofs] += r
+        return np.asarray(g)
+
+    def propagate(self, old: State, h: float, x: FloatArray, rho: FloatArray) -> Any:
+        """Modal states (p, N) at the fractions ``x`` of a step from ``old`` whose
+        ``rho`` at the nodes is ``rho`` (s + 1, k)."""
+        m = self.modes
+        w = StepWeights.of(m, h, x, self.L)
+        return _stage_states(m, w, self.modal(old), old.t, rho)
+
+
+def _stage_states(m: LinearModes, w: StepWeights, z: Any, t: float, rho: FloatArray) -> Any:
+    """Modal states at the weights' fractions: exact linear part, loads and the
+    interpolant of ``rho`` (s + 1, k)."""
+    e = np.exp(1j * m.frequency * t)
+    forced = w.E * z[None, :] + w.const + e * w.plus + np.conj(e) * w.minus
+    return forced + np.einsum("pjn,nj->pn", w.W, m.Bp @ rho.T)
+
+
+class _Attempt:
+    """One try of a step of size ``h``: Newton on the stage values of ``rho``, then the
+    end state and the error estimate."""
+
+    def __init__(self, method: Exponential, cache: _Cache, state: State, h: float) -> None:
+        if not (math.isfinite(h) and h > 0):
+            raise ModelError(f"step size must be positive and finite, got {h!r}",
+                             method.name)
+        self.m, self.cache, self.s, self.h = method, cache, state, h
+        self.count = {"residual_evaluations": 0, "iterations": 0, "solves": 0}
+        self.theta = 1.0
+
+    @property
+    def tally(self) -> Counters:
+        return Counters(**self.count, max_iterations=self.count["iterations"])
+
+    def run(self) -> tuple[Any, ...] | None:
+        """``(q, v, rho (s + 1, k), net force, scaled error)`` or None when Newton
+        failed."""
+        m, s, h, cache = self.m, self.s, self.h, self.cache
+        modes = cache.modes
+        n, k, S = modes.n, modes.dofs.size, m.stages
+        ops = cache.step_ops(h)
+        z = cache.modal(s)
+        rho0 = s.history[S, :k]  # rho at the end of the last step (or at the start)
+        e = np.exp(1j * modes.frequency * s.t)
+        w = ops.weights
+        base = w.E * z[None, :] + w.const + e * w.plus + np.conj(e) * w.minus + \
+            w.W[:, 0, :] * (modes.Bp @ rho0)[None, :]
+        aq = (base @ modes.V[modes.dofs].T).real.ravel()
+        av = (base @ modes.V[n + modes.dofs].T).real.ravel()
+        rho = self._guess(s.history[:S + 1, :k], rho0).ravel()
+        times = s.t + cache.nodes[1:] * h
+        wb = np.tile(cache.scales.weights[modes.dofs], S)
+        tol = m.local_tol * cache.scales.scale(s.peak)
+        Q, Vel = np.zeros((S, n)), np.zeros((S, n))
+        eye = np.eye(S * k)
+        K0, C0 = modes.K0, modes.C0
+        old_norm, theta = math.inf, float(s.history[-3, 1])
+        for it in range(m.max_newton):
+            qb, vb = aq + ops.Hq @ rho, av + ops.Hv @ rho
+            Q[:, modes.dofs], Vel[:, modes.dofs] = qb.reshape(S, k), vb.reshape(S, k)
+            _, r, Kt, Ct = cache.problem.restoring.batch(Q, Vel, times)  # type: ignore
+            self.count["residual_evaluations"] += 1
+            self.count["iterations"] += 1
+            self.count["solves"] += 1
+            R = rho - ((Q[:, modes.dofs] @ K0.T + Vel[:, modes.dofs] @ C0.T) - r).ravel()
+            J = eye - (np.matmul(K0[None] - Kt, ops.Hq.reshape(S, k, S * k)) +
+                       np.matmul(C0[None] - Ct, ops.Hv.reshape(S, k, S * k))
+                       ).reshape(S * k, S * k)
+            if not np.all(np.isfinite(R)):
+                return None
+            try:
+                d = -np.linalg.solve(J, R)
+            except np.linalg.LinAlgError:
+                return None
+            rho = rho + d
+            dq = ops.Hq @ d
+            norm = float(np.max(wb * np.abs(dq))) / tol
+            # remaining error predicted from the contraction (Hairer & Wanner IV.8, 8.10)
+            # the first iteration uses the contraction of the last step's final one
+            rate = norm / old_norm if it > 0 else theta
+            if norm <= NEWTON_KAPPA or (rate < 1.0 and rate / (1.0 - rate) * norm
+                                        <= NEWTON_KAPPA):
+                dv = ops.Hv @ d
+                r_end = r[-1] + Kt[-1] @ dq[-k:] + Ct[-1] @ dv[-k:]
+                self.theta = rate if it > 0 else theta
+                return self._finish(base, rho0, rho.reshape(S, k), r_end)
+            if it > 0 and norm >= old_norm:
+                return None
+            old_norm = norm
+        return None
+
+    def _guess(self, rho_prev: FloatArray, rho0: FloatArray) -> FloatArray:
+        """Stage values of ``rho`` extrapolated from the last step's interpolant (``rho``
+        at the start before the first step)."""
+        s, cache = self.s, self.cache
+        hp = s.history_dt
+        if not (math.isfinite(hp) and hp > 0):
+            return np.repeat(rho0[None, :], self.m.stages, axis=0)
+        x = 1.0 + cache.nodes[1:] * self.h / hp
+        powers = x[:, None] ** np.arange(cache.L.shape[1])[None, :]
+        return np.asarray(powers @ cache.L.T @ rho_prev)
+
+    def _finish(self, base: Any, rho0: FloatArray, rho: FloatArray, r: FloatArray
+                ) -> tuple[Any, ...]:
+        """End state, net force (``r`` the restoring force there) and scaled error."""
+        cache, modes = self.cache, self.cache.modes
+        n = modes.n
+        ops = cache.step_ops(self.h)
+        all_rho = np.concatenate([rho0[None, :], rho])
+        z_end = base[-1] + np.sum(ops.weights.W[-1, 1:] * (rho @ modes.Bp.T), axis=0)
+        y = (modes.V @ z_end).real
+        q, v = y[:n], y[n:]
+        force = cache.net_force(q, v, r, self.s.t + self.h)
+        dz = np.sum(ops.D * (all_rho @ modes.Bp.T), axis=0)
+        eq = (modes.V[:n] @ dz).real
+        sc = cache.scales
+        scale = sc.scale(np.maximum(self.s.peak, np.abs(q - self.s.history[-2])))
+        err = float(np.max(sc.weights * np.abs(eq))) / (self.m.local_tol * scale)
+        cache.keep_modal((self.s.t + self.h, self.s.step + 1), z_end)
+        return q, v, all_rho, force, err

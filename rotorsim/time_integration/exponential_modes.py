@@ -1,0 +1,284 @@
+"""The exact linear part of an exponential collocation step: modes of the shifted linear
+rotor and the weights of one step size (the stepper is :mod:`~.exponential`).
+
+A rotor at constant speed with local nonlinear elements reads, in first-order form
+``y = (q, v)``,
+
+    y' = A y + [0; M^-1 (f(t) + P rho(P^T q, P^T v, t))],
+    A = [[0, I], [-M^-1 (K + P K0 P^T), -M^-1 (D + P C0 P^T)]],
+    rho = K0 q_b + C0 v_b - r(q_b, v_b, t),
+
+with ``D = C + W G``, ``P`` the columns of the ``k`` nonlinear DOFs and ``K0``, ``C0`` the
+tangents of the restoring force ``r`` at the start (the splitting is exact for any ``K0``,
+``C0``; taking the tangents leaves only the nonlinear remainder in ``rho``). ``A`` is
+diagonalised once, ``A = V diag(lambda) V^-1``, so for the modal coordinates
+``z = V^-1 y`` the variation-of-constants formula over a step of size ``h`` is diagonal:
+
+    z(t_n + x h) = e^{lambda x h} z_n + int_0^{x h} e^{lambda (x h - s)} b(t_n + s) ds.
+
+The constant load and the unbalance ``Re(u e^{i W t})`` are integrated exactly
+(``phi_1``); ``rho`` is replaced by its interpolation polynomial through the stage values,
+whose integrals are the ``phi_k`` functions (Hochbruck & Ostermann 2010, section 2.3).
+
+References
+----------
+M. Hochbruck, A. Ostermann, *Exponential integrators*, Acta Numerica 19 (2010) 209-286,
+sections 2.1-2.3 (variation of constants, the ``phi_k`` functions and their recurrence
+``phi_{k+1}(z) = (phi_k(z) - 1/k!) / z``, exponential collocation).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+import scipy.linalg as sl
+
+from rotorsim.errors import ConvergenceError
+from rotorsim.time_integration.base import FloatArray, IntArray
+
+ComplexArray = np.ndarray
+TAYLOR_RADIUS = 1.0
+"""``|z|`` below which ``phi_k`` is summed as its Taylor series (above: the recurrence,
+whose cancellation then costs at most ``k / |z|`` of a digit per level)."""
+TAYLOR_TERMS = 17
+"""Terms of the series: the first left out is below ``1/18! < 1.6e-16`` at ``|z| <= 1``."""
+RECONSTRUCTION_LIMIT = 1e-8
+"""Largest relative error of ``V (V^-1 x)`` accepted for the eigenbasis (an ill-conditioned
+basis, e.g. a nearly defective eigenvalue, is refused)."""
+RIGID_SHIFT = 1e-2
+"""Stiffness added (and subtracted again in ``rho``) on nonlinear DOFs whose start tangent
+is zero, as a fraction of the linear stiffness's diagonal there: it turns the rigid modes
+of a rotor carried only by nonlinear elements (defective double zero eigenvalues) into
+slow oscillations, which the eigenbasis can represent."""
+
+
+class IllConditionedModes(ConvergenceError):
+    """The eigenbasis of the linear part cannot represent it (a nearly defective
+    eigenvalue); raised at the start of a run, before any step."""
+
+
+def phi_functions(z: ComplexArray, kmax: int) -> ComplexArray:
+    """``phi_0 .. phi_kmax`` (kmax + 1, len(z)) of a complex vector ``z``
+    (``phi_0 = e^z``, ``phi_{k+1}(z) = (phi_k(z) - 1/k!) / z``).
+
+    Examples
+    --------
+    >>> p = phi_functions(np.array([0.0, 2.0 + 0j]), 2)
+    >>> bool(np.allclose(p[:, 0], [1.0, 1.0, 0.5]))
+    True
+    >>> bool(np.isclose(p[1, 1], (np.exp(2) - 1) / 2))
+    True
+    """
+    z = np.asarray(z, dtype=complex)
+    out = np.empty((kmax + 1, z.size), dtype=complex)
+    out[0] = np.exp(z)
+    small = np.abs(z) < TAYLOR_RADIUS
+    if np.all(small):
+        return _phi_small(z, kmax, out)
+    fact = 1.0
+    for k in range(1, kmax + 1):
+        out[k] = (out[k - 1] - 1.0 / fact) / np.where(small, 1.0, z)
+        fact *= k
+    if np.any(small):
+        part = np.empty((kmax + 1, int(np.count_nonzero(small))), dtype=complex)
+        part[0] = out[0, small]
+        out[:, small] = _phi_small(z[small], kmax, part)
+    return out
+
+
+def _phi_small(z: ComplexArray, kmax: int, out: ComplexArray) -> ComplexArray:
+    """``phi_kmax`` by its Taylor series (Horner), the lower ones by the backward
+    recurrence ``phi_k = z phi_{k+1} + 1/k!`` (stable for ``|z| < 1``); ``out[0]`` is set."""
+    acc = np.full(z.size, 1.0 / math.factorial(kmax + TAYLOR_TERMS - 1), dtype=complex)
+    for m in range(TAYLOR_TERMS - 2, -1, -1):
+        acc = acc * z + 1.0 / math.factorial(m + kmax)
+    out[kmax] = acc
+    for k in range(kmax - 1, 0, -1):
+        out[k] = z * out[k + 1] + 1.0 / math.factorial(k)
+    return out
+
+
+def lagrange_coefficients(nodes: FloatArray) -> FloatArray:
+    """Monomial coefficients ``L[j, m]`` of the Lagrange basis ``l_j(x) = sum_m L[j, m]
+    x^m`` through ``nodes`` (p,)."""
+    p = nodes.size
+    vander = np.vander(nodes, p, increasing=True)  # vander[i, m] = x_i^m
+    return np.asarray(np.linalg.inv(vander).T)
+
+
+@dataclass(frozen=True, eq=False)
+class HarmonicLoad:
+    """``f(t) = constant + Re(amplitude e^{i frequency t})`` [N]: gravity, point loads and
+    an unbalance at constant speed.
+
+    Examples
+    --------
+    >>> f = HarmonicLoad(np.zeros(2), np.array([1.0, -1j]), 10.0)
+    >>> [round(float(x), 12) for x in f(0.0)]
+    [1.0, 0.0]
+    """
+
+    constant: FloatArray
+    amplitude: ComplexArray
+    frequency: float
+
+    def __call__(self, t: float) -> FloatArray:
+        return np.asarray(self.constant + (self.amplitude * np.exp(1j * self.frequency * t)
+                                           ).real)
+
+
+@dataclass(frozen=True, eq=False)
+class LinearModes:
+    """The eigenbasis of the shifted linear rotor (module docstring) and the projections
+    a step needs.
+
+    Attributes
+    ----------
+    lam : complex array (N,)
+        Kept eigenvalues of ``A`` [1/s] (the real ones and those with a positive
+        imaginary part: ``N`` about ``n``).
+    V : complex array (2 n, N)
+        Their eigenvectors, doubled for the pairs (``y = Re(V z)``).
+    lu : tuple
+        LU factors of the full eigenvector matrix (``z`` of a state).
+    keep : int array (N,)
+        Kept modes among the ``2 n``.
+    dofs : int array (k,)
+        Nonlinear DOFs.
+    K0, C0 : arrays (k, k)
+        The shift of the linear part on them.
+    Bp : complex array (N, k)
+        Modal load of a unit force on each nonlinear DOF, ``V^-1 [0; M^-1 P]``.
+    b_const, b_plus, b_minus : complex arrays (N,)
+        Modal loads of the constant load and of the two halves ``u/2 e^{iWt}``,
+        ``conj(u)/2 e^{-iWt}`` of the harmonic one.
+    frequency : float
+        ``W`` of the harmonic load [rad/s].
+    minv : array (n, n)
+        ``M^-1``.
+    """
+
+    lam: ComplexArray
+    V: ComplexArray
+    lu: Any
+    keep: IntArray
+    dofs: IntArray
+    K0: FloatArray
+    C0: FloatArray
+    Bp: ComplexArray
+    b_const: ComplexArray
+    b_plus: ComplexArray
+    b_minus: ComplexArray
+    frequency: float
+    minv: FloatArray
+
+    @property
+    def n(self) -> int:
+        return self.V.shape[0] // 2
+
+    @classmethod
+    def build(cls, M: Any, K: Any, D: Any, dofs: IntArray, K0: FloatArray, C0: FloatArray,
+              load: HarmonicLoad, where: str) -> LinearModes:
+        """Diagonalise the shifted linear part; dense ``M``, ``K``, ``D`` (n, n).
+
+        Only one mode of each complex-conjugate pair is kept (with ``V`` doubled): a real
+        state has conjugate coordinates on the pair, so ``y = Re(V z)`` over the kept ones.
+
+        Raises
+        ------
+        ConvergenceError
+            When the eigenbasis cannot represent the linear part to ``RECONSTRUCTION_LIMIT``
+            (the caller then uses another stepper).
+        """
+        M, K, D = (np.asarray(X, dtype=float) for X in (M, K, D))
+        n = M.shape[0]
+        K0 = np.array(K0, dtype=float)
+        diag = np.diag(K0).copy()
+        soft = np.flatnonzero(diag <= 1e-9 * max(float(np.max(np.abs(diag), initial=0.0)),
+                                                 1e-300))
+        K0[soft, soft] += RIGID_SHIFT * np.abs(np.diag(K)[dofs[soft]])
+        Ks, Ds = K.copy(), D.copy()
+        Ks[np.ix_(dofs, dofs)] += K0
+        Ds[np.ix_(dofs, dofs)] += C0
+        minv = np.linalg.inv(M)
+        A = np.zeros((2 * n, 2 * n))
+        A[:n, n:] = np.eye(n)
+        A[n:, :n] = -minv @ Ks
+        A[n:, n:] = -minv @ Ds
+        lam, V = np.linalg.eig(A)
+        lu = sl.lu_factor(V, check_finite=False)
+        x = np.cos(np.arange(2 * n) + 0.5)
+        back = V @ sl.lu_solve(lu, x, check_finite=False)
+        if not (np.all(np.isfinite(back)) and
+                float(np.max(np.abs(back - x))) <= RECONSTRUCTION_LIMIT):
+            raise IllConditionedModes("eigenbasis of the linear part is ill-conditioned",
+                                      where)
+        keep = np.flatnonzero(lam.imag >= 0.0)
+        pairs = lam.imag[keep] > 0.0
+        if int(np.count_nonzero(lam.imag > 0)) != int(np.count_nonzero(lam.imag < 0)):
+            raise IllConditionedModes("eigenvalues of the linear part are not in "
+                                      "conjugate pairs", where)
+        forces = np.zeros((2 * n, dofs.size + 3), dtype=complex)
+        forces[n:, :dofs.size] = minv[:, dofs]
+        forces[n:, dofs.size:] = minv @ np.column_stack(
+            [load.constant, 0.5 * load.amplitude, 0.5 * np.conj(load.amplitude)])
+        modal = sl.lu_solve(lu, forces, check_finite=False)[keep]
+        k = dofs.size
+        Vk = V[:, keep] * np.where(pairs, 2.0, 1.0)[None, :]
+        return cls(lam[keep], Vk, lu, keep, np.asarray(dofs, dtype=np.int64), K0,
+                   np.asarray(C0), modal[:, :k], modal[:, k], modal[:, k + 1],
+                   modal[:, k + 2], float(load.frequency), minv)
+
+    def modal(self, q: FloatArray, v: FloatArray) -> ComplexArray:
+        """Kept coordinates of ``z = V^-1 (q, v)``."""
+        y = np.concatenate([q, v]).astype(complex)
+        return np.asarray(sl.lu_solve(self.lu, y, check_finite=False)[self.keep])
+
+
+@dataclass(frozen=True, eq=False)
+class StepWeights:
+    """Weights of a step of size ``h`` at the fractions ``x`` (p,) of the step, for the
+    interpolation of ``rho`` through the nodes ``c`` (s + 1,) starting at 0.
+
+    Attributes
+    ----------
+    E : complex (p, N)
+        ``e^{lambda x h}``.
+    const, plus, minus : complex (p, N)
+        Exact integrals of the constant load and of ``e^{+-iW (t_n + s)}`` per unit
+        ``e^{+-iW t_n}``, times the modal loads.
+    W : complex (p, s + 1, N)
+        ``int_0^{x h} e^{lambda (x h - s)} l_j(s / h) ds`` of the Lagrange basis ``l_j``.
+    """
+
+    E: ComplexArray
+    const: ComplexArray
+    plus: ComplexArray
+    minus: ComplexArray
+    W: ComplexArray
+
+    @classmethod
+    def of(cls, modes: LinearModes, h: float, x: FloatArray, L: FloatArray) -> StepWeights:
+        """Weights at the fractions ``x`` for the basis coefficients ``L`` (p_basis, m)."""
+        lam, w = modes.lam, modes.frequency
+        degree = L.shape[1]
+        tau = np.asarray(x, dtype=float)[:, None] * h  # (p, 1)
+        p, N = tau.size, lam.size
+        # one call for the three arguments lam tau, (lam - iW) tau, (lam + iW) tau
+        args = np.stack([lam[None, :] * tau, (lam[None, :] - 1j * w) * tau,
+                         (lam[None, :] + 1j * w) * tau])
+        phis = phi_functions(args.ravel(), degree).reshape(degree + 1, 3, p, N)
+        E = phis[0, 0]
+        const = tau * phis[1, 0] * modes.b_const[None, :]
+        plus = np.exp(1j * w * tau) * tau * phis[1, 1] * modes.b_plus[None, :]
+        minus = np.exp(-1j * w * tau) * tau * phis[1, 2] * modes.b_minus[None, :]
+        # int_0^tau e^{lam (tau - s)} (s/h)^m ds = m! tau^{m+1} h^-m phi_{m+1}(lam tau)
+        scale = np.array([math.factorial(m) / h ** m for m in range(degree)])
+        powers = tau[:, :, None] ** (np.arange(degree) + 1)[None, None, :]  # (p, 1, m)
+        mono = (scale[None, :, None] * powers.transpose(0, 2, 1)) * phis[1:, 0].transpose(
+            1, 0, 2)  # (p, m, N)
+        W = np.matmul(L[None, :, :], mono)  # (p, j, N)
+        return cls(E, const, plus, minus, W)
