@@ -29,12 +29,15 @@ sections 2.1-2.3 (variation of constants, the ``phi_k`` functions and their recu
 
 from __future__ import annotations
 
+import hashlib
 import math
 from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
 import scipy.linalg as sl
+import scipy.sparse as sp
+from scipy.sparse.csgraph import connected_components
 
 from rotorsim.errors import ConvergenceError
 from rotorsim.time_integration.base import FloatArray, IntArray
@@ -109,10 +112,10 @@ def lagrange_coefficients(nodes: FloatArray) -> FloatArray:
     return np.asarray(np.linalg.inv(vander).T)
 
 
-@dataclass(frozen=True, eq=False)
 class HarmonicLoad:
     """``f(t) = constant + Re(amplitude e^{i frequency t})`` [N]: gravity, point loads and
-    an unbalance at constant speed.
+    an unbalance at constant speed. Its ``repr`` is a digest of the numbers (it enters the
+    identity of a run, :func:`~rotorsim.time_integration.integrate.run_config`).
 
     Examples
     --------
@@ -121,13 +124,23 @@ class HarmonicLoad:
     [1.0, 0.0]
     """
 
-    constant: FloatArray
-    amplitude: ComplexArray
-    frequency: float
+    __slots__ = ("amplitude", "constant", "frequency")
+
+    def __init__(self, constant: FloatArray, amplitude: ComplexArray, frequency: float
+                 ) -> None:
+        self.constant = np.asarray(constant, dtype=float)
+        self.amplitude = np.asarray(amplitude, dtype=complex)
+        self.frequency = float(frequency)
 
     def __call__(self, t: float) -> FloatArray:
         return np.asarray(self.constant + (self.amplitude * np.exp(1j * self.frequency * t)
                                            ).real)
+
+    def __repr__(self) -> str:
+        h = hashlib.blake2b(digest_size=8)
+        for x in (self.constant, self.amplitude, np.array([self.frequency])):
+            h.update(x.tobytes())
+        return f"HarmonicLoad({h.hexdigest()})"
 
 
 @dataclass(frozen=True, eq=False)
@@ -142,10 +155,9 @@ class LinearModes:
         imaginary part: ``N`` about ``n``).
     V : complex array (2 n, N)
         Their eigenvectors, doubled for the pairs (``y = Re(V z)``).
-    lu : tuple
-        LU factors of the full eigenvector matrix (``z`` of a state).
-    keep : int array (N,)
-        Kept modes among the ``2 n``.
+    blocks : tuple
+        Per uncoupled DOF group, what gives ``z`` of a state (LU factors of its
+        eigenvectors, the kept modes).
     dofs : int array (k,)
         Nonlinear DOFs.
     K0, C0 : arrays (k, k)
@@ -163,8 +175,7 @@ class LinearModes:
 
     lam: ComplexArray
     V: ComplexArray
-    lu: Any
-    keep: IntArray
+    blocks: tuple[Any, ...]
     dofs: IntArray
     K0: FloatArray
     C0: FloatArray
@@ -184,12 +195,14 @@ class LinearModes:
               load: HarmonicLoad, where: str) -> LinearModes:
         """Diagonalise the shifted linear part; dense ``M``, ``K``, ``D`` (n, n).
 
-        Only one mode of each complex-conjugate pair is kept (with ``V`` doubled): a real
-        state has conjugate coordinates on the pair, so ``y = Re(V z)`` over the kept ones.
+        Uncoupled groups of DOFs (e.g. torsion, which no bearing tangent couples to the
+        bending) are diagonalised separately (cheaper: the cost is cubic). Only one mode
+        of each complex-conjugate pair is kept, with its eigenvector doubled: a real state
+        has conjugate coordinates on the pair, so ``y = Re(V z)`` over the kept ones.
 
         Raises
         ------
-        ConvergenceError
+        IllConditionedModes
             When the eigenbasis cannot represent the linear part to ``RECONSTRUCTION_LIMIT``
             (the caller then uses another stepper).
         """
@@ -203,39 +216,94 @@ class LinearModes:
         Ks, Ds = K.copy(), D.copy()
         Ks[np.ix_(dofs, dofs)] += K0
         Ds[np.ix_(dofs, dofs)] += C0
-        minv = np.linalg.inv(M)
-        A = np.zeros((2 * n, 2 * n))
-        A[:n, n:] = np.eye(n)
-        A[n:, :n] = -minv @ Ks
-        A[n:, n:] = -minv @ Ds
+        minv = np.zeros((n, n))
+        forces = np.zeros((n, dofs.size + 3), dtype=complex)
+        forces[dofs, np.arange(dofs.size)] = 1.0
+        forces[:, dofs.size:] = np.column_stack(
+            [load.constant, 0.5 * load.amplitude, 0.5 * np.conj(load.amplitude)])
+        parts = [_Block.build(idx, M, Ks, Ds, minv, forces, where)
+                 for idx in _groups(M, Ks, Ds)]
+        lam = np.concatenate([p.lam for p in parts])
+        V = np.zeros((2 * n, lam.size), dtype=complex)
+        at = 0
+        for part in parts:
+            V[np.ix_(part.rows, np.arange(at, at + part.lam.size))] = part.vectors
+            at += part.lam.size
+        modal = np.concatenate([p.loads for p in parts])
+        k = dofs.size
+        return cls(lam, V, tuple(p.solver for p in parts), np.asarray(dofs, dtype=np.int64),
+                   K0, np.asarray(C0), modal[:, :k], modal[:, k], modal[:, k + 1],
+                   modal[:, k + 2], float(load.frequency), minv)
+
+    def modal(self, q: FloatArray, v: FloatArray) -> ComplexArray:
+        """Kept coordinates of ``z = V^-1 (q, v)``."""
+        y = np.concatenate([q, v])
+        return np.concatenate([b.solve(y) for b in self.blocks])
+
+
+def _groups(M: FloatArray, K: FloatArray, D: FloatArray) -> list[IntArray]:
+    """DOF groups that no matrix couples (connected components of the pattern)."""
+    pattern = sp.csr_matrix((M != 0) | (K != 0) | (D != 0))
+    count, labels = connected_components(pattern, directed=False)
+    return [np.flatnonzero(labels == c) for c in range(count)]
+
+
+@dataclass(frozen=True, eq=False)
+class _Solver:
+    """``z`` of one group from the state: rows of ``y`` (2m,), LU of its eigenvectors,
+    the kept modes."""
+
+    rows: IntArray
+    lu: Any
+    keep: IntArray
+
+    def solve(self, y: FloatArray) -> ComplexArray:
+        return np.asarray(sl.lu_solve(self.lu, y[self.rows].astype(complex),
+                                      check_finite=False)[self.keep])
+
+
+@dataclass(frozen=True, eq=False)
+class _Block:
+    """The kept modes of one DOF group: eigenvalues, eigenvectors on its rows, modal loads
+    of the columns of ``forces``."""
+
+    rows: IntArray
+    lam: ComplexArray
+    vectors: ComplexArray
+    loads: ComplexArray
+    solver: _Solver
+
+    @classmethod
+    def build(cls, idx: IntArray, M: FloatArray, Ks: FloatArray, Ds: FloatArray,
+              minv: FloatArray, forces: ComplexArray, where: str) -> _Block:
+        """Diagonalise the group ``idx``; fills its block of ``minv`` (``M`` is block
+        diagonal over the groups)."""
+        n, m = M.shape[0], idx.size
+        sub = np.ix_(idx, idx)
+        mi = np.linalg.inv(M[sub])
+        minv[sub] = mi
+        A = np.zeros((2 * m, 2 * m))
+        A[:m, m:] = np.eye(m)
+        A[m:, :m] = -mi @ Ks[sub]
+        A[m:, m:] = -mi @ Ds[sub]
         lam, V = np.linalg.eig(A)
         lu = sl.lu_factor(V, check_finite=False)
-        x = np.cos(np.arange(2 * n) + 0.5)
+        x = np.cos(np.arange(2 * m) + 0.5)
         back = V @ sl.lu_solve(lu, x, check_finite=False)
         if not (np.all(np.isfinite(back)) and
                 float(np.max(np.abs(back - x))) <= RECONSTRUCTION_LIMIT):
             raise IllConditionedModes("eigenbasis of the linear part is ill-conditioned",
                                       where)
-        keep = np.flatnonzero(lam.imag >= 0.0)
-        pairs = lam.imag[keep] > 0.0
         if int(np.count_nonzero(lam.imag > 0)) != int(np.count_nonzero(lam.imag < 0)):
             raise IllConditionedModes("eigenvalues of the linear part are not in "
                                       "conjugate pairs", where)
-        forces = np.zeros((2 * n, dofs.size + 3), dtype=complex)
-        forces[n:, :dofs.size] = minv[:, dofs]
-        forces[n:, dofs.size:] = minv @ np.column_stack(
-            [load.constant, 0.5 * load.amplitude, 0.5 * np.conj(load.amplitude)])
-        modal = sl.lu_solve(lu, forces, check_finite=False)[keep]
-        k = dofs.size
-        Vk = V[:, keep] * np.where(pairs, 2.0, 1.0)[None, :]
-        return cls(lam[keep], Vk, lu, keep, np.asarray(dofs, dtype=np.int64), K0,
-                   np.asarray(C0), modal[:, :k], modal[:, k], modal[:, k + 1],
-                   modal[:, k + 2], float(load.frequency), minv)
-
-    def modal(self, q: FloatArray, v: FloatArray) -> ComplexArray:
-        """Kept coordinates of ``z = V^-1 (q, v)``."""
-        y = np.concatenate([q, v]).astype(complex)
-        return np.asarray(sl.lu_solve(self.lu, y, check_finite=False)[self.keep])
+        keep = np.flatnonzero(lam.imag >= 0.0)
+        rhs = np.zeros((2 * m, forces.shape[1]), dtype=complex)
+        rhs[m:] = mi @ forces[idx]
+        loads = sl.lu_solve(lu, rhs, check_finite=False)[keep]
+        vectors = V[:, keep] * np.where(lam.imag[keep] > 0.0, 2.0, 1.0)[None, :]
+        rows = np.concatenate([idx, n + idx])
+        return cls(rows, lam[keep], vectors, loads, _Solver(rows, lu, keep))
 
 
 @dataclass(frozen=True, eq=False)
