@@ -58,6 +58,11 @@ LOCAL_FRACTION = 0.1
 """The local error per step is held to this fraction of ``rtol`` (as in :mod:`~.radau`)."""
 
 
+def _meta(history: FloatArray, stages: int) -> FloatArray:
+    """Ladder base, last Newton contraction and start time from the history rows."""
+    return np.asarray(history[stages + 1:-2].reshape(-1)[:3])
+
+
 def lobatto_nodes(s: int) -> FloatArray:
     """The ``s + 1`` Gauss-Lobatto nodes on [0, 1].
 
@@ -95,6 +100,9 @@ class Exponential:
         Largest step [s].
     max_rejections : int
         Consecutive rejections allowed in one step.
+    fixed : bool
+        Take every step with the size given (``dt``) and no error control (to measure the
+        order of the method).
 
     Examples
     --------
@@ -113,6 +121,7 @@ class Exponential:
     min_shrink: float = 0.2
     dt_max: float = math.inf
     max_rejections: int = 40
+    fixed: bool = False
 
     def __post_init__(self) -> None:
         checks = [(1e-12 <= self.rtol < 1.0, f"1e-12 <= rtol < 1, got {self.rtol!r}"),
@@ -170,12 +179,20 @@ class Exponential:
         """
         cache = state.cache if isinstance(state.cache, _Cache) else _Cache.build(
             self, problem, state.history[-2], state.history[-1],
-            float(state.history[-3, 2]), float(state.history[-3, 0]))
+            float(_meta(state.history, self.stages)[2]),
+            float(_meta(state.history, self.stages)[0]))
         h, rejected, tally = state.dt, False, Counters()
         for _ in range(self.max_rejections + 1):
             attempt = _Attempt(self, cache, state, h)
             out = attempt.run()
             tally = tally.plus(attempt.tally)
+            if self.fixed:
+                if out is None:
+                    raise ConvergenceError(f"Newton failed at t = {state.t:.9g} s with the "
+                                           f"fixed step {h:.3e} s", self.name,
+                                           step=state.step + 1)
+                return dataclasses.replace(self._accepted(state, attempt, out, 1.0, tally),
+                                           dt=h)
             if out is not None and out[-1] <= 1.0:
                 factor = 0.9 * out[-1] ** (-1.0 / (self.stages + 1)) if out[-1] > 0 \
                     else self.max_growth
@@ -196,8 +213,8 @@ class Exponential:
                   tally: Counters) -> State:
         q, v, rho, force, err = out
         cache, h = attempt.cache, attempt.h
-        history = cache.pack(rho, old.history[-2:], float(old.history[-3, 2]),
-                             attempt.theta)
+        history = cache.pack(rho, old.history[-2:],
+                             float(_meta(old.history, self.stages)[2]), attempt.theta)
         motion = np.maximum(old.peak, np.abs(q - old.history[-2]))
         counters = old.counters.plus(dataclasses.replace(
             tally, max_iterations=attempt.tally.max_iterations))
@@ -249,6 +266,9 @@ class _Cache:
     L_error: FloatArray
     damping: Any
     ops: dict[float, _Ops] = field(default_factory=dict)
+    at_bearings: tuple[Any, ...] = ()
+    """``V`` on the bearing displacements and velocities (transposed), the weights of the
+    stage displacements and the identity of the Newton matrix."""
     z: dict[tuple[float, int], Any] = field(default_factory=dict)
 
     @classmethod
@@ -280,8 +300,13 @@ class _Cache:
         low = np.zeros_like(L)
         low[1:, :s] = lagrange_coefficients(nodes[1:])
         weights = None if method.weights is None else np.asarray(method.weights)
-        return cls(method, problem, modes, MotionScale.of(weights, q, method.motion),
-                   h0, nodes, L, L - low, D)
+        scales = MotionScale.of(weights, q, method.motion)
+        k = modes.dofs.size
+        at = (np.ascontiguousarray(modes.V[modes.dofs].T),
+              np.ascontiguousarray(modes.V[n + modes.dofs].T),
+              np.tile(scales.weights[modes.dofs], s), np.eye(s * k))
+        return cls(method, problem, modes, scales, h0, nodes, L, L - low, D,
+                   at_bearings=at)
 
     def ladder(self, h: float, h_max: float) -> float:
         """The largest ``h0 * 2^(j / LADDER) <= min(h, h_max)``."""
@@ -295,9 +320,10 @@ class _Cache:
         Newton contraction and the start time ``t0``; the start ``q0``, ``v0`` (``start``,
         2 rows: after a resume the modes are rebuilt from them, identical)."""
         n = start.shape[1]
-        out = np.zeros((rho.shape[0] + 3, n))
+        meta = -(-3 // n)  # rows of the three numbers
+        out = np.zeros((rho.shape[0] + meta + 2, n))
         out[:rho.shape[0], :rho.shape[1]] = rho
-        out[-3, :3] = self.h0, theta, t0
+        out[rho.shape[0]:-2].reshape(-1)[:3] = self.h0, theta, t0
         out[-2:] = start
         return out
 
@@ -394,16 +420,17 @@ class _Attempt:
         w = ops.weights
         base = w.E * z[None, :] + w.const + e * w.plus + np.conj(e) * w.minus + \
             w.W[:, 0, :] * (modes.Bp @ rho0)[None, :]
-        aq = (base @ modes.V[modes.dofs].T).real.ravel()
-        av = (base @ modes.V[n + modes.dofs].T).real.ravel()
+        at = cache.at_bearings
+        aq = (base @ at[0]).real.ravel()
+        av = (base @ at[1]).real.ravel()
         rho = self._guess(s.history[:S + 1, :k], rho0).ravel()
         times = s.t + cache.nodes[1:] * h
-        wb = np.tile(cache.scales.weights[modes.dofs], S)
+        wb = at[2]
         tol = m.local_tol * cache.scales.scale(s.peak)
         Q, Vel = np.zeros((S, n)), np.zeros((S, n))
-        eye = np.eye(S * k)
+        eye = at[3]
         K0, C0 = modes.K0, modes.C0
-        old_norm, theta = math.inf, float(s.history[-3, 1])
+        old_norm, theta = math.inf, float(_meta(s.history, S)[1])
         for it in range(m.max_newton):
             qb, vb = aq + ops.Hq @ rho, av + ops.Hv @ rho
             Q[:, modes.dofs], Vel[:, modes.dofs] = qb.reshape(S, k), vb.reshape(S, k)
