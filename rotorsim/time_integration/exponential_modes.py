@@ -335,18 +335,19 @@ class StepWeights:
         degree = L.shape[1]
         tau = np.asarray(x, dtype=float)[:, None] * h  # (p, 1)
         p, N = tau.size, lam.size
-        # one call for the three arguments lam tau, (lam - iW) tau, (lam + iW) tau
-        args = np.stack([lam[None, :] * tau, (lam[None, :] - 1j * w) * tau,
-                         (lam[None, :] + 1j * w) * tau])
-        phis = phi_functions(args.ravel(), degree).reshape(degree + 1, 3, p, N)
-        E = phis[0, 0]
-        const = tau * phis[1, 0] * modes.b_const[None, :]
-        plus = np.exp(1j * w * tau) * tau * phis[1, 1] * modes.b_plus[None, :]
-        minus = np.exp(-1j * w * tau) * tau * phis[1, 2] * modes.b_minus[None, :]
+        phis = phi_functions((lam[None, :] * tau).ravel(), degree).reshape(degree + 1, p, N)
+        # phi_1 of (lam -+ iW) tau: the two halves of the harmonic load
+        shifted = phi_functions(np.stack([(lam[None, :] - 1j * w) * tau,
+                                          (lam[None, :] + 1j * w) * tau]).ravel(), 1)
+        shifted = shifted[1].reshape(2, p, N)
+        E = phis[0]
+        const = tau * phis[1] * modes.b_const[None, :]
+        plus = np.exp(1j * w * tau) * tau * shifted[0] * modes.b_plus[None, :]
+        minus = np.exp(-1j * w * tau) * tau * shifted[1] * modes.b_minus[None, :]
         # int_0^tau e^{lam (tau - s)} (s/h)^m ds = m! tau^{m+1} h^-m phi_{m+1}(lam tau)
         scale = np.array([math.factorial(m) / h ** m for m in range(degree)])
         powers = tau[:, :, None] ** (np.arange(degree) + 1)[None, None, :]  # (p, 1, m)
-        mono = (scale[None, :, None] * powers.transpose(0, 2, 1)) * phis[1:, 0].transpose(
+        mono = (scale[None, :, None] * powers.transpose(0, 2, 1)) * phis[1:].transpose(
             1, 0, 2)  # (p, m, N)
         W = np.matmul(L[None, :, :], mono)  # (p, j, N)
         return cls(E, const, plus, minus, W)
