@@ -164,7 +164,7 @@ class Exponential:
                       peak=np.zeros(n), cache=cache,
                       counters=Counters(factorizations=1, residual_evaluations=1))
         history = cache.pack(np.repeat(rho0[None, :], self.stages + 1, axis=0),
-                             np.stack([q, v]), float(t0))
+                             np.stack([q, v]), float(t0), cache.modes.modal(q, v))
         force = cache.net_force(q, v, r0, float(t0))
         return dataclasses.replace(state, a=-cache.modes.minv @ force, force=force,
                                    history=history)
@@ -211,10 +211,10 @@ class Exponential:
 
     def _accepted(self, old: State, attempt: _Attempt, out: tuple[Any, ...], factor: float,
                   tally: Counters) -> State:
-        q, v, rho, force, err = out
+        q, v, rho, force, z, err = out
         cache, h = attempt.cache, attempt.h
         history = cache.pack(rho, old.history[-2:],
-                             float(_meta(old.history, self.stages)[2]), attempt.theta)
+                             float(_meta(old.history, self.stages)[2]), z, attempt.theta)
         motion = np.maximum(old.peak, np.abs(q - old.history[-2]))
         counters = old.counters.plus(dataclasses.replace(
             tally, max_iterations=attempt.tally.max_iterations))
@@ -269,7 +269,6 @@ class _Cache:
     at_bearings: tuple[Any, ...] = ()
     """``V`` on the bearing displacements and velocities (transposed), the weights of the
     stage displacements and the identity of the Newton matrix."""
-    z: dict[tuple[float, int], Any] = field(default_factory=dict)
 
     @classmethod
     def build(cls, method: Exponential, problem: SecondOrderProblem, q: FloatArray,
@@ -314,18 +313,31 @@ class _Cache:
         j = math.floor(LADDER * math.log2(h / self.h0) + 1e-9)
         return self.h0 * 2.0 ** (j / LADDER)
 
-    def pack(self, rho: FloatArray, start: FloatArray, t0: float, theta: float = 1.0
-             ) -> FloatArray:
+    def pack(self, rho: FloatArray, start: FloatArray, t0: float, z: Any,
+             theta: float = 1.0) -> FloatArray:
         """History rows: ``rho`` at the nodes (s + 1 rows); the ladder base, the last
-        Newton contraction and the start time ``t0``; the start ``q0``, ``v0`` (``start``,
-        2 rows: after a resume the modes are rebuilt from them, identical)."""
+        Newton contraction and the start time ``t0``; the modal coordinates ``z`` (real
+        and imaginary parts); the start ``q0``, ``v0`` (``start``, 2 rows: after a resume
+        the modes are rebuilt from them, identical, and the run goes on from the stored
+        ``z``, bit for bit)."""
         n = start.shape[1]
         meta = -(-3 // n)  # rows of the three numbers
-        out = np.zeros((rho.shape[0] + meta + 2, n))
+        rows = -(-2 * z.size // n)
+        out = np.zeros((rho.shape[0] + meta + rows + 2, n))
         out[:rho.shape[0], :rho.shape[1]] = rho
-        out[rho.shape[0]:-2].reshape(-1)[:3] = self.h0, theta, t0
+        out[rho.shape[0]:rho.shape[0] + meta].reshape(-1)[:3] = self.h0, theta, t0
+        out[rho.shape[0] + meta:-2].reshape(-1)[:2 * z.size] = np.concatenate(
+            [z.real, z.imag])
         out[-2:] = start
         return out
+
+    def modal(self, state: State) -> Any:
+        """The modal coordinates ``z`` kept in the state's history (propagated by the
+        steps, never recomputed from ``q``, ``v``)."""
+        n, N = state.q.size, self.modes.lam.size
+        first = self.nodes.size + -(-3 // n)
+        flat = state.history[first:-2].reshape(-1)
+        return flat[:N] + 1j * flat[N:2 * N]
 
     def step_ops(self, h: float) -> _Ops:
         found = self.ops.get(h)
@@ -344,21 +356,6 @@ class _Cache:
             self.ops.pop(next(iter(self.ops)))
         self.ops[h] = _Ops(w, blocks[0], blocks[1], D)
         return self.ops[h]
-
-    def modal(self, state: State) -> Any:
-        """``z`` of ``state`` (kept for the last two states: each is needed twice)."""
-        key = (state.t, state.step)
-        z = self.z.get(key)
-        if z is None:
-            z = self.modes.modal(state.q, state.v)
-            self.keep_modal(key, z)
-        return z
-
-    def keep_modal(self, key: tuple[float, int], z: Any) -> None:
-        """Remember ``z`` of the state at ``key`` (time, step); three are kept."""
-        if len(self.z) >= 3:
-            self.z.pop(next(iter(self.z)))
-        self.z[key] = z
 
     def rho_at(self, q: FloatArray, v: FloatArray, t: float) -> tuple[FloatArray, FloatArray]:
         """``rho`` and ``r`` on the nonlinear DOFs at one point."""
@@ -408,7 +405,7 @@ class _Attempt:
         return Counters(**self.count, max_iterations=self.count["iterations"])
 
     def run(self) -> tuple[Any, ...] | None:
-        """``(q, v, rho (s + 1, k), net force, scaled error)`` or None when Newton
+        """``(q, v, rho (s + 1, k), net force, z, scaled error)`` or None when Newton
         failed."""
         m, s, h, cache = self.m, self.s, self.h, self.cache
         modes = cache.modes
@@ -492,5 +489,4 @@ class _Attempt:
         sc = cache.scales
         scale = sc.scale(np.maximum(self.s.peak, np.abs(q - self.s.history[-2])))
         err = float(np.max(sc.weights * np.abs(eq))) / (self.m.local_tol * scale)
-        cache.keep_modal((self.s.t + self.h, self.s.step + 1), z_end)
-        return q, v, all_rho, force, err
+        return q, v, all_rho, force, z_end, err
