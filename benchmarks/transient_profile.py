@@ -6,8 +6,12 @@ and the dense output (``Exponential.interpolate``) with ``time.process_time`` co
 runs ``rs.transient(..., rtol=)`` on the ``bench`` and ``issue14`` models of
 ``bench_transient.py`` (same start, output times and model objects built once), five times
 each; prints CPU ms per run and the shares. The steps include their bearing evaluations.
+With ``--long`` it also runs ``issue14`` over 50 ms (8 revolutions) at rtol 1e-3 and 1e-5
+by exponential collocation and by Radau IIA (the automatic path with the exponential
+path's size limit set to 0) and prints their CPU times, steps and difference.
 
-Run: ``OPENBLAS_NUM_THREADS=1 PYTHONPATH=. .venv/bin/python benchmarks/transient_profile.py``.
+Run: ``OPENBLAS_NUM_THREADS=1 PYTHONPATH=. .venv/bin/python benchmarks/transient_profile.py
+[--long]``.
 """
 
 from __future__ import annotations
@@ -30,6 +34,7 @@ for _path in (ROOT, ROOT / "benchmarks"):
 import numpy as np  # noqa: E402
 from bench_transient import MODELS, first_order, rotorsim_run  # noqa: E402
 
+import rotorsim.analyses.transient.auto_exponential as auto_exponential  # noqa: E402
 import rotorsim.analyses.transient.loads as loads  # noqa: E402
 import rotorsim.time_integration.exponential as exponential  # noqa: E402
 import rotorsim.time_integration.exponential_modes as modes  # noqa: E402
@@ -80,5 +85,33 @@ def main() -> None:
             print(f"  {key:30s} {1e3 * share:7.1f} ms {100 * share / total:5.1f} %")
 
 
+def long_run(t_end: float = 0.05) -> None:
+    """Exponential collocation against Radau IIA on ``issue14`` over ``t_end``."""
+    bench = MODELS["issue14"]
+    _, _, _, _, full = first_order(bench)
+    start, model = (full, np.zeros_like(full)), bench.build()
+    times = np.linspace(0.0, t_end, 201)
+    limit, probe = auto_exponential.EXPONENTIAL_LIMIT, {}
+    try:
+        for size in (limit, 0):
+            auto_exponential.EXPONENTIAL_LIMIT = size
+            for rtol in (1e-3, 1e-5):
+                begin = time.process_time()
+                res = rotorsim_run(bench, t_end, None, times=times, initial=start,
+                                   rtol=rtol, model=model)
+                cpu = time.process_time() - begin
+                probe[(res.method, rtol)] = res.displacement(bench.probe, "uy")
+                print(f"issue14 over {1e3 * t_end:g} ms, {res.method} rtol {rtol:g}: "
+                      f"{cpu:.3f} s CPU, {res.stats['steps']} steps")
+    finally:
+        auto_exponential.EXPONENTIAL_LIMIT = limit
+    for rtol in (1e-3, 1e-5):
+        a, b = probe[("exponential", rtol)], probe[("radau5", rtol)]
+        print(f"rtol {rtol:g}: the two differ by {np.max(np.abs(a - b)) / np.ptp(b):.2g} "
+              "of the motion")
+
+
 if __name__ == "__main__":
     main()
+    if "--long" in sys.argv[1:]:
+        long_run()
