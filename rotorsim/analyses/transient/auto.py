@@ -31,6 +31,7 @@ from rotorsim.assembly.system import RotorSystem
 from rotorsim.elements.base import DOFS_PER_NODE, FloatArray
 from rotorsim.errors import ConvergenceError, ModelError
 from rotorsim.solvers.linear import factorize
+from rotorsim.time_integration.exponential import Exponential
 from rotorsim.time_integration.local_tangent import LocalMatrix
 from rotorsim.time_integration.problem import SecondOrderProblem
 from rotorsim.time_integration.radau import Radau
@@ -142,8 +143,12 @@ class AutoPath:
     problem: SecondOrderProblem
     basis: ReducedBasis | None
     report: dict[str, Any] | None
-    stepper: Radau
+    stepper: Radau | Exponential
     decision: dict[str, Any] | None
+    fallback: Radau | None = None
+    """The Radau stepper to use when ``stepper`` (exponential) cannot represent the
+    linear part (:class:`~rotorsim.time_integration.exponential_modes.IllConditionedModes`
+    at its start)."""
 
 
 def auto_path(system: RotorSystem, problems: tuple[SecondOrderProblem, SecondOrderProblem],
@@ -156,6 +161,7 @@ def auto_path(system: RotorSystem, problems: tuple[SecondOrderProblem, SecondOrd
     ``problems`` is the full problem and the one to integrate (reduced on ``basis`` when a
     reduction was given); ``q0`` is the start on the free DOFs (on ``basis`` for a
     continued reduced run). The motion floor comes from the full model either way."""
+    from rotorsim.analyses.transient.auto_exponential import exponential_stepper
     from rotorsim.analyses.transient.auto_reduction import auto_reduction
 
     rtol = check_rtol(rtol)
@@ -172,8 +178,11 @@ def auto_path(system: RotorSystem, problems: tuple[SecondOrderProblem, SecondOrd
         system, problem, loads, (basis_speed, top), t_end - t0, rtol, floor, weights,
         may_reduce)
     if new_basis is None:
-        return AutoPath(problem, None, None, Radau(rtol=rtol, weights=weights, motion=floor),
-                        decision)
+        radau = Radau(rtol=rtol, weights=weights, motion=floor)
+        fast = exponential_stepper(problem, loads, profile, span, rtol, weights, floor)
+        if fast is not None:
+            return AutoPath(problem, None, None, fast, decision, radau)
+        return AutoPath(problem, None, None, radau, decision)
     report = {k: v for k, v in decision.items() if k not in ("reduced", "reason", "tried")}
     stepper = auto_stepper(system, reduced, loads, profile, t0, t_end, q0, rtol,
                            new_basis, floor)

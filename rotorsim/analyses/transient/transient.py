@@ -50,6 +50,7 @@ from rotorsim.solvers.threads import one_blas_thread
 from rotorsim.time_integration.adams import Adams
 from rotorsim.time_integration.adaptive import Adaptive
 from rotorsim.time_integration.base import TimeStepper
+from rotorsim.time_integration.exponential_modes import IllConditionedModes
 from rotorsim.time_integration.integrate import IntegrationResult, integrate
 from rotorsim.time_integration.newmark import Newmark
 
@@ -243,7 +244,7 @@ def transient(
                                                 basis_speed)
         if q0 is not None and v0 is not None:
             q0, v0 = basis.project(q0), basis.project(v0)
-    decision = None
+    decision, fallback = None, None
     if stepper is None:
         from rotorsim.analyses.transient.auto import DEFAULT_RTOL, auto_path
 
@@ -258,7 +259,7 @@ def transient(
         path = auto_path(system, (full, problem), loads_fn, profile, (t0, t_end), start_q,
                          DEFAULT_RTOL if rtol is None else rtol, basis, basis_speed,
                          may_reduce)
-        stepper, decision = path.stepper, path.decision
+        stepper, decision, fallback = path.stepper, path.decision, path.fallback
         if path.basis is not None and basis is None:
             problem, basis, report = path.problem, path.basis, path.report
             if q0 is not None and v0 is not None:
@@ -267,11 +268,20 @@ def transient(
     resumed = None if previous is None else cont.start_state(previous, identity, problem,
                                                             stepper, dt, basis)
     detector = run_control.steady_detector(steady, out.nodes, system, basis, profile)
-    run = integrate(problem, stepper, (t0, t_end), q0, v0, dt=dt,
-                    output=run_control.output_spec(out, system, kept, basis, profile),
-                    checkpoint=ck.path, checkpoint_every=int(ck.every or 0), resume=ck.resume,
-                    progress=out.progress, on_failure=on_failure, start=resumed,
-                    stop_when=detector)
+    def run_with(stepper: TimeStepper) -> IntegrationResult:
+        return integrate(problem, stepper, (t0, t_end), q0, v0, dt=dt,
+                         output=run_control.output_spec(out, system, kept, basis, profile),
+                         checkpoint=ck.path, checkpoint_every=int(ck.every or 0),
+                         resume=ck.resume, progress=out.progress, on_failure=on_failure,
+                         start=resumed, stop_when=detector)
+
+    try:
+        run = run_with(stepper)
+    except IllConditionedModes:  # exponential collocation refused the model at its start
+        if fallback is None:
+            raise
+        stepper = fallback
+        run = run_with(stepper)
     final = cont.final_state(run, identity, problem, basis, profile, dt, basis_speed)
     if basis is not None:
         run = run_control.expanded(run, basis, kept)

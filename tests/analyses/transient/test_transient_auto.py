@@ -75,7 +75,8 @@ def test_auto_meets_the_accuracy_asked_on_a_rolling_bearing_rotor(reference, rto
     rotor, bearings = small_rolling_rotor()
     res = transient(rotor, T_END, nonlinear=bearings, speed=SPEED, unbalance=UNBALANCE,
                     rtol=rtol, nodes=[PROBE], output=rs.Output(times=times))
-    assert res.method == "radau5" and res.options["rtol"] == rtol
+    # constant speed, gravity and unbalance, a small model: exponential collocation
+    assert res.method == "exponential" and res.options["rtol"] == rtol
     err = np.max(np.abs(res.displacement(PROBE, "uy") - ref)) / np.ptp(ref)
     assert err <= rtol
 
@@ -84,7 +85,7 @@ def test_without_dt_the_path_is_automatic():
     rotor, bearings = small_rolling_rotor()
     res = transient(rotor, 5e-4, nonlinear=bearings, speed=SPEED, unbalance=UNBALANCE,
                     nodes=[PROBE])
-    assert res.method == "radau5" and res.stats["steps"] > 0
+    assert res.method == "exponential" and res.stats["steps"] > 0
     fixed = transient(rotor, 5e-4, 1e-4, nonlinear=bearings, speed=SPEED,
                       unbalance=UNBALANCE, nodes=[PROBE])
     assert fixed.method == "average_acceleration"  # a step size keeps the old default

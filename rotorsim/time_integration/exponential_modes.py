@@ -1,0 +1,353 @@
+"""The exact linear part of an exponential collocation step: modes of the shifted linear
+rotor and the weights of one step size (the stepper is :mod:`~.exponential`).
+
+A rotor at constant speed with local nonlinear elements reads, in first-order form
+``y = (q, v)``,
+
+    y' = A y + [0; M^-1 (f(t) + P rho(P^T q, P^T v, t))],
+    A = [[0, I], [-M^-1 (K + P K0 P^T), -M^-1 (D + P C0 P^T)]],
+    rho = K0 q_b + C0 v_b - r(q_b, v_b, t),
+
+with ``D = C + W G``, ``P`` the columns of the ``k`` nonlinear DOFs and ``K0``, ``C0`` the
+tangents of the restoring force ``r`` at the start (the splitting is exact for any ``K0``,
+``C0``; taking the tangents leaves only the nonlinear remainder in ``rho``). ``A`` is
+diagonalised once, ``A = V diag(lambda) V^-1``, so for the modal coordinates
+``z = V^-1 y`` the variation-of-constants formula over a step of size ``h`` is diagonal:
+
+    z(t_n + x h) = e^{lambda x h} z_n + int_0^{x h} e^{lambda (x h - s)} b(t_n + s) ds.
+
+The constant load and the unbalance ``Re(u e^{i W t})`` are integrated exactly
+(``phi_1``); ``rho`` is replaced by its interpolation polynomial through the stage values,
+whose integrals are the ``phi_k`` functions (Hochbruck & Ostermann 2010, section 2.3).
+
+References
+----------
+M. Hochbruck, A. Ostermann, *Exponential integrators*, Acta Numerica 19 (2010) 209-286,
+sections 2.1-2.3 (variation of constants, the ``phi_k`` functions and their recurrence
+``phi_{k+1}(z) = (phi_k(z) - 1/k!) / z``, exponential collocation).
+"""
+
+from __future__ import annotations
+
+import hashlib
+import math
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+import scipy.linalg as sl
+import scipy.sparse as sp
+from scipy.sparse.csgraph import connected_components
+
+from rotorsim.errors import ConvergenceError
+from rotorsim.time_integration.base import FloatArray, IntArray
+
+ComplexArray = np.ndarray
+TAYLOR_RADIUS = 1.0
+"""``|z|`` below which ``phi_k`` is summed as its Taylor series (above: the recurrence,
+whose cancellation then costs at most ``k / |z|`` of a digit per level)."""
+TAYLOR_TERMS = 17
+"""Terms of the series: the first left out is below ``1/18! < 1.6e-16`` at ``|z| <= 1``."""
+RECONSTRUCTION_LIMIT = 1e-8
+"""Largest relative error of ``V (V^-1 x)`` accepted for the eigenbasis (an ill-conditioned
+basis, e.g. a nearly defective eigenvalue, is refused)."""
+RIGID_SHIFT = 1e-2
+"""Stiffness added (and subtracted again in ``rho``) on nonlinear DOFs whose start tangent
+is zero, as a fraction of the linear stiffness's diagonal there: it turns the rigid modes
+of a rotor carried only by nonlinear elements (defective double zero eigenvalues) into
+slow oscillations, which the eigenbasis can represent."""
+
+
+class IllConditionedModes(ConvergenceError):
+    """The eigenbasis of the linear part cannot represent it (a nearly defective
+    eigenvalue); raised at the start of a run, before any step."""
+
+
+def phi_functions(z: ComplexArray, kmax: int) -> ComplexArray:
+    """``phi_0 .. phi_kmax`` (kmax + 1, len(z)) of a complex vector ``z``
+    (``phi_0 = e^z``, ``phi_{k+1}(z) = (phi_k(z) - 1/k!) / z``).
+
+    Examples
+    --------
+    >>> p = phi_functions(np.array([0.0, 2.0 + 0j]), 2)
+    >>> bool(np.allclose(p[:, 0], [1.0, 1.0, 0.5]))
+    True
+    >>> bool(np.isclose(p[1, 1], (np.exp(2) - 1) / 2))
+    True
+    """
+    z = np.asarray(z, dtype=complex)
+    out = np.empty((kmax + 1, z.size), dtype=complex)
+    out[0] = np.exp(z)
+    small = np.abs(z) < TAYLOR_RADIUS
+    if np.all(small):
+        return _phi_small(z, kmax, out)
+    fact = 1.0
+    for k in range(1, kmax + 1):
+        out[k] = (out[k - 1] - 1.0 / fact) / np.where(small, 1.0, z)
+        fact *= k
+    if np.any(small):
+        part = np.empty((kmax + 1, int(np.count_nonzero(small))), dtype=complex)
+        part[0] = out[0, small]
+        out[:, small] = _phi_small(z[small], kmax, part)
+    return out
+
+
+def _phi_small(z: ComplexArray, kmax: int, out: ComplexArray) -> ComplexArray:
+    """``phi_kmax`` by its Taylor series (Horner), the lower ones by the backward
+    recurrence ``phi_k = z phi_{k+1} + 1/k!`` (stable for ``|z| < 1``); ``out[0]`` is set."""
+    acc = np.full(z.size, 1.0 / math.factorial(kmax + TAYLOR_TERMS - 1), dtype=complex)
+    for m in range(TAYLOR_TERMS - 2, -1, -1):
+        acc = acc * z + 1.0 / math.factorial(m + kmax)
+    out[kmax] = acc
+    for k in range(kmax - 1, 0, -1):
+        out[k] = z * out[k + 1] + 1.0 / math.factorial(k)
+    return out
+
+
+def lagrange_coefficients(nodes: FloatArray) -> FloatArray:
+    """Monomial coefficients ``L[j, m]`` of the Lagrange basis ``l_j(x) = sum_m L[j, m]
+    x^m`` through ``nodes`` (p,)."""
+    p = nodes.size
+    vander = np.vander(nodes, p, increasing=True)  # vander[i, m] = x_i^m
+    return np.asarray(np.linalg.inv(vander).T)
+
+
+class HarmonicLoad:
+    """``f(t) = constant + Re(amplitude e^{i frequency t})`` [N]: gravity, point loads and
+    an unbalance at constant speed. Its ``repr`` is a digest of the numbers (it enters the
+    identity of a run, :func:`~rotorsim.time_integration.integrate.run_config`).
+
+    Examples
+    --------
+    >>> f = HarmonicLoad(np.zeros(2), np.array([1.0, -1j]), 10.0)
+    >>> [round(float(x), 12) for x in f(0.0)]
+    [1.0, 0.0]
+    """
+
+    __slots__ = ("amplitude", "constant", "frequency")
+
+    def __init__(self, constant: FloatArray, amplitude: ComplexArray, frequency: float
+                 ) -> None:
+        self.constant = np.asarray(constant, dtype=float)
+        self.amplitude = np.asarray(amplitude, dtype=complex)
+        self.frequency = float(frequency)
+
+    def __call__(self, t: float) -> FloatArray:
+        return np.asarray(self.constant + (self.amplitude * np.exp(1j * self.frequency * t)
+                                           ).real)
+
+    def __repr__(self) -> str:
+        h = hashlib.blake2b(digest_size=8)
+        for x in (self.constant, self.amplitude, np.array([self.frequency])):
+            h.update(x.tobytes())
+        return f"HarmonicLoad({h.hexdigest()})"
+
+
+@dataclass(frozen=True, eq=False)
+class LinearModes:
+    """The eigenbasis of the shifted linear rotor (module docstring) and the projections
+    a step needs.
+
+    Attributes
+    ----------
+    lam : complex array (N,)
+        Kept eigenvalues of ``A`` [1/s] (the real ones and those with a positive
+        imaginary part: ``N`` about ``n``).
+    V : complex array (2 n, N)
+        Their eigenvectors, doubled for the pairs (``y = Re(V z)``).
+    blocks : tuple
+        Per uncoupled DOF group, what gives ``z`` of a state (LU factors of its
+        eigenvectors, the kept modes).
+    dofs : int array (k,)
+        Nonlinear DOFs.
+    K0, C0 : arrays (k, k)
+        The shift of the linear part on them.
+    Bp : complex array (N, k)
+        Modal load of a unit force on each nonlinear DOF, ``V^-1 [0; M^-1 P]``.
+    b_const, b_plus, b_minus : complex arrays (N,)
+        Modal loads of the constant load and of the two halves ``u/2 e^{iWt}``,
+        ``conj(u)/2 e^{-iWt}`` of the harmonic one.
+    frequency : float
+        ``W`` of the harmonic load [rad/s].
+    minv : array (n, n)
+        ``M^-1``.
+    """
+
+    lam: ComplexArray
+    V: ComplexArray
+    blocks: tuple[Any, ...]
+    dofs: IntArray
+    K0: FloatArray
+    C0: FloatArray
+    Bp: ComplexArray
+    b_const: ComplexArray
+    b_plus: ComplexArray
+    b_minus: ComplexArray
+    frequency: float
+    minv: FloatArray
+
+    @property
+    def n(self) -> int:
+        return self.V.shape[0] // 2
+
+    @classmethod
+    def build(cls, M: Any, K: Any, D: Any, dofs: IntArray, K0: FloatArray, C0: FloatArray,
+              load: HarmonicLoad, where: str) -> LinearModes:
+        """Diagonalise the shifted linear part; dense ``M``, ``K``, ``D`` (n, n).
+
+        Uncoupled groups of DOFs (e.g. torsion, which no bearing tangent couples to the
+        bending) are diagonalised separately (cheaper: the cost is cubic). Only one mode
+        of each complex-conjugate pair is kept, with its eigenvector doubled: a real state
+        has conjugate coordinates on the pair, so ``y = Re(V z)`` over the kept ones.
+
+        Raises
+        ------
+        IllConditionedModes
+            When the eigenbasis cannot represent the linear part to ``RECONSTRUCTION_LIMIT``
+            (the caller then uses another stepper).
+        """
+        M, K, D = (np.asarray(X, dtype=float) for X in (M, K, D))
+        n = M.shape[0]
+        K0 = np.array(K0, dtype=float)
+        diag = np.diag(K0).copy()
+        soft = np.flatnonzero(diag <= 1e-9 * max(float(np.max(np.abs(diag), initial=0.0)),
+                                                 1e-300))
+        K0[soft, soft] += RIGID_SHIFT * np.abs(np.diag(K)[dofs[soft]])
+        Ks, Ds = K.copy(), D.copy()
+        Ks[np.ix_(dofs, dofs)] += K0
+        Ds[np.ix_(dofs, dofs)] += C0
+        minv = np.zeros((n, n))
+        forces = np.zeros((n, dofs.size + 3), dtype=complex)
+        forces[dofs, np.arange(dofs.size)] = 1.0
+        forces[:, dofs.size:] = np.column_stack(
+            [load.constant, 0.5 * load.amplitude, 0.5 * np.conj(load.amplitude)])
+        parts = [_Block.build(idx, M, Ks, Ds, minv, forces, where)
+                 for idx in _groups(M, Ks, Ds)]
+        lam = np.concatenate([p.lam for p in parts])
+        V = np.zeros((2 * n, lam.size), dtype=complex)
+        at = 0
+        for part in parts:
+            V[np.ix_(part.rows, np.arange(at, at + part.lam.size))] = part.vectors
+            at += part.lam.size
+        modal = np.concatenate([p.loads for p in parts])
+        k = dofs.size
+        return cls(lam, V, tuple(p.solver for p in parts), np.asarray(dofs, dtype=np.int64),
+                   K0, np.asarray(C0), modal[:, :k], modal[:, k], modal[:, k + 1],
+                   modal[:, k + 2], float(load.frequency), minv)
+
+    def modal(self, q: FloatArray, v: FloatArray) -> ComplexArray:
+        """Kept coordinates of ``z = V^-1 (q, v)``."""
+        y = np.concatenate([q, v])
+        return np.concatenate([b.solve(y) for b in self.blocks])
+
+
+def _groups(M: FloatArray, K: FloatArray, D: FloatArray) -> list[IntArray]:
+    """DOF groups that no matrix couples (connected components of the pattern)."""
+    pattern = sp.csr_matrix((M != 0) | (K != 0) | (D != 0))
+    count, labels = connected_components(pattern, directed=False)
+    return [np.flatnonzero(labels == c) for c in range(count)]
+
+
+@dataclass(frozen=True, eq=False)
+class _Solver:
+    """``z`` of one group from the state: rows of ``y`` (2m,), LU of its eigenvectors,
+    the kept modes."""
+
+    rows: IntArray
+    lu: Any
+    keep: IntArray
+
+    def solve(self, y: FloatArray) -> ComplexArray:
+        return np.asarray(sl.lu_solve(self.lu, y[self.rows].astype(complex),
+                                      check_finite=False)[self.keep])
+
+
+@dataclass(frozen=True, eq=False)
+class _Block:
+    """The kept modes of one DOF group: eigenvalues, eigenvectors on its rows, modal loads
+    of the columns of ``forces``."""
+
+    rows: IntArray
+    lam: ComplexArray
+    vectors: ComplexArray
+    loads: ComplexArray
+    solver: _Solver
+
+    @classmethod
+    def build(cls, idx: IntArray, M: FloatArray, Ks: FloatArray, Ds: FloatArray,
+              minv: FloatArray, forces: ComplexArray, where: str) -> _Block:
+        """Diagonalise the group ``idx``; fills its block of ``minv`` (``M`` is block
+        diagonal over the groups)."""
+        n, m = M.shape[0], idx.size
+        sub = np.ix_(idx, idx)
+        mi = np.linalg.inv(M[sub])
+        minv[sub] = mi
+        A = np.zeros((2 * m, 2 * m))
+        A[:m, m:] = np.eye(m)
+        A[m:, :m] = -mi @ Ks[sub]
+        A[m:, m:] = -mi @ Ds[sub]
+        lam, V = np.linalg.eig(A)
+        lu = sl.lu_factor(V, check_finite=False)
+        x = np.cos(np.arange(2 * m) + 0.5)
+        back = V @ sl.lu_solve(lu, x, check_finite=False)
+        if not (np.all(np.isfinite(back)) and
+                float(np.max(np.abs(back - x))) <= RECONSTRUCTION_LIMIT):
+            raise IllConditionedModes("eigenbasis of the linear part is ill-conditioned",
+                                      where)
+        if int(np.count_nonzero(lam.imag > 0)) != int(np.count_nonzero(lam.imag < 0)):
+            raise IllConditionedModes("eigenvalues of the linear part are not in "
+                                      "conjugate pairs", where)
+        keep = np.flatnonzero(lam.imag >= 0.0)
+        rhs = np.zeros((2 * m, forces.shape[1]), dtype=complex)
+        rhs[m:] = mi @ forces[idx]
+        loads = sl.lu_solve(lu, rhs, check_finite=False)[keep]
+        vectors = V[:, keep] * np.where(lam.imag[keep] > 0.0, 2.0, 1.0)[None, :]
+        rows = np.concatenate([idx, n + idx])
+        return cls(rows, lam[keep], vectors, loads, _Solver(rows, lu, keep))
+
+
+@dataclass(frozen=True, eq=False)
+class StepWeights:
+    """Weights of a step of size ``h`` at the fractions ``x`` (p,) of the step, for the
+    interpolation of ``rho`` through the nodes ``c`` (s + 1,) starting at 0.
+
+    Attributes
+    ----------
+    E : complex (p, N)
+        ``e^{lambda x h}``.
+    const, plus, minus : complex (p, N)
+        Exact integrals of the constant load and of ``e^{+-iW (t_n + s)}`` per unit
+        ``e^{+-iW t_n}``, times the modal loads.
+    W : complex (p, s + 1, N)
+        ``int_0^{x h} e^{lambda (x h - s)} l_j(s / h) ds`` of the Lagrange basis ``l_j``.
+    """
+
+    E: ComplexArray
+    const: ComplexArray
+    plus: ComplexArray
+    minus: ComplexArray
+    W: ComplexArray
+
+    @classmethod
+    def of(cls, modes: LinearModes, h: float, x: FloatArray, L: FloatArray) -> StepWeights:
+        """Weights at the fractions ``x`` for the basis coefficients ``L`` (p_basis, m)."""
+        lam, w = modes.lam, modes.frequency
+        degree = L.shape[1]
+        tau = np.asarray(x, dtype=float)[:, None] * h  # (p, 1)
+        p, N = tau.size, lam.size
+        phis = phi_functions((lam[None, :] * tau).ravel(), degree).reshape(degree + 1, p, N)
+        # phi_1 of (lam -+ iW) tau: the two halves of the harmonic load
+        shifted = phi_functions(np.stack([(lam[None, :] - 1j * w) * tau,
+                                          (lam[None, :] + 1j * w) * tau]).ravel(), 1)
+        shifted = shifted[1].reshape(2, p, N)
+        E = phis[0]
+        const = tau * phis[1] * modes.b_const[None, :]
+        plus = np.exp(1j * w * tau) * tau * shifted[0] * modes.b_plus[None, :]
+        minus = np.exp(-1j * w * tau) * tau * shifted[1] * modes.b_minus[None, :]
+        # int_0^tau e^{lam (tau - s)} (s/h)^m ds = m! tau^{m+1} h^-m phi_{m+1}(lam tau)
+        scale = np.array([math.factorial(m) / h ** m for m in range(degree)])
+        powers = tau[:, :, None] ** (np.arange(degree) + 1)[None, None, :]  # (p, 1, m)
+        mono = (scale[None, :, None] * powers.transpose(0, 2, 1)) * phis[1:].transpose(
+            1, 0, 2)  # (p, m, N)
+        W = np.matmul(L[None, :, :], mono)  # (p, j, N)
+        return cls(E, const, plus, minus, W)
