@@ -9,6 +9,7 @@ filled with the verb's defaults, and fields the verb does not use refused by nam
 
 from __future__ import annotations
 
+import math
 import os
 from collections.abc import Sequence
 from dataclasses import dataclass
@@ -98,3 +99,29 @@ def periodic_options(verb: str, defaults: PeriodicDefaults, *, harmonics: int | 
         raise ModelError(f"expected rotorsim.solvers.continuation.Continuation, got "
                          f"{type(solver).__name__}", f"{verb}.continuation.solver")
     return PeriodicOptions(**groups)
+
+
+PARAMETERS = ("speed", "frequency")
+"""Continuation parameters of ``rs.periodic``."""
+
+
+def check_parameter(where: str, parameter: str, start: float, stop: float,
+                    speed: float | None) -> bool:
+    """True for frequency continuation (``parameter="frequency"``), False for the speed;
+    ModelError for bad values, TypeError for an unknown parameter."""
+    if parameter not in PARAMETERS:
+        raise TypeError(f"unknown parameter {parameter!r}; valid: {', '.join(PARAMETERS)}")
+    for name, value in (("start", start), ("stop", stop)):
+        if not (isinstance(value, int | float) and math.isfinite(value) and value > 0):
+            raise ModelError(f"must be a positive number [rad/s], got {value!r}",
+                             f"{where}.{name}")
+    if start == stop:
+        raise ModelError(f"start and stop are equal ({start})", where)
+    frequency = parameter == "frequency"
+    if frequency and not (isinstance(speed, int | float) and math.isfinite(speed)):
+        raise ModelError("parameter='frequency' needs a fixed speed [rad/s]",
+                         f"{where}.speed")
+    if not frequency and speed is not None:
+        raise ModelError("speed is the continuation parameter; give start and stop",
+                         f"{where}.speed")
+    return frequency

@@ -34,7 +34,6 @@ continuation eqs 3.39-3.42, housing excitation eq 3.43).
 from __future__ import annotations
 
 import dataclasses
-import math
 import os
 import time
 from collections.abc import Sequence
@@ -47,6 +46,7 @@ from rotorsim.analyses.keyword_check import checked_keywords
 from rotorsim.analyses.periodic.arguments import (
     PeriodicDefaults,
     PeriodicOptions,
+    check_parameter,
     periodic_options,
 )
 from rotorsim.analyses.periodic.branch import start_branch
@@ -92,7 +92,6 @@ from rotorsim.solvers.continuation import Branch
 from rotorsim.solvers.stats import Stats
 
 WHERE = "periodic"
-PARAMETERS = ("speed", "frequency")
 
 
 DEFAULTS = PeriodicDefaults(
@@ -242,7 +241,7 @@ def periodic(
                             checkpoint=checkpoint)
     h, e, st, ck = opts.harmonics, opts.excitation, opts.stability, opts.checkpoint
     system = _system(model, nonlinear)
-    frequency = _check_parameter(parameter, start, stop, speed)
+    frequency = check_parameter(WHERE, parameter, start, stop, speed)
     elements = () if system.nonlinear is None else system.nonlinear.elements
     spools = not frequency and opts.base is None and two_spools(system, list(e.unbalance))
     if spools and system.nonlinear is None:
@@ -345,27 +344,6 @@ def _static_guess(model: Any, nonlinear: Sequence[NonlinearElement], system: Rot
         return None
     return rolling_start(model, nonlinear, system, e.gravity, e.direction, list(e.loads),
                          speed, phi)
-
-
-def _check_parameter(parameter: str, start: float, stop: float,
-                     speed: float | None) -> bool:
-    """True for frequency continuation; ModelError for bad values."""
-    if parameter not in PARAMETERS:
-        raise TypeError(f"unknown parameter {parameter!r}; valid: {', '.join(PARAMETERS)}")
-    for name, value in (("start", start), ("stop", stop)):
-        if not (isinstance(value, int | float) and math.isfinite(value) and value > 0):
-            raise ModelError(f"must be a positive number [rad/s], got {value!r}",
-                             f"{WHERE}.{name}")
-    if start == stop:
-        raise ModelError(f"start and stop are equal ({start})", WHERE)
-    frequency = parameter == "frequency"
-    if frequency and not (isinstance(speed, int | float) and math.isfinite(speed)):
-        raise ModelError("parameter='frequency' needs a fixed speed [rad/s]",
-                         f"{WHERE}.speed")
-    if not frequency and speed is not None:
-        raise ModelError("speed is the continuation parameter; give start and stop",
-                         f"{WHERE}.speed")
-    return frequency
 
 
 def _lam_map(plan: ExcitationPlan, frequency: bool) -> Any:
