@@ -64,6 +64,7 @@ REFERENCE_PRESSURE = 1.5e9
 """Default ``p_ref`` [Pa] of the strip half-width (ISO 281's fatigue-load-limit pressure)."""
 
 _MAX_ITER = 40
+_CACHE_SLICES = 64  # largest K whose interval inverses are cached (memory ~ K^4 / 12 floats)
 
 
 def influence_compliance(length: float, n_slices: int, radii: tuple[float, ...],
@@ -150,21 +151,61 @@ class InfluenceSlices:
             u[rest], sums[rest] = self._active_set(d[rest])
         return u, sums
 
+    @cached_property
+    def _interval_inverses(self) -> dict[tuple[int, int], FloatArray]:
+        """Inverses of the diagonal blocks ``C[a:b+1, a:b+1]`` met so far (a contact set is
+        an interval of slices when the deflection is concave along the roller: straight or
+        crowned profiles with a tilt)."""
+        return {}
+
+    def _interval_solve(self, first: FloatArray, last: FloatArray, rhs: FloatArray
+                        ) -> FloatArray:
+        """``C_AA^-1 rhs_A`` (R, K, 3), zero outside, for the contact sets
+        ``A = first..last`` (R,) by the cached block inverses (one gather and product)."""
+        k = self.xi.size
+        cache, c = self._interval_inverses, self.compliance
+        keys, which = np.unique(first * k + last, return_inverse=True)
+        blocks = np.zeros((keys.size, k, k))
+        for i, key in enumerate(keys.tolist()):
+            a, b = divmod(key, k)
+            if (a, b) not in cache:
+                cache[(a, b)] = np.linalg.inv(c[a:b + 1, a:b + 1])
+            blocks[i, a:b + 1, a:b + 1] = cache[(a, b)]
+        return np.asarray(np.einsum("rkm,rmj->rkj", blocks[which], rhs))
+
+    def _set_solve(self, act: FloatArray, rhs: FloatArray) -> FloatArray:
+        """``C_AA^-1 rhs_A`` (R, K, 3), zero outside the contact sets ``act`` (R, K):
+        cached interval inverses where ``act`` is an interval, batched solves elsewhere."""
+        k = self.xi.size
+        first = np.argmax(act, axis=-1)
+        last = k - 1 - np.argmax(act[:, ::-1], axis=-1)
+        interval = act.sum(axis=-1) == last - first + 1
+        x = np.zeros(rhs.shape)
+        if k <= _CACHE_SLICES and interval.any():
+            x[interval] = self._interval_solve(first[interval], last[interval],
+                                               rhs[interval])
+        else:
+            interval[:] = False
+        rest = ~interval
+        if rest.any():
+            a = act[rest]
+            both = a[:, :, None] & a[:, None, :]
+            x[rest] = np.linalg.solve(np.where(both, self.compliance, np.eye(k, dtype=bool)),
+                                      np.where(a[..., None], rhs[rest], 0.0))
+        return x
+
     def _active_set(self, d: FloatArray) -> tuple[FloatArray, FloatArray]:
         """Kalker's active set (drop negative loads, then add penetrating slices), batched,
         with right-hand sides ``d, 1, xi``; unsettled problems go to ``solve_contact``."""
         c, xi = self.compliance, self.xi
         k = xi.size
-        eye = np.eye(k, dtype=bool)
         rhs = np.stack(np.broadcast_arrays(d, np.ones(k), xi), axis=-1)  # (R, K, 3)
         active = d > 0.0
         u, x = np.zeros(d.shape), np.zeros(rhs.shape)
         todo = np.arange(d.shape[0])
         for _ in range(_MAX_ITER):
             act = active[todo]
-            both = act[:, :, None] & act[:, None, :]
-            x_t = np.linalg.solve(np.where(both, c, eye), np.where(act[..., None],
-                                                                   rhs[todo], 0.0))
+            x_t = self._set_solve(act, rhs[todo])
             u_t = np.where(act, x_t[..., 0], 0.0)
             negative = act & (u_t < 0.0)
             gap = np.maximum(u_t, 0.0) @ c
@@ -179,11 +220,8 @@ class InfluenceSlices:
                 break
         if todo.size:  # rare: Kalker's iteration did not settle; NNLS, then its contact set
             u[todo] = solve_contact(c, d[todo])[0]
-            act = u[todo] > 0.0
-            both = act[:, :, None] & act[:, None, :]
-            x[todo] = np.linalg.solve(np.where(both, c, eye),
-                                      np.where(act[..., None], rhs[todo], 0.0))
-            active[todo] = act
+            active[todo] = u[todo] > 0.0
+            x[todo] = self._set_solve(active[todo], rhs[todo])
         x = np.where(active[..., None], x, 0.0)
         sums = np.stack([x[..., 1].sum(axis=-1), x[..., 2].sum(axis=-1), x[..., 2] @ xi],
                         axis=-1)
