@@ -168,6 +168,21 @@ def _bearings() -> tuple[rs.RollerBearing, rs.RollerBearing]:
     return base, dataclasses.replace(base, model="influence")
 
 
+def influence_sensitivity() -> None:
+    print("(g0) model='influence', 14 x 7.5 mm rollers, K = 20: strip width reference "
+          "influence_pressure against the end-slice load (uniform deflection) and the load "
+          "centre of a tilted roller (deflection 1 + 1.6 xi, fully loaded)")
+    base = _bearings()[1]
+    xi = slice_centres(base.n_slices)
+    for p_ref in (0.5e9, 1.0e9, 1.5e9, 2.0e9, 4.0e9):
+        line = dataclasses.replace(base, influence_pressure=p_ref)._line.influence
+        assert line is not None
+        q = line.slice_loads(np.ones((1, xi.size)))[0]
+        t = line.slice_loads((1.0 + 1.6 * xi)[None])[0]
+        print(f"  p_ref {p_ref / 1e9:.1f} GPa: end slice / mean {q[0] / q.mean():.3f}, "
+              f"load centre {float(t @ xi) / t.sum():.4f} L")
+
+
 def influence_equilibria() -> None:
     print("(g) bearing equilibria, model='influence' against 'slices' (14 rollers, K = 20)")
     for crown in (0.0, 4e-6):
@@ -249,6 +264,7 @@ def _transient_time(bearing: rs.RollerBearing) -> float:
 if __name__ == "__main__":
     if sys.argv[1:] == ["influence"]:
         influence_moments()
+        influence_sensitivity()
         influence_equilibria()
         influence_cost()
         raise SystemExit(0)
@@ -258,5 +274,6 @@ if __name__ == "__main__":
     one_d_vs_two_d()
     cost()
     influence_moments()
+    influence_sensitivity()
     influence_equilibria()
     influence_cost()

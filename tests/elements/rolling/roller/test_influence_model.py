@@ -144,6 +144,8 @@ def test_bad_input_names_the_culprit():
     with pytest.raises(ModelError, match="straight profile"):
         dataclasses.replace(CROWNED, model="tilt_integral")
     assert math.isclose(INFL.influence_pressure, 1.5e9)
+    with pytest.raises(ModelError, match="centrifugal"):
+        rs.CentrifugalBearing(INFL, element_density=7850.0)
 
 
 def test_model_file_key(tmp_path):
