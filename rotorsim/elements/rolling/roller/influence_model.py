@@ -52,6 +52,7 @@ from functools import cached_property
 from typing import Any
 
 import numpy as np
+from numpy.typing import NDArray
 
 from rotorsim.elements.rolling.contact.influence import solve_contact
 from rotorsim.elements.rolling.roller.integrals import LineIntegrals
@@ -59,6 +60,8 @@ from rotorsim.elements.rolling.roller.profile import slice_centres
 from rotorsim.elements.rolling.roller.slice_influence import slice_compliance
 from rotorsim.elements.rolling.roller.slice_outputs import STEEL_E_STAR, race_radii
 from rotorsim.elements.rolling.state import FloatArray
+
+BoolArray = NDArray[np.bool_]
 
 REFERENCE_PRESSURE = 1.5e9
 """Default ``p_ref`` [Pa] of the strip half-width (ISO 281's fatigue-load-limit pressure)."""
@@ -169,11 +172,11 @@ class InfluenceSlices:
         for i, key in enumerate(keys.tolist()):
             a, b = divmod(key, k)
             if (a, b) not in cache:
-                cache[(a, b)] = np.linalg.inv(c[a:b + 1, a:b + 1])
+                cache[(a, b)] = np.asarray(np.linalg.inv(c[a:b + 1, a:b + 1]), dtype=float)
             blocks[i, a:b + 1, a:b + 1] = cache[(a, b)]
         return np.asarray(np.einsum("rkm,rmj->rkj", blocks[which], rhs))
 
-    def _set_solve(self, act: FloatArray, rhs: FloatArray) -> FloatArray:
+    def _set_solve(self, act: BoolArray, rhs: FloatArray) -> FloatArray:
         """``C_AA^-1 rhs_A`` (R, K, 3), zero outside the contact sets ``act`` (R, K):
         cached interval inverses where ``act`` is an interval, batched solves elsewhere."""
         k = self.xi.size
@@ -211,7 +214,8 @@ class InfluenceSlices:
             gap = np.maximum(u_t, 0.0) @ c
             scale = np.abs(d[todo]).max(axis=-1, keepdims=True)
             adding = ~act & (gap < d[todo] - 1e-12 * scale)
-            drop, add = negative.any(axis=-1), adding.any(axis=-1)
+            drop: BoolArray = np.asarray(negative.any(axis=-1))
+            add: BoolArray = np.asarray(adding.any(axis=-1))
             done = ~(drop | add)
             u[todo[done]], x[todo[done]] = u_t[done], x_t[done]
             active[todo] = np.where(drop[:, None], act & ~negative, act | adding)
