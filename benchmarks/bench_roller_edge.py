@@ -240,9 +240,33 @@ def influence_cost() -> None:
         e0, e1 = (_best(rs.bearing_equilibrium, b, load) for b in (base, infl))
         print(f"  crown {crown * 1e6:.0f} um: bearing_equilibrium (8 kN, 8 N m) "
               f"{e0 * 1e3:.2f} -> {e1 * 1e3:.2f} ms (x{e1 / e0:.1f})")
+    _history_cost()
     times = [_transient_time(b) for b in _bearings()]
     print(f"  transient, rotor on two 4 um crowned bearings, 1000 steps: {times[0]:.2f} -> "
           f"{times[1]:.2f} s (x{times[1] / times[0]:.1f})")
+
+
+def _history_cost(n: int = 20_000) -> None:
+    """CPU time of the lamina damage densities of an ``n``-sample history (the work of
+    ``rs.transient_life``): independent slices, the post-processing ``slice_model=
+    "influence"`` and the contact model ``"influence"``."""
+    from rotorsim.elements.rolling.rating.options import RatingOptions
+    from rotorsim.elements.rolling.rating.rated_bearing import RatedBearing
+
+    base, infl = _bearings()
+    phi = np.linspace(0.0, 400.0, n)
+    delta = np.column_stack([20e-6 + 2e-6 * np.sin(phi), 2e-6 * np.cos(phi), np.zeros(n),
+                             1e-4 * np.sin(phi), np.zeros(n)])
+    row = []
+    for b in (base, dataclasses.replace(base, slice_model="influence"), infl):
+        rated = RatedBearing(b, RatingOptions())
+        psi = b.element_angles(phi)
+        t = time.process_time()
+        rated.damage_density(delta, psi)
+        row.append(time.process_time() - t)
+    print(f"  lamina densities of a {n}-sample history (transient_life's work), CPU: slices "
+          f"{row[0]:.2f} s, slice_model='influence' {row[1]:.2f} s, model='influence' "
+          f"{row[2]:.2f} s")
 
 
 def _transient_time(bearing: rs.RollerBearing) -> float:
