@@ -150,7 +150,7 @@ class RollerTable(RollingTable):
     roller_diameter: Length | None = None
     effective_length: Length
     profile: ProfileTable | None = None
-    model: Literal["tilt_integral", "slices"] = "tilt_integral"
+    model: Literal["tilt_integral", "slices", "influence"] = "tilt_integral"
     n_slices: Annotated[int, Field(ge=1, le=10_000)] = 20
     slice_model: Literal["independent", "influence"] = "independent"
 

@@ -127,7 +127,8 @@ CASES = [
     pytest.param(edit((*BALL, "n_rollers"), 0, base="rolling_tapered"),
                  "rolling_bearings[0].n_rollers", r"must be >= 1, got 0", id="roller-zero-rollers"),
     pytest.param(edit((*BALL, "model"), "hertz", base="rolling_tapered"),
-                 "rolling_bearings[0].model", r"must be one of 'tilt_integral' or 'slices'",
+                 "rolling_bearings[0].model",
+                 r"must be one of 'tilt_integral', 'slices' or 'influence'",
                  id="roller-model"),
     pytest.param(edit((*BALL, "roller_diameter"), "60 mm", base="rolling_tapered"),
                  "rolling_bearings[0]", r"roller_diameter 0\.06 m must be smaller than "

@@ -117,6 +117,10 @@ class CentrifugalBearing:
                              f"(or a ReversedBearing of one), got "
                              f"{type(self.bearing).__name__}", "CentrifugalBearing")
         where = self.label
+        if isinstance(base, RollerBearing) and base.model == "influence":
+            raise ModelError("the centrifugal model splits each roller into its inner and "
+                             "outer contact, which model='influence' (both races in one "
+                             "half-space law) does not; use model='slices'", where)
         if (self.element_mass is None) == (self.element_density is None):
             raise ModelError("give exactly one of element_mass [kg] and element_density "
                              "[kg/m^3]", where)

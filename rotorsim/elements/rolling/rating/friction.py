@@ -50,7 +50,9 @@ F1_FACTORS: dict[str, tuple[float, float]] = {
 }
 """``(z, y)`` of ``f_1 = z (P_0/C_0)^y`` (rollers ``y = 0``: ``f_1 = z``). Harris & Kotzalas
 list ranges where these are mid values: deep groove ``z = 0.0004-0.0006``, cylindrical
-``0.0002-0.0004``, spherical ``0.0004-0.0005``; give ``f1`` to use another."""
+``0.0002-0.0004``, spherical ``0.0004-0.0005``; give ``f1`` to use another. Recalled, not
+confirmed from a readable copy (docs/validation.md, case 29b); an independent model uses
+``0.0007 (P_0/C_0)^0.5`` for deep groove bearings, 1.6 times this at ``P_0/C_0 = 0.1``."""
 P1_RULES = ("deep_groove", "angular_contact", "thrust_ball", "cylindrical", "tapered",
             "spherical")
 """Bearing types of the ``P_1`` rules (module docstring)."""

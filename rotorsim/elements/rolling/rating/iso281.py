@@ -76,12 +76,16 @@ _F0_BALL = np.array([14.7, 14.9, 15.1, 15.3, 15.5, 15.7, 15.9, 16.1, 16.3, 16.5,
 _F0FA_C0 = np.array([0.172, 0.345, 0.689, 1.03, 1.38, 2.07, 3.45, 5.17, 6.89])
 _E_DEEP = np.array([0.19, 0.22, 0.26, 0.28, 0.30, 0.34, 0.38, 0.42, 0.44])
 _Y_DEEP = np.array([2.30, 1.99, 1.71, 1.55, 1.45, 1.31, 1.15, 1.04, 1.00])
-"""ISO 281 Table 3, single-row deep-groove ball bearings (``X = 0.56`` above ``e``)."""
+"""ISO 281 Table 3, single-row deep-groove ball bearings (``X = 0.56`` above ``e``); all 18
+values equal an independent transcription of ISO 281:2007 Table 3 and the SKF catalogue
+table quoted by another (docs/validation.md, case 29b)."""
 _ANGLES_AC = np.radians([20.0, 25.0, 30.0, 35.0, 40.0, 45.0])
 _E_AC = np.array([0.57, 0.68, 0.80, 0.95, 1.14, 1.34])
 _X_AC = np.array([0.43, 0.41, 0.39, 0.37, 0.35, 0.33])
 _Y_AC = np.array([1.00, 0.87, 0.76, 0.66, 0.57, 0.50])
-"""ISO 281 Table 3, single-row angular-contact ball bearings."""
+"""ISO 281 Table 3, single-row angular-contact ball bearings: the 25 and 40 deg rows as printed
+by LYC and a 7206-B product page (case 29), all six rows equal to an independent
+transcription of ISO 281:2007 Table 3 (docs/validation.md, case 29b)."""
 
 
 def _check_positive(value: Any, name: str, where: str) -> float:

@@ -25,9 +25,12 @@ where ``Q_j = Kn int delta^n dxi`` and ``e_j = L int xi delta^n dxi / int delta^
 (eq 9). Because the integrands vanish where the contact ends, the moving limits of
 eq 8 add no boundary terms to the derivatives.
 
-Two models: ``"tilt_integral"`` integrates the linear deflection in closed form between the
+Three models: ``"tilt_integral"`` integrates the linear deflection in closed form between the
 limits of eq 8 (straight profiles only); ``"slices"`` sums ``K`` slices of constant
-``Kn/K`` at ``xi_k`` (seed 002 eqs 2.7, 2.12-2.13), and accepts crowned profiles.
+``Kn/K`` at ``xi_k`` (seed 002 eqs 2.7, 2.12-2.13), and accepts crowned profiles;
+``"influence"`` couples the same slices by the half-space influence coefficients (seed 002
+section 2.3.3; :mod:`~rotorsim.elements.rolling.roller.influence_model`), edge effect
+included, with its own energy, force and exact (symmetric) tangent.
 """
 
 from __future__ import annotations
@@ -48,6 +51,7 @@ from rotorsim.elements.rolling.roller.checks import (
     resolve_clearance,
     resolve_kn,
 )
+from rotorsim.elements.rolling.roller.influence_model import REFERENCE_PRESSURE, bearing_influence
 from rotorsim.elements.rolling.roller.integrals import (
     RollerConstants,
     RollerLoads,
@@ -105,9 +109,12 @@ class RollerBearing:
     exponent : float
         Load-deflection exponent ``n >= 1`` (10/9 line contact).
     profile : RollerProfile
-        Roller profile (``model="slices"`` for crowned or logarithmic profiles).
-    model : {"tilt_integral", "slices"}
-        Contact model (module docstring).
+        Roller profile (``model="slices"`` or ``"influence"`` for crowned or logarithmic
+        profiles).
+    model : {"tilt_integral", "slices", "influence"}
+        Contact model (module docstring). ``"influence"`` needs ``roller_diameter``; its
+        cost: docs/benchmarks.md; its slice outputs (``slice_loads``, laminae, pressures)
+        are its own (``slice_model`` is set to ``"influence"``).
     n_slices : int
         Number of slices ``K`` of the slicing model.
     psi0 : float
@@ -124,7 +131,11 @@ class RollerBearing:
         :mod:`~rotorsim.elements.rolling.roller.slice_influence` (edge effect), normalised
         to the same roller loads. Force, stiffness and energy (statics, transients) use
         the independent law in both cases (why, and what it changes: docs/bearing_life.md,
-        "Roller edge effect").
+        "Roller edge effect"); ``model="influence"`` makes the half-space drive them.
+    influence_pressure : float
+        Reference Hertz pressure ``p_ref`` [Pa] of ``model="influence"``: its slice strips
+        have the Hertz half-widths of the line load giving the inner race ``p_ref``
+        (default 1500 MPa); set it near the load case's peak pressure.
 
     References
     ----------
@@ -156,6 +167,7 @@ class RollerBearing:
     cage: str = "rotating"
     tag: str = ""
     slice_model: str = "independent"
+    influence_pressure: float = REFERENCE_PRESSURE
 
     def __post_init__(self) -> None:
         where = self._where
@@ -207,6 +219,8 @@ class RollerBearing:
 
     def _check_options(self, where: str) -> None:
         check_options(self, where)
+        if self.model == "influence":  # its slice outputs are its own
+            object.__setattr__(self, "slice_model", "influence")
 
     # ----------------------------------------------------------------- kinematics
     @property
@@ -239,7 +253,7 @@ class RollerBearing:
     def _line(self) -> RollerLineLoad:
         """The line load along the rollers for :attr:`model` (:mod:`.line_load`)."""
         return RollerLineLoad(self.model, self.exponent, self.n_slices, self.profile,
-                              self.effective_length)
+                              self.effective_length, bearing_influence(self))
 
     def _inputs(self, delta: ArrayLike, psi: ArrayLike) -> tuple[FloatArray, FloatArray]:
         """Check shapes; return ``delta (S, 5)`` and ``psi (S, N)``."""
@@ -248,7 +262,7 @@ class RollerBearing:
     @cached_property
     def _block_size(self) -> int:
         """Samples of about 32k roller-slices: small temporaries stay in cache."""
-        per_sample = self.n_rollers * (self.n_slices if self.model == "slices" else 1)
+        per_sample = self.n_rollers * (1 if self.model == "tilt_integral" else self.n_slices)
         return max(1, 32768 // per_sample)
 
     def _blocks(self, n_samples: int) -> list[slice]:

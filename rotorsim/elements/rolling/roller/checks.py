@@ -18,7 +18,7 @@ from rotorsim.elements.rolling.roller.profile import (
 )
 from rotorsim.errors import ModelError
 
-ROLLER_MODELS = ("tilt_integral", "slices")
+ROLLER_MODELS = ("tilt_integral", "slices", "influence")
 """Names of the roller contact models."""
 
 SLICE_MODELS = ("independent", "influence")
@@ -89,5 +89,13 @@ def check_options(b: Any, where: str) -> None:
     if isinstance(b.n_slices, bool) or not isinstance(b.n_slices, int | np.integer) \
             or b.n_slices < 1:
         raise ModelError(f"n_slices must be an integer >= 1, got {b.n_slices!r}", where)
+    if b.model == "influence":
+        if b.roller_diameter is None:
+            raise ModelError("roller_diameter is needed for model='influence' (the Hertz "
+                             "strip widths of the half-space slices)", where)
+        pressure = getattr(b, "influence_pressure", 1.5e9)
+        if not (finite_number(pressure) and pressure > 0.0):
+            raise ModelError(f"influence_pressure must be positive and finite [Pa], got "
+                             f"{pressure!r}", where)
     if not finite_number(b.psi0):
         raise ModelError(f"psi0 must be finite, got {b.psi0!r}", where)

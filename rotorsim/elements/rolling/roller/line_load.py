@@ -5,7 +5,9 @@ A roller with the centre approach ``V`` and tilt ``L omega`` has the deflection
 ``delta(xi) = V + xi L omega - c(xi)`` along its length. ``"tilt_integral"`` integrates the
 line load of the straight roller in closed form between the limits of its loaded zone
 (seed 000 eqs 7-9, 22-23); ``"slices"`` sums ``K`` slices at their centres ``xi_k``, with
-the profile drop ``c(xi_k)`` (seed 002 eqs 2.7, 2.12-2.13). Both give the
+the profile drop ``c(xi_k)`` (seed 002 eqs 2.7, 2.12-2.13); ``"influence"`` couples the
+same slices by the half-space (:mod:`~rotorsim.elements.rolling.roller.influence_model`).
+All give the
 :class:`~rotorsim.elements.rolling.roller.integrals.LineIntegrals` the bearing needs.
 """
 
@@ -23,6 +25,7 @@ from rotorsim.elements.rolling.contact.line_integrals import (
     slice_weights,
     tilted_line_integrals,
 )
+from rotorsim.elements.rolling.roller.influence_model import InfluenceSlices
 from rotorsim.elements.rolling.roller.integrals import LineIntegrals
 from rotorsim.elements.rolling.roller.profile import RollerProfile, slice_centres
 from rotorsim.elements.rolling.state import FloatArray
@@ -34,8 +37,9 @@ class RollerLineLoad:
 
     Parameters
     ----------
-    model : {"tilt_integral", "slices"}
-        Closed-form integrals of a straight roller, or sums over ``n_slices`` slices.
+    model : {"tilt_integral", "slices", "influence"}
+        Closed-form integrals of a straight roller, sums over ``n_slices`` independent
+        slices, or slices coupled by the half-space (``influence``).
     exponent : float
         Load-deflection exponent ``n``.
     n_slices : int
@@ -44,6 +48,8 @@ class RollerLineLoad:
         Roller profile; its drop relieves the slices.
     length : float
         Effective roller length ``L`` [m].
+    influence : InfluenceSlices, optional
+        The coupled-slice model (required by ``model="influence"``).
     """
 
     model: str
@@ -51,6 +57,7 @@ class RollerLineLoad:
     n_slices: int
     profile: RollerProfile
     length: float
+    influence: InfluenceSlices | None = None
 
     @cached_property
     def xi(self) -> FloatArray:
@@ -76,6 +83,8 @@ class RollerLineLoad:
         n = float(self.exponent)
         if self.model == "tilt_integral":
             return LineIntegrals(*tilted_line_integrals(v, lw, n, energy_only))
+        if self.influence is not None:
+            return self.influence.integrals(self.slice_deflection(v, lw), energy_only)
         return LineIntegrals(*line_moments(self.slice_deflection(v, lw), self.xi, n,
                                            energy_only))
 
@@ -85,6 +94,8 @@ class RollerLineLoad:
         n = float(self.exponent)
         if self.model == "tilt_integral":
             return _tilted(v, lw, n, True, False)[1:6]
+        if self.influence is not None:
+            return tuple(self.influence.integrals(self.slice_deflection(v, lw))[1:6])
         return _slice_sums(self.slice_deflection(v, lw), self.weights, n, False)[1:6]
 
     def slice_deflection(self, v: FloatArray, lw: FloatArray) -> FloatArray:

@@ -4,7 +4,9 @@ by its ``slice_model``: independent slices or the half-space distribution.
 Independent slices (seed 002 eqs 2.7, 2.12): ``q_k = (Kn/K) max(delta_k, 0)^n``.
 ``"influence"``: the same roller loads distributed along the roller by the half-space
 influence coefficients (:func:`~.slice_influence.influence_slice_loads`, seed 002 section
-2.3.3), which moves the roller's load centre (eccentricity) and its edge load.
+2.3.3), which moves the roller's load centre (eccentricity) and its edge load. A bearing
+with the contact model ``"influence"`` (:mod:`~.influence_model`) gives its own slice loads,
+those of its force.
 """
 
 from __future__ import annotations
@@ -41,6 +43,8 @@ def race_radii(bearing: Any) -> tuple[float, float]:
 def slice_loads(bearing: Any, deflection: FloatArray) -> FloatArray:
     """Slice loads (S, Z, K) [N] of the slice deflections ``deflection`` (S, Z, K) [m] by
     the bearing's ``slice_model`` (module docstring)."""
+    if bearing.model == "influence":  # the coupled-slice contact model's own loads
+        return np.asarray(bearing.kn * bearing._line.influence.slice_loads(deflection))
     if bearing.slice_model == "influence":
         return influence_slice_loads(deflection, bearing.kn, float(bearing.exponent),
                                      bearing.effective_length, race_radii(bearing),
@@ -68,7 +72,8 @@ def roller_loads(bearing: Any, v: FloatArray, lw: FloatArray) -> RollerLoads:
         ecc = np.where(total > 0.0, length * (slice_load @ xi)
                        / np.where(total > 0.0, total, 1.0), 0.0)
     half = 0.5 / bearing.n_slices
-    lo = np.where(dk > 0.0, xi - half, np.inf).min(axis=-1)
-    hi = np.where(dk > 0.0, xi + half, -np.inf).max(axis=-1)
+    touching = slice_load > 0.0 if bearing.model == "influence" else dk > 0.0
+    lo = np.where(touching, xi - half, np.inf).min(axis=-1)
+    hi = np.where(touching, xi + half, -np.inf).max(axis=-1)
     limits = np.where(loaded[..., None], np.stack([lo, hi], axis=-1), np.nan)
     return RollerLoads(q, ecc, limits, slice_load)
