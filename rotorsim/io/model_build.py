@@ -341,6 +341,8 @@ def _rolling_model(t: RollingTable) -> BallBearing | RollerBearing:
         method = "iso16281" if t.spring_constant == "iso16281" else "exact"
         return BallBearing.from_geometry(tag=t.tag, method=method, **keys)  # f_i, f_o given
     assert isinstance(t, RollerTable)
+    if t.influence_pressure is not None:   # the strip width of model = "influence"
+        keys["influence_pressure"] = t.influence_pressure
     return RollerBearing(n_rollers=t.n_rollers, roller_diameter=t.roller_diameter,
                          effective_length=t.effective_length, Kn=t.Kn,
                          profile=_profile(t.profile), model=t.model, n_slices=t.n_slices,

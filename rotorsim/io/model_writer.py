@@ -230,7 +230,8 @@ _ROLLING_KEYS = {
                   "cage", "groove_center_radius"),
     RollerBearing: ("n_rollers", "pitch_diameter", "roller_diameter", "effective_length", "Kn",
                     "contact_angle", "radial_clearance", "diametral_clearance", "exponent",
-                    "model", "n_slices", "psi0", "cage", "slice_model"),
+                    "model", "n_slices", "psi0", "cage", "slice_model",
+                    "influence_pressure"),
 }
 """Model-file keys of each rolling-bearing model (the dataclass fields of the same name)."""
 

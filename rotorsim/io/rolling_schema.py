@@ -15,6 +15,7 @@ from rotorsim.io.schema_types import (
     Length,
     LinearizationValue,
     Linked,
+    Modulus,
     NonNegLength,
     PositiveRatio,
     SignedLength,
@@ -153,6 +154,7 @@ class RollerTable(RollingTable):
     model: Literal["tilt_integral", "slices", "influence"] = "tilt_integral"
     n_slices: Annotated[int, Field(ge=1, le=10_000)] = 20
     slice_model: Literal["independent", "influence"] = "independent"
+    influence_pressure: Modulus | None = None
 
     @model_validator(mode="after")
     def _interference(self) -> "RollerTable":

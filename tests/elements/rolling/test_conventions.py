@@ -116,3 +116,24 @@ def test_a_model_file_roller_without_its_diameter_is_linearised(tmp_path):
     model = load_model(path)
     assert model.rolling_bearings[0].bearing.roller_diameter is None
     assert model.linearized().bearings[0].stiffness_matrix[0, 0] > 0.0
+
+
+def test_a_model_file_sets_the_influence_models_reference_pressure(tmp_path):
+    """``model = "influence"`` with its strip width's reference pressure from a model file,
+    kept by a save and reload; a non-positive pressure is refused by key."""
+    from rotorsim.io.model_file import save_model
+
+    path = tmp_path / "m.toml"
+    roller = _BALL.format(extra="").replace('type = "ball"', 'type = "roller"').replace(
+        "n_balls = 7", "n_rollers = 14").replace(
+        'ball_diameter = "11.5 mm"\nf_i = 0.52\nf_o = 0.53\n',
+        'roller_diameter = "10 mm"\neffective_length = "9.6 mm"\n'
+        'diametral_clearance = "10 um"\nmodel = "influence"\ninfluence_pressure = "2 GPa"\n')
+    path.write_text(roller)
+    bearing = load_model(path).rolling_bearings[0].bearing
+    assert bearing.model == "influence" and bearing.influence_pressure == 2e9
+    again = load_model(save_model(load_model(path), tmp_path / "saved.toml"))
+    assert again.rolling_bearings[0].bearing.influence_pressure == 2e9
+    path.write_text(roller.replace('"2 GPa"', '"-1 GPa"'))
+    with pytest.raises(ModelError, match="influence_pressure"):
+        load_model(path)
