@@ -240,3 +240,22 @@ def test_the_character_of_a_critical_exponent_follows_its_frequency() -> None:
     assert character(w2 / 2, tones, w1) == "doubling"
     assert character(0.37 * w1, tones, w1) == "third frequency"
     assert character(float("nan"), tones, w1) == ""
+
+
+def test_a_branch_that_stalls_on_contact_kinks_refines_its_grid_and_goes_on() -> None:
+    """Past the fold of the test above the contact set changes and, on the default grid
+    (64, 16) of the box (8, 3), the corrector only accepts tiny steps: the branch used to
+    creep (30 points within 0.6 rad/s below 632 rad/s, max_points spent). It now restarts
+    from the last point before the stall on a finer grid, says so, and follows the
+    unstable side back down to the start's speed, 625 rad/s."""
+    rotor, ex = _textbook_damped()
+    branch = rs.quasi_periodic(rotor, start=625.0, stop=800.0, step=10.0,
+                               unbalance=[(0, 2e-6, 0.0)], harmonics=(8, 3), excitation=ex,
+                               stability=False, max_points=26)
+    assert "torus grid refined" in branch.reason and "lam_min = 625 reached" in branch.reason
+    speeds = branch.speeds
+    turn = int(np.argmax(speeds))
+    assert speeds[turn] == pytest.approx(637.0, abs=2.0)
+    assert np.all(np.diff(speeds[turn:]) < 0) and speeds[-1] == pytest.approx(625.0)
+    grids = {p.solution.aft.grid for p in branch.points}
+    assert (64, 16) in grids and len(grids) > 1

@@ -17,6 +17,7 @@ up) says where and why, keeping what it has.
 
 from __future__ import annotations
 
+import dataclasses
 import time
 from collections.abc import Sequence
 from dataclasses import dataclass
@@ -33,6 +34,7 @@ from rotorsim.analyses.quasiperiodic.point import (
     torus_of,
 )
 from rotorsim.analyses.quasiperiodic.problem import WHERE, RotorQuasiProblem
+from rotorsim.analyses.quasiperiodic.refine import MAX_REFINEMENTS, StallWatch, finer
 from rotorsim.analyses.quasiperiodic.stability import STABILITY_TOL, TorusStability
 from rotorsim.errors import ModelError, Status
 from rotorsim.harmonic_balance.quasi import QuasiSolution, TorusAFT
@@ -148,15 +150,15 @@ def quasi_periodic(model: Any, *, start: float, stop: float, step: float | None 
         lam_max=max(start, stop), max_points=int(max_points), tol=tol,
         x_scale=float(np.abs(x0).max(initial=0.0)) or 1.0, r_scale="auto", lam_scale=span,
         relative_step=True, stall_tol=max(STALL_TOL, tol))
-    branch = continue_branch(fun, x0, float(start), options)
-    points = tuple(_point(fun, first, x, float(w), float(r), int(it)) for x, w, r, it in
-                   zip(branch.x, branch.lam, branch.residuals, branch.iterations, strict=True))
+    points, branch, refined = _segments(fun, first, x0, float(start), options)
     status = "ok" if branch.status == Status.OK else "stopped"
     end = float(branch.lam[-1])
     reason = ""
     if status != "ok" or abs(end - stop) > 1e-9 * max(abs(stop), 1.0):  # short of stop
         hint = ", raise max_points" if branch.reason == "max_points reached" else ""
         reason = f"{branch.reason or 'ended'} (at {end:.6g} rad/s, stop {stop:.6g}{hint})"
+    if refined:
+        reason = (reason + "; " if reason else "") + refined
     clock = time.perf_counter()
     checks: list[TorusStability | None] = [None] * len(points)
     if stability == "lyapunov":
@@ -168,6 +170,38 @@ def quasi_periodic(model: Any, *, start: float, stop: float, step: float | None 
         exponents = np.full(len(points), np.nan)
     return QuasiPeriodicBranch(points, exponents, status, reason, tuple(checks),
                                time.perf_counter() - clock)
+
+
+def _segments(fun: SpeedResidual, first: QuasiPeriodicPoint, x0: FloatArray, lam0: float,
+              options: Continuation) -> tuple[tuple[QuasiPeriodicPoint, ...], Any, str]:
+    """The branch's points, its last segment's continuation result and a note of the grid
+    refinements: where the branch stalls (:class:`~.refine.StallWatch`), it carries on
+    from the last point before the stall on a grid twice as fine (:mod:`.refine`)."""
+    points: list[QuasiPeriodicPoint] = []
+    notes = []
+    x, lam, orientation, budget = x0, lam0, None, options.max_points
+    for refinement in range(MAX_REFINEMENTS + 1):
+        watch = StallWatch(options.max_step)
+        branch = continue_branch(
+            fun, x, lam, dataclasses.replace(options, max_points=budget),
+            monitor=watch if refinement < MAX_REFINEMENTS else None, orientation=orientation)
+        end = watch.good + 1 if watch.good >= 0 else len(branch.lam)
+        skip = 1 if points else 0          # the restart point is the last one kept
+        points += [_point(fun, first, xi, float(w), float(r), int(it)) for xi, w, r, it in
+                   list(zip(branch.x, branch.lam, branch.residuals, branch.iterations,
+                            strict=True))[skip:end]]
+        if watch.good < 1:                  # no stall (or nothing before it to restart)
+            break
+        budget -= end - skip
+        g = watch.good
+        x, lam = branch.x[g], float(branch.lam[g])
+        orientation = np.append(branch.x[g] - branch.x[g - 1], lam - branch.lam[g - 1])
+        fun = SpeedResidual(fun.system, first.rotor_problem, finer(fun.aft), fun.unbalance)
+        notes.append(f"torus grid refined to {fun.aft.grid} at {lam:.6g} rad/s where the "
+                     "branch stalled (contacts opening and closing)")
+        if budget < 2:
+            break
+    return tuple(points), branch, "; ".join(notes)
 
 
 def _point(fun: SpeedResidual, first: QuasiPeriodicPoint, x: FloatArray, speed: float,

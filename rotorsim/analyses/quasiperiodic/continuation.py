@@ -59,6 +59,7 @@ class SpeedResidual:
     def __init__(self, system: RotorSystem, base: RotorQuasiProblem, aft: TorusAFT,
                  unbalance: Sequence[tuple[int, float, float]]) -> None:
         self.system, self.base, self.aft = system, base, aft
+        self.unbalance = tuple(unbalance)
         self.active = base.active
         pb = base.problem
         self.rows, self.d = aft.harmonics.rows, int(np.size(pb.nl_dofs))
