@@ -113,14 +113,18 @@ class Segment:
         start stays O(h^4) close to the branch)."""
         start, v, length = _hermite(lo, hi, s)
         cone = 2.0 * max(_angle(lo.t, v), _angle(hi.t, v)) + CONE_SLACK
-        for hold in (True, False) if self.hold else (False,):
-            point = self._corrected(start, v, cone if self.guard == "cone" else None, hold)
-            if point is None or not lo.s < point.s < hi.s:
-                continue
-            if self.guard == "drift" and np.linalg.norm(point.y - start) > DRIFT * length:
-                continue
-            return point
-        return None
+        point = None
+        if self.hold:
+            point = self._corrected(start, v, cone if self.guard == "cone" else None, True)
+            if point is None:   # not converged at the start's parameter: the chord's plane
+                point = self._corrected(start, v, cone if self.guard == "cone" else None)
+        else:
+            point = self._corrected(start, v, cone if self.guard == "cone" else None)
+        if point is None or not lo.s < point.s < hi.s:
+            return None
+        if self.guard == "drift" and np.linalg.norm(point.y - start) > DRIFT * length:
+            return None
+        return point
 
     def estimate(self, lo: SegmentPoint, hi: SegmentPoint, s: float) -> SegmentPoint | None:
         """The cubic Hermite interpolant of the corrected points ``lo`` and ``hi`` at
