@@ -44,6 +44,7 @@ def main() -> None:
     model = rs.load_model(ROOT / "models" / "clearance_rotor.toml")
     branch = rs.periodic(model, start=300.0, stop=360.0, harmonics=8,
                          unbalance=[(10, 1e-4, 0.0)], nodes=None)
+    assert isinstance(branch, rs.PeriodicResult)    # fixed cages: a periodic problem
     system = _system(model)
     for speed in args.speeds:
         block_iteration(branch, system, int(np.argmin(np.abs(branch.parameter - speed))),

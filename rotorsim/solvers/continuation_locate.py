@@ -7,7 +7,10 @@ of the *current* bracket. The Illinois (modified regula falsi) iteration shrinks
 around the sign change. Two safeguards keep the probes on the traced branch near a branch
 point, where a second branch crosses the hyperplane: the Hermite start is O(h^4) close to
 the branch, and a probe whose tangent leaves the cone of the bracket's end tangents (plus
-``CONE_SLACK``) is refused and replaced by bisection.
+``CONE_SLACK``) is refused and replaced by bisection. Where no fold is in or next to the
+bracket (:data:`HOLD_RATIO`, :meth:`Segment.held`) a probe may instead be corrected at the
+parameter of its start, which a residual with work cached per parameter value (the
+condensation of harmonic balance) evaluates once per probe instead of once per iteration.
 
 References
 ----------
@@ -113,13 +116,10 @@ class Segment:
         start stays O(h^4) close to the branch)."""
         start, v, length = _hermite(lo, hi, s)
         cone = 2.0 * max(_angle(lo.t, v), _angle(hi.t, v)) + CONE_SLACK
-        point = None
-        if self.hold:
-            point = self._corrected(start, v, cone if self.guard == "cone" else None, True)
-            if point is None:   # not converged at the start's parameter: the chord's plane
-                point = self._corrected(start, v, cone if self.guard == "cone" else None)
-        else:
-            point = self._corrected(start, v, cone if self.guard == "cone" else None)
+        guard = cone if self.guard == "cone" else None
+        point = self._corrected(start, v, guard, hold=True) if self.hold else None
+        if point is None:   # not held, or not converged at the start's parameter
+            point = self._corrected(start, v, guard)
         if point is None or not lo.s < point.s < hi.s:
             return None
         if self.guard == "drift" and np.linalg.norm(point.y - start) > DRIFT * length:
