@@ -304,6 +304,8 @@ class _Locator:
         hi = segment.endpoint(self.points[j])
         if lo is None or hi is None or lo.value * hi.value >= 0.0:
             return None
+        if kind == "branch_point":  # one condensation per probe where no fold is near
+            segment = segment.held(lo, hi)
         h = hi.s - lo.s
         if kind == "branch_point":  # the branch stores det signs; the slope needs values
             ends = (lo.value, hi.value)

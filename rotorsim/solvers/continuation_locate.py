@@ -7,7 +7,10 @@ of the *current* bracket. The Illinois (modified regula falsi) iteration shrinks
 around the sign change. Two safeguards keep the probes on the traced branch near a branch
 point, where a second branch crosses the hyperplane: the Hermite start is O(h^4) close to
 the branch, and a probe whose tangent leaves the cone of the bracket's end tangents (plus
-``CONE_SLACK``) is refused and replaced by bisection.
+``CONE_SLACK``) is refused and replaced by bisection. Where no fold is in or next to the
+bracket (:data:`HOLD_RATIO`, :meth:`Segment.held`) a probe may instead be corrected at the
+parameter of its start, which a residual with work cached per parameter value (the
+condensation of harmonic balance) evaluates once per probe instead of once per iteration.
 
 References
 ----------
@@ -19,7 +22,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Any
 
 import numpy as np
@@ -47,6 +50,15 @@ CONE_SLACK = 0.05
 """Extra angle [rad] allowed between a probe's tangent and the bracket chord beyond twice
 the end tangents' own angles to it."""
 
+HOLD_RATIO = 0.5
+"""A probe of a segment with ``hold`` is corrected at the parameter of its start (one
+evaluation of the parameter-dependent work per probe, e.g. the condensation of a
+harmonic-balance residual with one LU per harmonic, instead of one per Newton iteration)
+when the parameter components of the bracket's end tangents have one sign and the smaller
+is at least this fraction of the larger: the branch crosses the parameter's hyperplanes
+at a similar angle all along the bracket, with no fold in or next to it. Otherwise, or if
+that correction fails, the probe is corrected on the chord's normal hyperplane."""
+
 
 @dataclass(frozen=True, eq=False)
 class SegmentPoint:
@@ -71,6 +83,7 @@ class Segment:
     direction: FloatArray
     test: TestFunction
     guard: str = "cone"
+    hold: bool = False
     _polished: dict[int, SegmentPoint] = field(default_factory=dict, repr=False)
 
     @classmethod
@@ -80,6 +93,15 @@ class Segment:
         ("cone" or "drift", see :meth:`probe`)."""
         chord = y1 - y0
         return cls(system, corrector, y0, chord / np.linalg.norm(chord), test, guard)
+
+    def held(self, lo: SegmentPoint, hi: SegmentPoint) -> Segment:
+        """This segment with its probes and polished points corrected at the parameter
+        of their start (``hold``) when its corrected ends ``lo`` and ``hi`` show no fold
+        in between (:data:`HOLD_RATIO`); else this segment."""
+        a, b = float(lo.t[-1]), float(hi.t[-1])
+        if a * b > 0.0 and min(abs(a), abs(b)) >= HOLD_RATIO * max(abs(a), abs(b)):
+            return replace(self, hold=True, _polished={})
+        return self
 
     def endpoint(self, y: FloatArray) -> SegmentPoint | None:
         """Re-correct a branch point (its chord hyperplane) and evaluate the test there."""
@@ -94,7 +116,10 @@ class Segment:
         start stays O(h^4) close to the branch)."""
         start, v, length = _hermite(lo, hi, s)
         cone = 2.0 * max(_angle(lo.t, v), _angle(hi.t, v)) + CONE_SLACK
-        point = self._corrected(start, v, cone if self.guard == "cone" else None)
+        guard = cone if self.guard == "cone" else None
+        point = self._corrected(start, v, guard, hold=True) if self.hold else None
+        if point is None:   # not held, or not converged at the start's parameter
+            point = self._corrected(start, v, guard)
         if point is None or not lo.s < point.s < hi.s:
             return None
         if self.guard == "drift" and np.linalg.norm(point.y - start) > DRIFT * length:
@@ -127,20 +152,33 @@ class Segment:
                             value, data, corrected=False)
 
     def polished(self, point: SegmentPoint) -> SegmentPoint:
-        """``point`` corrected onto the branch (chord hyperplane) if it is an estimate;
-        the estimate itself if the correction fails."""
+        """``point`` corrected onto the branch (at its parameter with ``hold``, else or if
+        that fails on the chord hyperplane) if it is an estimate; the estimate itself if
+        the correction fails."""
         if point.corrected:
             return point
         if id(point) not in self._polished:
-            corrected = self._corrected(point.y, self.direction, None)
+            corrected = None
+            if self.hold:
+                corrected = self._corrected(point.y, self.direction, None, hold=True)
+            if corrected is None:
+                corrected = self._corrected(point.y, self.direction, None)
             self._polished[id(point)] = corrected if corrected is not None else point
         return self._polished[id(point)]
 
     def _corrected(self, start: FloatArray, border: FloatArray,
-                   cone: float | None) -> SegmentPoint | None:
+                   cone: float | None, hold: bool = False) -> SegmentPoint | None:
+        """``start`` corrected on the hyperplane normal to ``border`` through it (or at its
+        parameter, ``hold``), its tangent oriented along ``border`` and the test there."""
         stats = Stats()
-        corr = correct(self.system, start, border, float(border @ start), self.corrector,
-                       stats)
+        if hold:
+            e_lam = np.zeros(start.size)
+            e_lam[-1] = 1.0
+            corr = correct(self.system, start, e_lam, float(start[-1]), self.corrector,
+                           stats, hold_parameter=True)
+        else:
+            corr = correct(self.system, start, border, float(border @ start),
+                           self.corrector, stats)
         if not corr.converged or corr.evaluation is None:
             return None
         tan = tangent(corr.evaluation, border, stats)
@@ -149,6 +187,10 @@ class Segment:
         value, data = self.test(corr.y, corr.evaluation, tan, border)
         s = float(self.direction @ (corr.y - self.origin))
         return SegmentPoint(s, corr.y, tan.t, value, data)
+
+
+Anchors = tuple[SegmentPoint, SegmentPoint]
+"""The last two corrected bracket ends: the cubic on which estimates are taken."""
 
 
 def illinois(segment: Segment, lo: SegmentPoint, hi: SegmentPoint, tol: float,
@@ -165,10 +207,19 @@ def illinois(segment: Segment, lo: SegmentPoint, hi: SegmentPoint, tol: float,
     value at entry; :data:`CONSISTENT`) is a zero of the cubic only, and the iteration
     restarts from the anchors with corrected probes.
     """
+    return _illinois(segment, lo, hi, tol, max_iter, estimate, scale, None)[:2]
+
+
+def _illinois(segment: Segment, lo: SegmentPoint, hi: SegmentPoint, tol: float,
+              max_iter: int, estimate: float, scale: float | None,
+              anchors: Anchors | None) -> tuple[SegmentPoint, SegmentPoint, Anchors | None]:
+    """:func:`illinois`, continued from the ``anchors`` of an earlier call (an estimated
+    bracket end has no tangent of the branch to interpolate from), and returning them."""
     scale = min(abs(lo.value), abs(hi.value)) if scale is None else scale
     f_lo, f_hi = lo.value, hi.value
     side = 0
-    anchors = (lo, hi) if lo.corrected and hi.corrected else None
+    if lo.corrected and hi.corrected:
+        anchors = (lo, hi)
     used = 0
     while used < max_iter:
         used += 1
@@ -190,7 +241,7 @@ def illinois(segment: Segment, lo: SegmentPoint, hi: SegmentPoint, tol: float,
         if new is None:
             break
         if new.value == 0.0:
-            return new, new
+            return new, new, anchors
         if (new.value > 0.0) == (hi.value > 0.0):
             hi, f_hi = new, new.value
             f_lo = 0.5 * f_lo if side == -1 else f_lo
@@ -203,8 +254,8 @@ def illinois(segment: Segment, lo: SegmentPoint, hi: SegmentPoint, tol: float,
             and not _consistent(segment, lo, hi, scale):
         # a zero of the interpolated test function the branch does not have (a contact
         # kink between the anchors): corrected probes from the anchors instead
-        return illinois(segment, *anchors, tol, max_iter - used)
-    return lo, hi
+        return _illinois(segment, *anchors, tol, max_iter - used, 0.0, None, None)
+    return lo, hi, anchors
 
 
 CONSISTENT = 0.1
@@ -240,14 +291,14 @@ def screened(segment: Segment, lo: SegmentPoint, hi: SegmentPoint, tol: float,
     below :data:`JUMP_RATIO` of the ends) from a jump, which is returned unlocated.
     """
     size = min(abs(lo.value), abs(hi.value))
-    lo, hi = illinois(segment, lo, hi, tol, min(SCREEN_ITERATIONS, max_iter), estimate,
-                      size)
+    lo, hi, anchors = _illinois(segment, lo, hi, tol, min(SCREEN_ITERATIONS, max_iter),
+                                estimate, size, None)
     if hi.s - lo.s <= tol or lo is hi:
         return lo, hi, True
     if min(abs(lo.value), abs(hi.value)) > JUMP_RATIO * size:
         return lo, hi, False
-    lo, hi = illinois(segment, lo, hi, tol, max(max_iter - SCREEN_ITERATIONS, 0), estimate,
-                      size)
+    lo, hi, _ = _illinois(segment, lo, hi, tol, max(max_iter - SCREEN_ITERATIONS, 0),
+                          estimate, size, anchors)
     return lo, hi, True
 
 

@@ -12,7 +12,7 @@ from rotorsim.solvers.continuation_core import (
     ScaledSystem,
     correct,
 )
-from rotorsim.solvers.continuation_locate import Segment, SegmentPoint, illinois
+from rotorsim.solvers.continuation_locate import Segment, SegmentPoint, _hermite, illinois
 from rotorsim.solvers.stats import Stats
 
 
@@ -66,3 +66,32 @@ def test_estimates_lie_on_the_cubic_and_locate_the_zero_to_its_error():
         errors.append(abs(best.y[-1] - 0.6))
     assert 1e-5 < errors[0] < 1e-4                                 # 3.8e-5: the cubic's
     assert errors[1] < 1e-10                                       # round-off of the probes
+
+
+def test_held_probes_land_at_their_start_parameter_and_folds_are_not_held():
+    """A segment whose end tangents cross the parameter's hyperplanes alike (arc 0.5-0.8
+    rad: ``t_lam`` 0.88 and 0.70) corrects its probes at the parameter of their Hermite
+    start, bit for bit (one condensation per probe on a harmonic-balance residual), and
+    locates the zero of ``lam - 0.6`` as the chord's probes do (to the round-off of the
+    probes); an arc over the fold of ``lam`` at pi/2 is not held."""
+
+    def test(y, ev, tan, border):
+        return float(y[-1] - 0.6), None
+
+    def arc(a, b):
+        seg = Segment.between(SYSTEM, CorrectorOptions(tol=1e-13), np.array(
+            [math.cos(a), math.sin(a)]), np.array([math.cos(b), math.sin(b)]), test)
+        return seg, _point(seg, a), _point(seg, b)
+
+    seg, lo, hi = arc(0.5, 0.8)
+    held = seg.held(lo, hi)
+    assert held.hold and not seg.hold
+    probe = held.probe(lo, hi, 0.5 * (lo.s + hi.s))
+    start = _hermite(lo, hi, 0.5 * (lo.s + hi.s))[0]
+    assert probe is not None
+    assert probe.y[-1] == start[-1]                          # held: the start's parameter
+    assert abs(float(np.hypot(*probe.y)) - 1.0) <= 1e-13     # on the circle
+    a, b = illinois(held, lo, hi, 1e-12, 60)
+    assert abs(min((a, b), key=lambda p: abs(p.value)).y[-1] - 0.6) < 1e-12
+    fold, lo, hi = arc(1.4, 1.7)                             # t_lam changes sign
+    assert not fold.held(lo, hi).hold
