@@ -6,6 +6,7 @@ never forms an inverse.
 
 from __future__ import annotations
 
+import functools
 import math
 import warnings
 from dataclasses import dataclass
@@ -155,11 +156,19 @@ def _reciprocal_condition(A: NDArray, lu: NDArray) -> float:
     ok = np.isfinite(largest) & (largest > 0)
     col = np.ldexp(1.0, np.where(ok, -np.round(np.log2(np.where(ok, largest, 1.0))), 0.0)
                    .astype(np.int64))
-    scaled = np.tril(lu, -1)   # LU of A C: same L and pivots, U C (col: powers of two, exact)
-    scaled += np.triu(lu) * col
+    # LU of A C: same L and pivots, U C (col: powers of two, exact); in place on one copy
+    scaled = lu.copy()
+    np.multiply(scaled, col, out=scaled, where=_upper(lu.shape[0]))
     (gecon,) = sl.get_lapack_funcs(("gecon",), (scaled,))
     rcond, _ = gecon(scaled, float((magnitude.sum(axis=0) * col).max()), norm="1")
     return float(rcond)
+
+
+@functools.lru_cache(maxsize=8)
+def _upper(n: int) -> NDArray[np.bool_]:
+    """Mask of the upper triangle (diagonal included) of an ``n x n`` matrix (cached: the
+    hot loops factorise many matrices of one size)."""
+    return np.triu(np.ones((n, n), dtype=bool))
 
 
 def _permutation_sign(perm: NDArray[np.int_]) -> int:
