@@ -173,6 +173,7 @@ def condense(problem: QuasiProblem, aft: TorusAFT, w1: float, w2: float,
     F = _complex_excitation(problem, aft)
     spin = problem.spin + problem.spin_ratio * w1
     D = lb.damping(spin)
+    damped = _damped(lb.block("C", 3))
     S = np.empty((omega.size, N.size, N.size), dtype=complex)
     load = np.empty((omega.size, N.size), dtype=complex)
     linear, factors = [], []
@@ -184,13 +185,22 @@ def condense(problem: QuasiProblem, aft: TorusAFT, w1: float, w2: float,
             continue
         lu = factorize(ZLL, where=f"quasi-periodic HB, linear DOFs at tone {j} "
                              f"(Omega = {w:.6g} rad/s)", dense_threshold=DENSE_LINEAR,
-                        check_condition=j == 0)   # K_LL may be singular; damped tones not
+                        check_condition=j == 0 or not damped)
         Y = lu.solve(np.column_stack([ZLN, F[j, L]]))
         S[j] = ZNN - ZNL @ Y[:, :-1]
         load[j] = F[j, N] - ZNL @ Y[:, -1]
         linear.append(Y)
         factors.append(lu)
     return CondensedTones(omega, S, load, linear, factors)
+
+
+def _damped(C_LL: Any) -> bool:
+    """The linear DOFs carry damping. ``Z_LL`` of a tone other than the mean is then
+    singular only where an undamped fixed-interface mode sits exactly on the tone (a
+    measure-zero event along a branch), so its LU checks only for a zero or non-finite
+    pivot and skips the condition estimate (half its cost); the mean's ``K_LL``, or an
+    undamped ``Z_LL`` (gyroscopic terms alone), keep the estimate."""
+    return bool(C_LL.nnz if sp.issparse(C_LL) else np.any(C_LL != 0))
 
 
 def speed_derivative(blocks: LinearBlocks, tones: CondensedTones, orders: FloatArray,
