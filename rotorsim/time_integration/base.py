@@ -22,7 +22,7 @@ from typing import Any, ClassVar, Protocol, runtime_checkable
 import numpy as np
 from numpy.typing import NDArray
 
-from rotorsim.errors import Status
+from rotorsim.errors import ModelError, Status
 from rotorsim.time_integration.problem import SecondOrderProblem
 
 FloatArray = NDArray[np.float64]
@@ -202,3 +202,18 @@ def cubic_hermite(old: State, new: State, t: FloatArray,
          + (3 * s2 - 2 * s3) * q1 + (s3 - s2) * h * v1)
     v = (6 * (s2 - s) / h * (q0 - q1) + (3 * s2 - 4 * s + 1) * v0 + (3 * s2 - 2 * s) * v1)
     return q, v
+
+
+def check_step_control(owner: str, method: Any,
+                       extra: tuple[tuple[bool, str], ...] = ()) -> None:
+    """ModelError naming the first bad step-control option of an error-controlled implicit
+    method (``rtol``, ``max_newton``, ``max_growth``, ``min_shrink``, ``dt_max``,
+    ``max_rejections``; ``extra``: the method's own ``(ok, need)`` checks)."""
+    m = method
+    checks = [(1e-12 <= m.rtol < 1.0, f"1e-12 <= rtol < 1, got {m.rtol!r}"), *extra,
+              (m.max_newton >= 2, "max_newton >= 2"),
+              (m.max_growth > 1.0 > m.min_shrink > 0.0, "max_growth > 1 > min_shrink > 0"),
+              (m.dt_max > 0, "dt_max > 0"), (m.max_rejections >= 1, "max_rejections >= 1")]
+    for ok, text in checks:
+        if not ok:
+            raise ModelError(f"need {text}", owner)

@@ -36,7 +36,13 @@ from typing import Any
 import numpy as np
 
 from rotorsim.errors import ConvergenceError, ModelError
-from rotorsim.time_integration.base import Counters, FloatArray, IntArray, State
+from rotorsim.time_integration.base import (
+    Counters,
+    FloatArray,
+    IntArray,
+    State,
+    check_step_control,
+)
 from rotorsim.time_integration.exponential_modes import HarmonicLoad
 from rotorsim.time_integration.exponential_step import (
     Attempt,
@@ -99,16 +105,8 @@ class Exponential:
     fixed: bool = False
 
     def __post_init__(self) -> None:
-        checks = [(1e-12 <= self.rtol < 1.0, f"1e-12 <= rtol < 1, got {self.rtol!r}"),
-                  (2 <= self.stages <= 6, f"2 <= stages <= 6, got {self.stages!r}"),
-                  (self.max_newton >= 2, "max_newton >= 2"),
-                  (self.max_growth > 1.0 > self.min_shrink > 0.0,
-                   "max_growth > 1 > min_shrink > 0"),
-                  (self.dt_max > 0, "dt_max > 0"),
-                  (self.max_rejections >= 1, "max_rejections >= 1")]
-        for ok, text in checks:
-            if not ok:
-                raise ModelError(f"need {text}", "Exponential")
+        check_step_control("Exponential", self, ((
+            2 <= self.stages <= 6, f"2 <= stages <= 6, got {self.stages!r}"),))
 
     @property
     def name(self) -> str:

@@ -32,7 +32,13 @@ from typing import Any
 import numpy as np
 
 from rotorsim.errors import ConvergenceError, ModelError
-from rotorsim.time_integration.base import Counters, FloatArray, IntArray, State
+from rotorsim.time_integration.base import (
+    Counters,
+    FloatArray,
+    IntArray,
+    State,
+    check_step_control,
+)
 from rotorsim.time_integration.finite_checks import finite_vector
 from rotorsim.time_integration.hermite import quintic_hermite
 from rotorsim.time_integration.motion_scale import MotionScale
@@ -118,15 +124,7 @@ class Radau:
     max_rejections: int = 40
 
     def __post_init__(self) -> None:
-        checks = [(1e-12 <= self.rtol < 1.0, f"1e-12 <= rtol < 1, got {self.rtol!r}"),
-                  (self.max_newton >= 2, "max_newton >= 2"),
-                  (self.max_growth > 1.0 > self.min_shrink > 0.0,
-                   "max_growth > 1 > min_shrink > 0"),
-                  (self.dt_max > 0, "dt_max > 0"), (self.max_rejections >= 1,
-                                                    "max_rejections >= 1")]
-        for ok, text in checks:
-            if not ok:
-                raise ModelError(f"need {text}", "Radau")
+        check_step_control("Radau", self)
 
     @property
     def name(self) -> str:
