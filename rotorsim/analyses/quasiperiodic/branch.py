@@ -190,12 +190,13 @@ def _segments(fun: SpeedResidual, first: QuasiPeriodicPoint, x0: FloatArray, lam
         points += [_point(fun, first, xi, float(w), float(r), int(it)) for xi, w, r, it in
                    list(zip(branch.x, branch.lam, branch.residuals, branch.iterations,
                             strict=True))[skip:end]]
-        if watch.good < 1:                  # no stall (or nothing before it to restart)
+        if watch.good < 0:                  # no stall
             break
         budget -= end - skip
         g = watch.good
         x, lam = branch.x[g], float(branch.lam[g])
-        orientation = np.append(branch.x[g] - branch.x[g - 1], lam - branch.lam[g - 1])
+        if g >= 1:      # along the last step; at the segment's start, as it was left
+            orientation = np.append(branch.x[g] - branch.x[g - 1], lam - branch.lam[g - 1])
         fun = SpeedResidual(fun.system, first.rotor_problem, finer(fun.aft), fun.unbalance)
         notes.append(f"torus grid refined to {fun.aft.grid} at {lam:.6g} rad/s where the "
                      "branch stalled (contacts opening and closing)")
