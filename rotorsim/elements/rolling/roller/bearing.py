@@ -195,7 +195,9 @@ class RollerBearing:
             raise ModelError(f"exponent must be finite and >= 1 (10/9 for line contact), got "
                              f"{self.exponent!r}", where)
         self._resolve_kn(where)
-        self._check_options(where)
+        check_options(self, where)
+        if self.model == "influence":  # its slice outputs are its own
+            object.__setattr__(self, "slice_model", "influence")
 
     @property
     def _where(self) -> str:
@@ -216,11 +218,6 @@ class RollerBearing:
     def clearance(self) -> float:
         """Radial clearance ``r_L`` [m] (resolved from radial or diametral)."""
         return float(self.radial_clearance)  # type: ignore[arg-type]
-
-    def _check_options(self, where: str) -> None:
-        check_options(self, where)
-        if self.model == "influence":  # its slice outputs are its own
-            object.__setattr__(self, "slice_model", "influence")
 
     # ----------------------------------------------------------------- kinematics
     @property
