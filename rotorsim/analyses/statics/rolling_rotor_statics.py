@@ -71,6 +71,14 @@ def bearing_at_load(rb: Any, load: FloatArray, x0: FloatArray | None, phi: float
     return eq
 
 
+ROUNDOFF_FLOOR = 1e-8
+"""A Newton iteration asked for less that stalls at or below this relative residual is
+accepted at its best iterate, with that residual reported: a contact model whose force is
+computed through an active set or a solve (the roller ``model="influence"``) has a
+round-off floor near 1e-10 that differs between BLAS kernels (measured 1.6e-10 under
+OPENBLAS_CORETYPE=Zen and Haswell against a requested 1e-10)."""
+
+
 def static_equilibrium(case: StaticCase, tol: float, max_iter: int, stats: Stats
                        ) -> tuple[dict[int, Tangent], StaticResult, int, float]:
     """Newton iteration with line search (module docstring); tangents at the solution."""
@@ -84,6 +92,7 @@ def static_equilibrium(case: StaticCase, tol: float, max_iter: int, stats: Stats
         eq = bearing_at_load(case.rolling[i], carried[k] * _FORCES, None, case.phi, case.tags[i])
         start[i] = Tangent(eq.displacement, eq.force, eq.stiffness)
     result, P, q = case.solve(start)
+    best: tuple[float, dict[int, Tangent] | None] = (np.inf, None)
     for iteration in range(1, max_iter + 1):
         stats.iterations += 1
         tangents = case.tangents(q)
@@ -92,9 +101,14 @@ def static_equilibrium(case: StaticCase, tol: float, max_iter: int, stats: Stats
         if residual <= tol:
             result, _, _ = case.solve(tangents)
             return tangents, result, iteration, residual
+        best = min(best, (residual, tangents), key=lambda b: b[0])
         _, P_new, q_new = case.solve(tangents)
         step = case.line_search(q, q_new, P, P_new, forces, stats)
         q, P = q + step * (q_new - q), P + step * (P_new - P)
+    if best[1] is not None and best[0] <= ROUNDOFF_FLOOR:
+        # stalled at the force's own round-off (the residual is reported as reached)
+        result, _, _ = case.solve(best[1])
+        return best[1], result, max_iter, best[0]
     raise ConvergenceError("static equilibrium with the rolling bearings did not converge",
                            "linearize_rolling_bearings", iteration=max_iter, residual=residual)
 
