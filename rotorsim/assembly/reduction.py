@@ -176,8 +176,14 @@ def _lowest_modes(K_ii: sp.spmatrix, M_ii: sp.spmatrix, k: int
     if K_ii.shape[0] <= DENSE_EIGEN or k >= K_ii.shape[0] - 1:
         return sl.eigh(sp.csr_matrix(K_ii).toarray(), sp.csr_matrix(M_ii).toarray(),
                        subset_by_index=(0, k - 1))
-    lam, vec = spl.eigsh(sp.csc_matrix(K_ii), k=k, M=sp.csc_matrix(M_ii), sigma=0.0,
-                         which="LM", v0=np.ones(K_ii.shape[0]))
+    K, M, n = sp.csc_matrix(K_ii), sp.csc_matrix(M_ii), K_ii.shape[0]
+    try:
+        lam, vec = spl.eigsh(K, k=k, M=M, sigma=0.0, which="LM", v0=np.ones(n))
+    except spl.ArpackError:
+        # "no shifts could be applied" (error 3) with repeated eigenvalues under some BLAS
+        # kernels (measured: OPENBLAS_CORETYPE=Sandybridge): more Lanczos vectors
+        lam, vec = spl.eigsh(K, k=k, M=M, sigma=0.0, which="LM", v0=np.ones(n),
+                             ncv=min(n - 1, max(4 * k + 1, 40)))
     order = np.argsort(lam)
     return _complete(K_ii, M_ii, lam[order], vec[:, order])
 
