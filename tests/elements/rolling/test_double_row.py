@@ -270,6 +270,20 @@ def test_iso281_double_row_equivalent_load_matches_catalogue_factors():
         double_row_factors("ball", math.radians(10.0))
 
 
+def test_double_row_factors_at_other_angles_match_printed_catalogue_rows():
+    # SKF Rolling bearings catalogue, four-point contact ball bearings (35 deg, rated as
+    # double row): Fa/Fr <= 0.95: P = Fr + 0.66 Fa; above: 0.6 Fr + 1.07 Fa.
+    assert double_row_factors("ball", math.radians(35.0)) == (0.95, 0.66, 0.60, 1.07)
+    # Koyo, double-row angular contact ball bearings at 24 and 32 deg, printed to two
+    # decimals; ISO 281 interpolates Table 3 linearly in the angle, so these rows test
+    # the 20 deg row (24 = 0.2 * 20 + 0.8 * 25) and the 35 deg row (32 = 0.6 * 30 + 0.4 * 35)
+    # to within 5 (resp. 2.5) times the catalogue's rounding.
+    koyo = {24.0: (0.66, 0.95, 0.68, 1.45), 32.0: (0.86, 0.73, 0.62, 1.17)}
+    for angle, printed in koyo.items():
+        ours = double_row_factors("ball", math.radians(angle))
+        assert ours == pytest.approx(printed, abs=0.005 + 1e-9)  # half the last digit
+
+
 @pytest.mark.parametrize("row", [BALL, TAPERED], ids=["ball", "tapered"])
 def test_iso16281_rows_combined_reduce_to_the_iso281_unit_rating(row):
     # two equal rows, pure radial load: L10r(unit) = 2^(-1/e) L10r(row), which with

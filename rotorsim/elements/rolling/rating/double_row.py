@@ -8,7 +8,10 @@
       F_a / F_r <= e:  P = F_r + Y_1 F_a,     F_a / F_r > e:  P = X_2 F_r + Y_2 F_a
 
   double-row angular-contact ball bearings (ISO 281 Table 3, double-row columns; the 25,
-  30 and 40 deg rows as printed in the Koyo and LYC catalogues), double-row roller
+  30 and 40 deg rows as printed in the Koyo and LYC catalogues, the 35 deg row as SKF prints
+  it for its 35 deg four-point contact bearings, the 20 deg row consistent with Koyo's
+  interpolated 24 deg row; the 45 deg row is not confirmed by a printed source apart from
+  ``Y_2 = 0.81``), double-row roller
   bearings with ``a != 0`` (ISO 281 Table 8): ``e = 1.5 tan a``, ``Y_1 = 0.45 cot a``,
   ``X_2 = 0.67``, ``Y_2 = 0.67 cot a``. ``L10 = (C_unit / P)^p``.
 * **ISO/TS 16281, per row.** Each row is rated as a single-row bearing (its ``C_row``, its
@@ -32,7 +35,11 @@ ISO 281:2007 clause 6.1 (``i``), Tables 3 and 8; ISO/TS 16281:2008 clause 7; Koy
 catalogue "Calculation of equivalent load" (koyousa.com technical section 3.1),
 double-row angular-contact rows ``e = 0.8: Y1 = 0.78, X2 = 0.63, Y2 = 1.24`` (30 deg) and
 ``e = 1.14: 0.55, 0.57, 0.93`` (40 deg); LYC "Equivalent dynamic load, angular contact ball
-bearings" (25 deg: ``0.68, 0.92, 0.67, 1.41``).
+bearings" (25 deg: ``0.68, 0.92, 0.67, 1.41``); Koyo's double-row rows at 24 deg
+(``0.66, 0.95, 0.68, 1.45``) and 32 deg (``0.86, 0.73, 0.62, 1.17``), which are the table
+interpolated linearly in the angle; SKF Rolling bearings catalogue, four-point contact ball
+bearings: ``P = F_r + 0.66 F_a`` (``F_a/F_r <= 0.95``), ``0.6 F_r + 1.07 F_a`` above
+(docs/validation.md, case 29b).
 """
 
 from __future__ import annotations
@@ -59,7 +66,8 @@ _E = np.array([0.57, 0.68, 0.80, 0.95, 1.14, 1.34])
 _Y1 = np.array([1.09, 0.92, 0.78, 0.66, 0.55, 0.47])
 _X2 = np.array([0.70, 0.67, 0.63, 0.60, 0.57, 0.54])
 _Y2 = np.array([1.63, 1.41, 1.24, 1.07, 0.93, 0.81])
-"""ISO 281 Table 3, double-row angular-contact ball bearings (``X_1 = 1``)."""
+"""ISO 281 Table 3, double-row angular-contact ball bearings (``X_1 = 1``); sources per row in
+the module docstring."""
 ROW_RATING_POWER = {"ball": 0.7, "roller": 7.0 / 9.0}
 """ISO 281 exponent of the row count ``i`` in ``C``."""
 

@@ -83,8 +83,8 @@ _ANGLES_AC = np.radians([20.0, 25.0, 30.0, 35.0, 40.0, 45.0])
 _E_AC = np.array([0.57, 0.68, 0.80, 0.95, 1.14, 1.34])
 _X_AC = np.array([0.43, 0.41, 0.39, 0.37, 0.35, 0.33])
 _Y_AC = np.array([1.00, 0.87, 0.76, 0.66, 0.57, 0.50])
-"""ISO 281 Table 3, single-row angular-contact ball bearings: the 25 and 40 deg rows as printed
-by LYC and a 7206-B product page (case 29), all six rows equal to an independent
+"""ISO 281 Table 3, single-row angular-contact ball bearings: the 25, 30 and 40 deg rows as
+printed by LYC, Koyo and a 7206-B product page (case 29), all six rows equal to an independent
 transcription of ISO 281:2007 Table 3 (docs/validation.md, case 29b)."""
 
 
