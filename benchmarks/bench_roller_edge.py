@@ -5,8 +5,9 @@ recovery of a long line contact away from its ends, (b) the edge peak of a strai
 roller under slice refinement and the profiles that remove it, (c) the half-space approach
 of crowned rollers against the ISO/TS 16281 (Palmgren) law, (d) the bearing's 1-D slice
 model against the 2-D half-space solution, (e) the cost per evaluation, (f) the roller
-load centre of the contact model ``"influence"`` against the 2-D half-space, (g) its
-equilibria against independent slices and (h) its cost against ``model="slices"``.
+load centre of the contact model ``"influence"`` and of strips of each slice's own width
+(``own_width_strips``) against the 2-D half-space, (g) its equilibria against
+independent slices and (h) its cost against ``model="slices"``.
 Run only (f)-(h): ``python benchmarks/bench_roller_edge.py influence`` (about 20 s).
 """
 
@@ -22,6 +23,7 @@ from scipy.optimize import brentq
 import rotorsim as rs
 from rotorsim.elements.rolling.roller.half_space import hertz_line
 from rotorsim.elements.rolling.roller.influence_model import InfluenceSlices
+from rotorsim.elements.rolling.roller.own_width_strips import own_width_slice_loads
 from rotorsim.elements.rolling.roller.profile import (
     CircularCrown,
     LogarithmicProfile,
@@ -142,8 +144,9 @@ def _coupled_centre(k: int, prof, tilt: float) -> float:
 
 
 def influence_moments() -> None:
-    print("(f) tilted roller at Q: load centre e = M/Q, coupled slices (1-D) and independent "
-          "slices (at the 2-D approach) against the 2-D half-space")
+    print("(f) tilted roller at Q: load centre e = M/Q, coupled slices (1-D), own-width "
+          "strip-averaged slices and independent slices (at the 2-D approach) against the "
+          "2-D half-space")
     for name, prof in (("straight", CircularCrown(0.0)),
                        ("Lundberg", LogarithmicProfile.lundberg(Q, L, 2 * E_STAR)),
                        ("circular 10 um / 4 mm", CircularCrown(10e-6, 4e-3))):
@@ -157,8 +160,18 @@ def influence_moments() -> None:
                 dk = np.maximum(s.approach + tilt * xi * L - prof.drop(xi, L), 0.0)
                 e_ind, e_2d = float(dk @ xi) * L / dk.sum(), s.moment / Q
                 e_1d = _coupled_centre(k, prof, tilt)
+                d = tilt * xi * L - prof.drop(xi, L)
+                q, _ = own_width_slice_loads(d, Q, L, (R,), E_STAR)
+                e_own = float(q @ xi) * L / Q
+                shape = np.abs(q - s.slice_load).max() / s.slice_load.max()
+                variants = [float(own_width_slice_loads(d, Q, L, (R,), E_STAR, own_width=o,
+                                                        averaged=a)[0] @ xi) * L / Q / e_2d
+                            for o, a in ((True, False), (False, True))]
                 print(f"  {name:22s} tilt {tilt:.0e} K={k:2d}: e 2-D {e_2d * 1e3:.4f} mm, "
-                      f"coupled/2-D {e_1d / e_2d:.3f}, independent/2-D {e_ind / e_2d:.3f}"
+                      f"coupled/2-D {e_1d / e_2d:.3f}, own-width/2-D {e_own / e_2d:.3f} "
+                      f"(loads {shape:.3f} of the largest; own width at x = 0 "
+                      f"{variants[0]:.3f}, mean width averaged {variants[1]:.3f}), "
+                      f"independent/2-D {e_ind / e_2d:.3f}"
                       f"{' (truncated)' if s.truncated else ''}")
 
 
