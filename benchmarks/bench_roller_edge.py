@@ -23,16 +23,16 @@ from scipy.optimize import brentq
 import rotorsim as rs
 from rotorsim.elements.rolling.roller.half_space import hertz_line
 from rotorsim.elements.rolling.roller.influence_model import InfluenceSlices
-from rotorsim.elements.rolling.roller.own_width_strips import own_width_slice_loads
+from rotorsim.elements.rolling.roller.own_width_strips import (
+    own_width_slice_loads,
+    strip_average_compliance,
+)
 from rotorsim.elements.rolling.roller.profile import (
     CircularCrown,
     LogarithmicProfile,
     slice_centres,
 )
-from rotorsim.elements.rolling.roller.slice_influence import (
-    influence_slice_loads,
-    slice_compliance,
-)
+from rotorsim.elements.rolling.roller.slice_influence import influence_slice_loads
 
 E_STAR = 1.13e11
 R, L, Q = 0.005, 0.02, 10_000.0
@@ -130,10 +130,11 @@ def cost() -> None:
 
 
 def _coupled_centre(k: int, prof, tilt: float) -> float:
-    """Load centre e [m] of the coupled slices (linear, Hertz strips of Q/L) at load Q."""
+    """Load centre e [m] of the coupled slices of ``model="influence"`` (linear; strips of
+    the Hertz width of Q/L, strip-averaged) at load Q."""
     xi = slice_centres(k)
     b = hertz_line(Q / L, R, E_STAR)[1]
-    model = InfluenceSlices(slice_compliance(xi * L, L / k, np.asarray(b), E_STAR), 1.0, xi)
+    model = InfluenceSlices(strip_average_compliance(xi * L, L / k, b, E_STAR), 1.0, xi)
     drop = prof.drop(xi, L)
 
     def excess(d0: float) -> float:
@@ -144,9 +145,10 @@ def _coupled_centre(k: int, prof, tilt: float) -> float:
 
 
 def influence_moments() -> None:
-    print("(f) tilted roller at Q: load centre e = M/Q, coupled slices (1-D), own-width "
-          "strip-averaged slices and independent slices (at the 2-D approach) against the "
-          "2-D half-space")
+    print("(f) tilted roller at Q: load centre e = M/Q, coupled slices of model='influence' "
+          "(mean-width strips, strip-averaged), eq 2.29's centre-line strips, own-width "
+          "strips (at x = 0 and strip-averaged) and independent slices (at the 2-D "
+          "approach) against the 2-D half-space")
     for name, prof in (("straight", CircularCrown(0.0)),
                        ("Lundberg", LogarithmicProfile.lundberg(Q, L, 2 * E_STAR)),
                        ("circular 10 um / 4 mm", CircularCrown(10e-6, 4e-3))):
@@ -165,13 +167,12 @@ def influence_moments() -> None:
                 e_own = float(q @ xi) * L / Q
                 shape = np.abs(q - s.slice_load).max() / s.slice_load.max()
                 variants = [float(own_width_slice_loads(d, Q, L, (R,), E_STAR, own_width=o,
-                                                        averaged=a)[0] @ xi) * L / Q / e_2d
-                            for o, a in ((True, False), (False, True))]
+                                                        averaged=False)[0] @ xi) * L / Q / e_2d
+                            for o in (False, True)]
                 print(f"  {name:22s} tilt {tilt:.0e} K={k:2d}: e 2-D {e_2d * 1e3:.4f} mm, "
-                      f"coupled/2-D {e_1d / e_2d:.3f}, own-width/2-D {e_own / e_2d:.3f} "
-                      f"(loads {shape:.3f} of the largest; own width at x = 0 "
-                      f"{variants[0]:.3f}, mean width averaged {variants[1]:.3f}), "
-                      f"independent/2-D {e_ind / e_2d:.3f}"
+                      f"coupled/2-D {e_1d / e_2d:.3f} (eq 2.29 {variants[0]:.3f}), own "
+                      f"width {e_own / e_2d:.3f} (loads {shape:.3f} of the largest; at x = 0 "
+                      f"{variants[1]:.3f}), independent {e_ind / e_2d:.3f}"
                       f"{' (truncated)' if s.truncated else ''}")
 
 

@@ -24,8 +24,9 @@ centre line ``x = 0``. Here, for a roller carrying a given load ``Q`` with slice
 Measured against the 2-D half-space (:class:`~rotorsim.elements.rolling.roller.half_space.
 HalfSpaceLineContact`, slices x strips) at 10 kN on a 20 mm roller (docs/validation.md case
 35b): load centre of a tilted roller 1.2-2.1 % above the 2-D one for straight, Lundberg and
-circular crowns at K = 20, 40, 80 (the fixed-width centre-line model: 4-9 % below), slice
-loads within 1.8 % of the largest. Cost: ``K^2`` coefficients (times the Gauss points) per
+circular crowns at K = 20, 40, 80 (mean-width strips: 0-5 % below strip-averaged, as in
+``model="influence"``, 4-9 % below on the centre line, as eq 2.29), slice loads within
+2.2 % of the largest. Cost: ``K^2`` coefficients (times the Gauss points) per
 fixed-point step instead of ``K`` once, so it is not the bearing's slice model; the force
 model ``"influence"`` needs a compliance that does not depend on the loads (an energy).
 """
