@@ -56,7 +56,8 @@ def strip_average_compliance(y: FloatArray, slice_width: float, half_width: Arra
     """Compliance (K, K) [m/N]: ``C_ik`` the mean over ``|x| <= b_i`` (at ``y_i`` [m]) of
     the displacement of a unit load spread on strip ``k`` (half-width ``b_k``, length
     ``slice_width`` [m]); ``half_width`` (K,) or scalar [m] (module docstring).
-    ``averaged=False``: read at ``x = 0`` instead (eq 2.29's centre line).
+    ``averaged=False``: read at ``x = 0`` instead (eq 2.29's centre line). A scalar
+    ``half_width`` assumes equal slices at ``y`` (Toeplitz: one row is computed).
 
     Examples
     --------
@@ -65,8 +66,15 @@ def strip_average_compliance(y: FloatArray, slice_width: float, half_width: Arra
     (True, True)
     """
     y = np.asarray(y, dtype=float)
-    b = np.broadcast_to(np.asarray(half_width, dtype=float), y.shape)
     points, weights = _GAUSS if averaged else (np.zeros(1), np.full(1, 2.0))
+    if np.ndim(half_width) == 0:  # one width: Toeplitz in |i - k| (equal slices)
+        a = float(half_width)
+        d = rectangle_influence((points * a)[None, :], (y - y[0])[:, None], a,
+                                0.5 * slice_width)
+        row = 0.5 * (d @ weights) / (math.pi * e_star * 2.0 * a * slice_width)
+        k = np.arange(y.size)
+        return np.asarray(row[np.abs(k[:, None] - k[None, :])])
+    b = np.broadcast_to(np.asarray(half_width, dtype=float), y.shape)
     x = points[None, :] * b[:, None]                         # (K, G) receiver points
     d = rectangle_influence(x[:, None, :], (y[:, None] - y[None, :])[:, :, None],
                             b[None, :, None], 0.5 * slice_width)

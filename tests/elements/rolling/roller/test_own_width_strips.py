@@ -61,11 +61,15 @@ def test_straight_roller_edge_and_symmetry():
 
 
 def test_equal_width_compliance_is_symmetric_toeplitz():
+    # the general (per-slice width) path at equal widths: symmetric, Toeplitz, positive
+    # definite, and equal to the one-row shortcut of a scalar width
     y = slice_centres(8) * LENGTH
-    c = strip_average_compliance(y, LENGTH / 8, 1.7e-4, E_STAR)
+    c = strip_average_compliance(y, LENGTH / 8, np.full(8, 1.7e-4), E_STAR)
     np.testing.assert_allclose(c, c.T, rtol=1e-12)
     np.testing.assert_allclose(np.diag(c, 1), c[0, 1], rtol=1e-12)
     assert np.all(np.linalg.eigvalsh(c) > 0.0)
+    np.testing.assert_allclose(strip_average_compliance(y, LENGTH / 8, 1.7e-4, E_STAR), c,
+                               rtol=1e-12)
 
 
 def test_bad_input_is_refused():
