@@ -68,7 +68,7 @@ def strip_average_compliance(y: FloatArray, slice_width: float, half_width: Arra
     y = np.asarray(y, dtype=float)
     points, weights = _GAUSS if averaged else (np.zeros(1), np.full(1, 2.0))
     if np.ndim(half_width) == 0:  # one width: Toeplitz in |i - k| (equal slices)
-        a = float(half_width)
+        a = float(np.asarray(half_width, dtype=float))
         d = rectangle_influence((points * a)[None, :], (y - y[0])[:, None], a,
                                 0.5 * slice_width)
         row = 0.5 * (d @ weights) / (math.pi * e_star * 2.0 * a * slice_width)
