@@ -145,10 +145,11 @@ def _coupled_centre(k: int, prof, tilt: float) -> float:
 
 
 def influence_moments() -> None:
-    print("(f) tilted roller at Q: load centre e = M/Q, coupled slices of model='influence' "
-          "(mean-width strips, strip-averaged), eq 2.29's centre-line strips, own-width "
-          "strips (at x = 0 and strip-averaged) and independent slices (at the 2-D "
-          "approach) against the 2-D half-space")
+    print("(f) tilted roller at Q: load centre e = M/Q and slice loads (largest difference "
+          "over the largest 2-D slice load) against the 2-D half-space: coupled slices of "
+          "model='influence' (mean-width strips, strip-averaged), eq 2.29's centre-line "
+          "strips, own-width strips (at x = 0 and strip-averaged), independent slices (at "
+          "the 2-D approach)")
     for name, prof in (("straight", CircularCrown(0.0)),
                        ("Lundberg", LogarithmicProfile.lundberg(Q, L, 2 * E_STAR)),
                        ("circular 10 um / 4 mm", CircularCrown(10e-6, 4e-3))):
@@ -163,16 +164,17 @@ def influence_moments() -> None:
                 e_ind, e_2d = float(dk @ xi) * L / dk.sum(), s.moment / Q
                 e_1d = _coupled_centre(k, prof, tilt)
                 d = tilt * xi * L - prof.drop(xi, L)
-                q, _ = own_width_slice_loads(d, Q, L, (R,), E_STAR)
-                e_own = float(q @ xi) * L / Q
-                shape = np.abs(q - s.slice_load).max() / s.slice_load.max()
-                variants = [float(own_width_slice_loads(d, Q, L, (R,), E_STAR, own_width=o,
-                                                        averaged=False)[0] @ xi) * L / Q / e_2d
-                            for o in (False, True)]
-                print(f"  {name:22s} tilt {tilt:.0e} K={k:2d}: e 2-D {e_2d * 1e3:.4f} mm, "
-                      f"coupled/2-D {e_1d / e_2d:.3f} (eq 2.29 {variants[0]:.3f}), own "
-                      f"width {e_own / e_2d:.3f} (loads {shape:.3f} of the largest; at x = 0 "
-                      f"{variants[1]:.3f}), independent {e_ind / e_2d:.3f}"
+                out = []  # (e / e 2-D, largest load difference / largest 2-D slice load)
+                for own, avg in ((False, True), (False, False), (True, False), (True, True)):
+                    q, _ = own_width_slice_loads(d, Q, L, (R,), E_STAR, own_width=own,
+                                                 averaged=avg)
+                    out.append((float(q @ xi) * L / Q / e_2d,
+                                np.abs(q - s.slice_load).max() / s.slice_load.max()))
+                print(f"  {name:22s} tilt {tilt:.0e} K={k:2d}: e 2-D {e_2d * 1e3:.4f} mm; "
+                      f"e / 2-D (loads): coupled {e_1d / e_2d:.3f} ({out[0][1]:.3f}), eq 2.29 "
+                      f"{out[1][0]:.3f} ({out[1][1]:.3f}), own width at x = 0 "
+                      f"{out[2][0]:.3f} ({out[2][1]:.3f}), own width {out[3][0]:.3f} "
+                      f"({out[3][1]:.3f}), independent {e_ind / e_2d:.3f}"
                       f"{' (truncated)' if s.truncated else ''}")
 
 
