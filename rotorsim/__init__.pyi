@@ -15,6 +15,7 @@ from .analyses.periodic.switching import switch_branch
 from .analyses.quasiperiodic import (
     QuasiPeriodicBranch,
     QuasiPeriodicPoint,
+    motion_beyond,
     quasi_periodic,
     quasi_periodic_point,
 )
@@ -131,6 +132,7 @@ from .results.periodic import PeriodicBifurcation, PeriodicPeak, PeriodicResult
 from .results.quasi_periodic import QuasiPeriodicResult, TorusEvent
 from .results.static import StaticResult
 from .results.sweep import SweepResult
+from .results.torus_motion import MotionBeyond
 from .results.transient import TransientResult
 from .time_integration.adams import Adams
 from .time_integration.adaptive import Adaptive
@@ -189,6 +191,7 @@ __all__ = [
     "ModalResult",
     "Model",
     "ModelError",
+    "MotionBeyond",
     "MountingConditions",
     "Newmark",
     "Normal",
@@ -260,6 +263,7 @@ __all__ = [
     "load_model",
     "load_sweep",
     "modal",
+    "motion_beyond",
     "operating_clearance",
     "periodic",
     "periodic_life",

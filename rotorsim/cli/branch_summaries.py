@@ -54,10 +54,13 @@ def quasi_periodic_summary(result: Any, units: str = "rpm") -> str:
     if result.events:
         lines.append(table([(e.kind, f"{e.parameter * f:.6g}",
                              f"{e.exponents[0]:.4g} -> {e.exponents[1]:.4g}",
-                             f"{e.lyapunov:.4g}", e.character or "-")
+                             f"{e.lyapunov:.4g}", e.character or "-",
+                             e.motion.kind if e.motion is not None else "-")
                             for e in result.events],
                            ("stability change", f"speed [{units}]", "exponent [1/s]",
-                            "Lyapunov [1/s]", "character")))
+                            "Lyapunov [1/s]", "character", "motion there")))
+        lines += [f"motion at {e.motion.speed * f:.6g} {units}: {e.motion.summary()}"
+                  for e in result.events if e.motion is not None]
     return "\n".join(lines)
 
 

@@ -21,6 +21,7 @@ from rotorsim.results.periodic import PeriodicBifurcation, PeriodicPeak, Periodi
 from rotorsim.results.quasi_periodic import QuasiPeriodicResult, TorusEvent
 from rotorsim.results.spectra import HarmonicFit, Spectrum
 from rotorsim.results.static import StaticResult
+from rotorsim.results.torus_motion import MotionBeyond
 from rotorsim.results.transient import TransientResult
 from rotorsim.results.transient_state import TransientState
 from rotorsim.time_integration.base import Counters, State
@@ -104,6 +105,10 @@ register_result_type(PeriodicResult, {
     "dofs": "1", "coefficients": "m, rad", "max_abs": "m, rad", "peak_to_peak": "m, rad",
     "multipliers": "1", "stability_tol": "1", "iterations": "1", "residuals": "1",
     "held_dofs": "1", "nodes_pos": "m"})
+register_result_type(MotionBeyond, {"speed": _ANGULAR, "unexplained": "1",
+                                    "frequency": _ANGULAR, "lyapunov": "1/s",
+                                    "resolution": "1/s", "departure": "1",
+                                    "revolutions": "1"})
 register_result_type(TorusEvent, {"parameter": _ANGULAR, "exponents": "1/s",
                                   "frequency": _ANGULAR, "lyapunov": "1/s"})
 register_result_type(QuasiPeriodicResult, {

@@ -13,7 +13,7 @@ Examples
 >>> flat_key(Harmonics, "count")
 'harmonics'
 >>> group_from_flat(StabilityOptions, {"stability": "none"})
-StabilityOptions(method=None, modes='auto', tol=None, bifurcations=True)
+StabilityOptions(method=None, modes='auto', tol=None, bifurcations=True, beyond=100)
 >>> to_flat(ContinuationOptions(max_points=600), ("max_step", "max_points"))
 {'max_points': 600}
 """

@@ -32,6 +32,10 @@ class StabilityOptions(OptionGroup):
     bifurcations : bool
         Detect and locate folds, branch points, period doublings and Neimark-Sacker
         points.
+    beyond : int
+        Tori only: shaft revolutions of the transient run where a torus loses stability,
+        to find what the motion is there (two fifths settle, three fifths are recorded:
+        :func:`~rotorsim.analyses.quasiperiodic.beyond.motion_beyond`); 0 skips it.
 
     Examples
     --------
@@ -58,6 +62,9 @@ class StabilityOptions(OptionGroup):
                                      key="stability_tol", file=float, ge=0))
     bifurcations: bool = field(
         default=True, metadata=about("detect and locate bifurcations", file=bool))
+    beyond: int = field(
+        default=100, metadata=about("tori: revolutions of the transient run where a torus "
+                                    "loses stability (0: none)", file=int, ge=0))
 
     def __post_init__(self) -> None:
         if self.method is not None and self.method not in METHODS:
@@ -73,6 +80,11 @@ class StabilityOptions(OptionGroup):
         if tol is not None and not (isinstance(tol, numbers.Real) and not isinstance(
                 tol, bool) and math.isfinite(tol) and tol >= 0):
             raise self._fail("tol", f"must be finite and >= 0, got {tol!r}")
+        beyond = self.beyond
+        if not (isinstance(beyond, numbers.Integral) and not isinstance(beyond, bool)
+                and (beyond == 0 or beyond >= 10)):
+            raise self._fail("beyond", f"must be 0 or an integer >= 10 revolutions, got "
+                                       f"{beyond!r}")
         if not isinstance(self.bifurcations, bool):
             raise self._fail("bifurcations", f"must be True or False, got "
                                              f"{self.bifurcations!r}")

@@ -13,6 +13,7 @@ from rotorsim.assembly.dof_map import DofMap
 from rotorsim.errors import ModelError, Status
 from rotorsim.results.dof_access import KeptDofs
 from rotorsim.results.periodic import branch_measure
+from rotorsim.results.torus_motion import MotionBeyond
 
 FloatArray = NDArray[np.float64]
 IntArray = NDArray[np.int64]
@@ -47,6 +48,10 @@ class TorusEvent:
         branches, the response jumps), ``"doubling"`` (half a tone: a subharmonic torus),
         ``"third frequency"`` (a new frequency: a 3-torus, phase locking or chaos; only an
         integration in time says which), or ``""``.
+    motion : MotionBeyond or None
+        For a loss of stability: what the motion is at the first unstable torus, from a
+        transient of the full model started next to it (its kind, its order, and its
+        trajectory's Lyapunov exponent); None when not run.
     """
 
     kind: str
@@ -56,6 +61,7 @@ class TorusEvent:
     frequency: float
     lyapunov: float = float("nan")
     character: str = ""
+    motion: MotionBeyond | None = None
 
 
 @dataclass(frozen=True, eq=False)

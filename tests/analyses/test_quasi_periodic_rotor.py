@@ -217,7 +217,8 @@ def test_a_fold_of_tori_is_reported_with_its_evidence() -> None:
     ``1 / T`` = 5 1/s)."""
     rotor, ex = _textbook_damped()
     res = rs.periodic(rotor, start=600.0, stop=800.0, harmonics=8, unbalance=[(0, 2e-6, 0.0)],
-                      excitation=ex, continuation=rs.ContinuationOptions(max_points=12))
+                      excitation=ex, continuation=rs.ContinuationOptions(max_points=12),
+                      stability=rs.StabilityOptions(beyond=50))
     assert isinstance(res, rs.QuasiPeriodicResult) and res.stable[0]
     turn = int(np.argmax(res.speed))
     assert 0 < turn < len(res) - 1 and res.speed[turn] == pytest.approx(637.0, abs=2.0)
@@ -226,6 +227,7 @@ def test_a_fold_of_tori_is_reported_with_its_evidence() -> None:
     low, high = event.exponents
     assert low < 0 < high and not res.stable[event.index + 1]
     assert event.lyapunov > 0 and event.lyapunov == pytest.approx(high, rel=0.5)
+    print("\n" + event.motion.summary())
     # 12 points do not reach 800 rad/s: the result says so, and what to change
     assert "max_points" in res.reason and "stop 800" in res.reason
 

@@ -234,9 +234,13 @@ def _periodic_results() -> dict[str, Any]:
 
 def _torus_results() -> dict[str, Any]:
     from rotorsim.results.quasi_periodic import QuasiPeriodicResult, TorusEvent
+    from rotorsim.results.torus_motion import MotionBeyond
 
     rng = np.random.default_rng(11)
-    event = TorusEvent("loss_of_stability", 1270.5, 1, (-0.3, 2.5), 410.25)
+    motion = MotionBeyond(1272.0, "doubled torus", 2, np.array([0.84, 3.7e-5, np.nan, np.nan]),
+                          2020.5, -45.4, 45.7, 1.06, (40, 60))
+    event = TorusEvent("loss_of_stability", 1270.5, 1, (-0.3, 2.5), 410.25, 2.1, "doubling",
+                       motion)
     tori = QuasiPeriodicResult(
         speed=np.array([1200.0, 1250.0, 1300.0]), vc_frequency=np.array([4.09, 4.09, 4.09])
         * np.array([1200.0, 1250.0, 1300.0]), vc_order=4.09,
@@ -247,10 +251,12 @@ def _torus_results() -> dict[str, Any]:
         events=(event,), iterations=np.array([0, 3, 4]), residuals=rng.random(3) * 1e-10,
         held_dofs=np.array([5]), dof_map=DofMap(3), nodes_pos=np.array([0.0, 0.1, 0.2]),
         options={"box": [6, 2]}, stats={"points": 3.0}, reason="")
-    return {"quasi_periodic": tori, "torus_event": event}
+    return {"quasi_periodic": tori, "torus_event": event, "torus_motion": motion,
+            "torus_event_without_motion": dataclasses.replace(event, motion=None)}
 
 
-RESULT_NAMES = ["quasi_periodic", "torus_event", "modal", "campbell", "critical_exact",
+RESULT_NAMES = ["quasi_periodic", "torus_event", "torus_motion", "torus_event_without_motion",
+                "modal", "campbell", "critical_exact",
                 "critical_campbell", "map",
                 "unbalance", "receptance", "static", "static_system", "deflected_shape",
                 "ellipse", "intersections", "bearing_equilibrium", "energy_minimum",

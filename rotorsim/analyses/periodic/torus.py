@@ -19,7 +19,8 @@ as follows:
   half of ``max_points`` (room to refine); pseudo-arclength continuation shortens it
   through resonances and turns at folds;
 * ``stability``: any method gives the characteristic exponents by the quasi-periodic Hill
-  method; None skips them.
+  method; None skips them. ``StabilityOptions.beyond`` revolutions of a transient find
+  what the motion is where a torus loses stability (0 skips it).
 
 Not available on a torus (a :class:`~rotorsim.errors.ModelError` says so and how to freeze
 the rolling elements instead): a fold map, peak location, checkpoints, ``x0``. A housing
@@ -77,6 +78,14 @@ def refuse_unsupported(where: str, spools: bool = False, **given: Any) -> None:
                              f"({what})", f"{where}.{name}")
 
 
+def beyond_split(revolutions: int) -> tuple[int, int] | None:
+    """``StabilityOptions.beyond`` as (settle, record) revolutions: two fifths settle."""
+    if revolutions <= 0:
+        return None
+    settle = 2 * revolutions // 5
+    return settle, revolutions - settle
+
+
 def torus_branch(model: Any, nonlinear: Any, *, start: float, stop: float, opts: Any,
                  described: dict[str, Any], clock: float,
                  spools: bool = False) -> QuasiPeriodicResult:
@@ -93,7 +102,8 @@ def torus_branch(model: Any, nonlinear: Any, *, start: float, stop: float, opts:
         model, start=float(start), stop=float(stop), step=step, unbalance=list(e.unbalance),
         harmonics=box, truncation="box",
         excitation=Excitation(gravity=e.gravity, direction=e.direction, loads=list(e.loads)),
-        nonlinear=tuple(nonlinear), stability=st.method is not None, max_points=max_points)
+        nonlinear=tuple(nonlinear), stability=st.method is not None, max_points=max_points,
+        beyond=beyond_split(int(st.beyond)))
     options = {**described, "quasi_periodic": True, "box": list(box), "step": step,
                "stability": None if st.method is None else "hill"}
     return quasi_periodic_result(branch, opts.output.nodes, options, clock)

@@ -42,6 +42,11 @@ from rotorsim.options import Excitation
 from rotorsim.solvers.continuation import Continuation, continue_branch
 
 FloatArray = NDArray[np.float64]
+BEYOND = (40, 60)
+"""Default shaft revolutions settled and recorded by the transient run at each loss of
+stability (issue 17 part 2: measured on the textbook rigid rotor, whose motions past the
+loss settle within 10 revolutions and whose doubled and third-order tones need 20 to 40
+recorded revolutions to be told apart)."""
 STALL_TOL = 1e-6
 """Scaled residual at which a stalled corrector is accepted (contact onsets make the
 residual non-smooth, as on periodic branches)."""
@@ -62,6 +67,11 @@ class QuasiPeriodicBranch:
         ``"ok"`` (reached ``stop``) or ``"stopped"``.
     reason : str
         Why the branch stopped (empty when it reached ``stop``).
+    unbalance, excitation
+        Those of the tori (the transients of :attr:`beyond` use them).
+    beyond : (int, int) or None
+        Revolutions settled and recorded by the transient run at each loss of stability
+        (:func:`~rotorsim.analyses.quasiperiodic.beyond.motion_beyond`); None: not run.
     """
 
     points: tuple[QuasiPeriodicPoint, ...]
@@ -70,6 +80,9 @@ class QuasiPeriodicBranch:
     reason: str
     stability: tuple[TorusStability | None, ...] = ()
     stability_time: float = 0.0
+    unbalance: tuple[tuple[int, float, float], ...] = ()
+    excitation: Excitation | None = None
+    beyond: tuple[int, int] | None = None
 
     @property
     def speeds(self) -> FloatArray:
@@ -97,7 +110,8 @@ def quasi_periodic(model: Any, *, start: float, stop: float, step: float | None 
                    samples: tuple[int, int] | None = None,
                    excitation: Excitation | None = None, nonlinear: Sequence[Any] = (),
                    stability: bool | str = True, periods: int = 40, tol: float = 1e-9,
-                   max_points: int = 1000) -> QuasiPeriodicBranch:
+                   max_points: int = 1000, beyond: tuple[int, int] | None = BEYOND
+                   ) -> QuasiPeriodicBranch:
     """Quasi-periodic responses from ``start`` to ``stop`` [rad/s] (module docstring).
 
     Parameters
@@ -114,6 +128,11 @@ def quasi_periodic(model: Any, *, start: float, stop: float, step: float | None 
         resolution is about ``1 / T``, too coarse for very light damping); False: none.
     max_points : int
         Points of the branch at most.
+    beyond : (int, int) or None
+        Shaft revolutions settled and recorded by the transient that finds what the motion
+        is where a torus loses stability (:class:`~rotorsim.results.torus_motion.
+        MotionBeyond`, attached to the event by the result); None: not run (each run
+        integrates the full model for their sum).
 
     Raises
     ------
@@ -132,6 +151,10 @@ def quasi_periodic(model: Any, *, start: float, stop: float, step: float | None 
     h = span / 50 if step is None else float(step)
     if not (np.isfinite(h) and 0 < h <= span):
         raise ModelError(f"step must be in (0, {span:g}] rad/s, got {step!r}", f"{WHERE}.step")
+    if beyond is not None and not (len(beyond) == 2 and int(beyond[0]) >= 0
+                                   and int(beyond[1]) >= 4):
+        raise ModelError(f"beyond must be (settle >= 0, record >= 4) revolutions or None, "
+                         f"got {beyond!r}", f"{WHERE}.beyond")
     if stability not in (True, False, "hill", "lyapunov"):
         raise ModelError(f"stability must be True, False, 'hill' or 'lyapunov', got "
                          f"{stability!r}", f"{WHERE}.stability")
@@ -169,7 +192,8 @@ def quasi_periodic(model: Any, *, start: float, stop: float, step: float | None 
     else:
         exponents = np.full(len(points), np.nan)
     return QuasiPeriodicBranch(points, exponents, status, reason, tuple(checks),
-                               time.perf_counter() - clock)
+                               time.perf_counter() - clock, unbalance, ex,
+                               None if beyond is None else (int(beyond[0]), int(beyond[1])))
 
 
 def _segments(fun: SpeedResidual, first: QuasiPeriodicPoint, x0: FloatArray, lam0: float,

@@ -11,6 +11,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from rotorsim.analyses.quasiperiodic.beyond import motion_beyond
 from rotorsim.analyses.quasiperiodic.stability import STABILITY_TOL
 from rotorsim.errors import ModelError, Status
 from rotorsim.results.quasi_periodic import QuasiPeriodicResult, TorusEvent
@@ -88,18 +89,23 @@ def character(frequency: float, tones: FloatArray, w1: float) -> str:
 
 
 def with_evidence(events: Sequence[TorusEvent], branch: Any) -> tuple[TorusEvent, ...]:
-    """``events`` with the Lyapunov exponent of the unstable side's torus and the
-    character of the critical exponent."""
+    """``events`` with the Lyapunov exponent of the unstable side's torus, the character
+    of the critical exponent and, for a loss of stability, what the motion is there
+    (:func:`~.beyond.motion_beyond`, unless ``branch.beyond`` is None)."""
     out = []
     for ev in events:
         unstable = ev.index + 1 if ev.kind == "loss_of_stability" else ev.index
         point = branch.points[unstable]
         h = point.solution.aft.harmonics
         estimate = point.stability(periods=LYAPUNOV_PERIODS)
+        beyond = getattr(branch, "beyond", None)
+        motion = motion_beyond(point, branch.unbalance, branch.excitation, settle=beyond[0],
+                               record=beyond[1]) \
+            if beyond is not None and ev.kind == "loss_of_stability" else None
         out.append(dataclasses.replace(
             ev, lyapunov=float(estimate.exponent),
             character=character(ev.frequency, h.frequencies(point.speed, point.vc_frequency),
-                                point.speed)))
+                                point.speed), motion=motion))
     return tuple(out)
 
 

@@ -93,9 +93,68 @@ def largest_lyapunov_exponent(problem: QuasiProblem, solution: QuasiSolution, *,
     w1, w2 = solution.w1, solution.w2
     dt = 2 * np.pi / (steps_per_period * max(w1, w2))
     per_period = int(np.ceil(2 * np.pi / w1 / dt))
-    n_steps = periods * per_period
-    t = dt * np.arange(1, n_steps + 1, dtype=np.float64)
+    t = dt * np.arange(1, periods * per_period + 1, dtype=np.float64)
     Kt, Ct = _tangents(problem, solution, t)
+    return _variational_growth(problem, w1, dt, per_period, Kt, Ct, seed)
+
+
+def trajectory_lyapunov_exponent(problem: QuasiProblem, w1: float, w2: float,
+                                 t: FloatArray, q: FloatArray, v: FloatArray, *,
+                                 per_period: int, seed: int = 0) -> LyapunovEstimate:
+    """The largest Lyapunov exponent of a recorded trajectory (not a torus): the
+    variational equation integrated with the tangents of ``problem``'s force taken along
+    the trajectory, renormalised every ``per_period`` steps (Benettin et al. 1980). A
+    positive exponent, above the ``1 / T`` resolution of the record, marks chaos.
+
+    Parameters
+    ----------
+    problem : QuasiProblem
+        The equation of motion the trajectory solves (its nonlinear force's tangents).
+    w1, w2 : float
+        Base frequencies [rad/s]: the force is evaluated at the angles ``(w1 t, w2 t)``.
+    t : array (S,)
+        Equally spaced sample times [s] (the trajectory's phase origin at ``t = 0``);
+        the step is their spacing.
+    q, v : array (S, d)
+        Displacements [m, rad] and velocities of the nonlinear DOFs at ``t``.
+    per_period : int
+        Steps between renormalisations (one shaft revolution).
+
+    Raises
+    ------
+    ModelError
+        Unequal spacing, mismatched shapes, or fewer than two renormalisations.
+    """
+    t = np.asarray(t, dtype=float)
+    nl = np.asarray(problem.nl_dofs, dtype=np.int64)
+    q, v = np.asarray(q, dtype=float), np.asarray(v, dtype=float)
+    where = "trajectory_lyapunov_exponent"
+    if t.ndim != 1 or t.size < 2 * per_period + 1 or per_period < 1:
+        raise ModelError(f"need at least two renormalisations of {per_period} steps, got "
+                         f"{t.size} samples", where)
+    if q.shape != (t.size, nl.size) or v.shape != q.shape:
+        raise ModelError(f"q and v must be ({t.size}, {nl.size}) (samples, nonlinear DOFs), "
+                         f"got {q.shape} and {v.shape}", where)
+    dt = float(t[1] - t[0])
+    if not (dt > 0 and np.allclose(np.diff(t), dt, rtol=1e-9, atol=0.0)):
+        raise ModelError("the sample times must be equally spaced and increasing", where)
+    if problem.force is None or nl.size == 0:
+        Kt, Ct = np.zeros((t.size - 1, nl.size, nl.size)), None
+    else:
+        _, dfdq, dfdv = problem.force(q[1:], v[1:], w1 * t[1:], w2 * t[1:])
+        Kt, Ct = np.asarray(dfdq), None if dfdv is None else np.asarray(dfdv)
+    steps = (t.size - 1) // per_period * per_period
+    return _variational_growth(problem, w1, dt, per_period, Kt[:steps],
+                               None if Ct is None else Ct[:steps], seed)
+
+
+def _variational_growth(problem: QuasiProblem, w1: float, dt: float, per_period: int,
+                        Kt: FloatArray, Ct: FloatArray | None, seed: int) -> LyapunovEstimate:
+    """Benettin's estimate (module docstring) with the tangents ``Kt, Ct (steps, d, d)``
+    at the ends of the steps of ``dt`` [s], renormalised every ``per_period`` steps."""
+    n = problem.n
+    n_steps = Kt.shape[0]
+    t = dt * np.arange(1, n_steps + 1, dtype=np.float64)
     M, D, K = (_dense(A) for A in (problem.M, problem.damping(w1), problem.K))
     nl = np.asarray(problem.nl_dofs, dtype=np.int64)
     block = np.ix_(nl, nl)
