@@ -48,6 +48,14 @@ class SideCheck:
         The measurements agree with Floquet (module :mod:`rotorsim.verification.periodic_events`).
     message : str
         Why not, or the failure of a transient.
+    mode : complex
+        ``measure="floquet"``: Floquet multiplier of the critical mode followed on this side
+        (NaN otherwise; :mod:`rotorsim.verification.mode_growth`).
+    measured : complex
+        ``measure="floquet"``: multiplier per period of that mode's coordinate along the
+        free transients (NaN otherwise).
+    coordinates : complex array
+        ``measure="floquet"``: the mode's coordinate ``c_k / c_0`` at ``t = k T``.
     """
 
     point: int
@@ -62,6 +70,10 @@ class SideCheck:
     drift: float
     agrees: bool
     message: str = ""
+    mode: complex = complex(float("nan"))
+    measured: complex = complex(float("nan"))
+    coordinates: NDArray[np.complex128] = field(
+        default_factory=lambda: np.zeros(0, dtype=complex))
 
 
 @dataclass(frozen=True, eq=False)
