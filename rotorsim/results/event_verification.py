@@ -54,8 +54,9 @@ class SideCheck:
     measured : complex
         ``measure="floquet"``: multiplier per period of that mode's coordinate along the
         free transients (NaN otherwise).
-    coordinates : complex array
-        ``measure="floquet"``: the mode's coordinate ``c_k / c_0`` at ``t = k T``.
+    coordinates : complex array or None
+        ``measure="floquet"``: the mode's coordinate ``c_k / c_0`` at ``t = k T`` (None
+        otherwise or when not integrated).
     """
 
     point: int
@@ -70,10 +71,9 @@ class SideCheck:
     drift: float
     agrees: bool
     message: str = ""
-    mode: complex = complex(float("nan"))
-    measured: complex = complex(float("nan"))
-    coordinates: NDArray[np.complex128] = field(
-        default_factory=lambda: np.zeros(0, dtype=complex))
+    mode: complex = float("nan")
+    measured: complex = float("nan")
+    coordinates: NDArray[np.complex128] | None = None
 
 
 @dataclass(frozen=True, eq=False)
