@@ -5,7 +5,10 @@ branch point on each side of it, measures the largest Floquet multiplier with
 :func:`rotorsim.transient` on the full finite-element model (module
 :mod:`rotorsim.verification.period_map`): a code path that shares nothing with harmonic
 balance and its Floquet methods (Hill, Hsu, shooting on a reduced stability model) but the
-element forces.
+element forces. With ``measure="floquet"`` the perturbation is instead the event's critical
+Floquet eigenvector, followed by its left-eigenvector coordinate
+(:mod:`rotorsim.verification.event_modes`, :mod:`~rotorsim.verification.mode_growth`): the
+eigenvector comes from the stability model, the growth from the time integrator.
 
 The sides. An event lies between branch points ``index`` and ``index + 1``. Its sides are
 searched among the points between the neighbouring events (never past another event), at
