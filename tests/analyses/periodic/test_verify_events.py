@@ -242,7 +242,7 @@ def test_bad_input_raises_model_errors(linear_branches):
 def clearance():
     """The branch over the resonance region only (300 -> 360 rad/s: the events of the
     whole 100 -> 400 branch lie in 339-354 rad/s), and every event checked along its
-    critical Floquet mode with short runs: 2 x 6 free periods per side (about 35 s of CPU
+    critical Floquet mode with short runs: 2 x 6 free periods per side (36-40 s of CPU
     time for the 14 sides, the branch about 18 s)."""
     model = rs.load_model(MODEL)
     branch = rs.periodic(model, start=300.0, stop=360.0, harmonics=8,
