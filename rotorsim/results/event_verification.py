@@ -48,6 +48,15 @@ class SideCheck:
         The measurements agree with Floquet (module :mod:`rotorsim.verification.periodic_events`).
     message : str
         Why not, or the failure of a transient.
+    mode : complex
+        ``measure="floquet"``: Floquet multiplier of the critical mode followed on this side
+        (NaN otherwise; :mod:`rotorsim.verification.mode_growth`).
+    measured : complex
+        ``measure="floquet"``: multiplier per period of that mode's coordinate along the
+        free transients (NaN otherwise).
+    coordinates : complex array or None
+        ``measure="floquet"``: the mode's coordinate ``c_k / c_0`` at ``t = k T`` (None
+        otherwise or when not integrated).
     """
 
     point: int
@@ -62,6 +71,9 @@ class SideCheck:
     drift: float
     agrees: bool
     message: str = ""
+    mode: complex = float("nan")
+    measured: complex = float("nan")
+    coordinates: NDArray[np.complex128] | None = None
 
 
 @dataclass(frozen=True, eq=False)

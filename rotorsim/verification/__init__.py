@@ -16,6 +16,10 @@ sensitivities).
 * :mod:`rotorsim.verification.periodic_events` -- :func:`~.periodic_events.verify_events`
   (``rs.verify_events``): the bifurcations of a periodic branch checked by time integration
   of the full model next to them, with :mod:`rotorsim.verification.period_map` (the period
-  map measured by ``rs.transient``). Needs numpy and scipy only; it may import the analyses
-  (transient and periodic results), which no analysis family may import from each other.
+  map measured by ``rs.transient``); with ``measure="floquet"``,
+  :mod:`rotorsim.verification.floquet_modes` (the branch's Floquet modes on all DOFs),
+  :mod:`rotorsim.verification.mode_growth` (a mode followed along free transients, and the
+  verdict) and :mod:`rotorsim.verification.event_modes` (the two sides of an event). Needs
+  numpy and scipy only; it may import the analyses (transient and periodic results, the
+  periodic stability model), which no analysis family may import from each other.
 """

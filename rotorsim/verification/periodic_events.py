@@ -5,7 +5,10 @@ branch point on each side of it, measures the largest Floquet multiplier with
 :func:`rotorsim.transient` on the full finite-element model (module
 :mod:`rotorsim.verification.period_map`): a code path that shares nothing with harmonic
 balance and its Floquet methods (Hill, Hsu, shooting on a reduced stability model) but the
-element forces.
+element forces. With ``measure="floquet"`` the perturbation is instead the event's critical
+Floquet eigenvector, followed by its left-eigenvector coordinate
+(:mod:`rotorsim.verification.event_modes`, :mod:`~rotorsim.verification.mode_growth`): the
+eigenvector comes from the stability model, the growth from the time integrator.
 
 The sides. An event lies between branch points ``index`` and ``index + 1``. Its sides are
 searched among the points between the neighbouring events (never past another event), at
@@ -54,14 +57,15 @@ from typing import Any
 import numpy as np
 
 from rotorsim.assembly.system import RotorSystem, assemble
-from rotorsim.errors import ConvergenceError, ModelError
+from rotorsim.errors import ModelError
 from rotorsim.model.rotor import Rotor
 from rotorsim.options import Excitation
 from rotorsim.results.event_verification import EventCheck, EventVerification, SideCheck
 from rotorsim.results.periodic import PeriodicResult
+from rotorsim.verification.event_modes import mode_problems, mode_sides, mode_text, retried
+from rotorsim.verification.floquet_modes import BranchModes
 from rotorsim.verification.period_map import (
     FloatArray,
-    PeriodMap,
     linearised_growth,
     trajectory_growth,
 )
@@ -72,8 +76,8 @@ WHERE = "verify_events"
 def verify_events(model: Rotor | RotorSystem | Any, result: PeriodicResult, *,
                   events: Sequence[int] | None = None, steps_per_period: int = 200,
                   iterations: int = 12, periods: int = 12, perturbation: float = 1e-3,
-                  margin: float = 0.02, tolerance: float = 0.5, reach: int = 8
-                  ) -> EventVerification:
+                  margin: float = 0.02, tolerance: float = 0.5, reach: int = 8,
+                  measure: str = "orbit") -> EventVerification:
     """Check the bifurcations of a periodic branch by time integration next to them.
 
     Parameters
@@ -101,6 +105,12 @@ def verify_events(model: Rotor | RotorSystem | Any, result: PeriodicResult, *,
         an unstable side.
     reach : int
         Branch points searched on each side of an event.
+    measure : {"orbit", "floquet"}
+        "orbit": the measurements above along the orbit's own shape; "floquet": the growth
+        of each event's critical Floquet mode along ``periods`` periods of two free
+        transients per side (:mod:`rotorsim.verification.mode_growth`; ``iterations`` and
+        ``tolerance`` are not used, ``perturbation`` sizes the mode). An event without a
+        Floquet crossing is then reported without integration.
 
     Returns
     -------
@@ -117,13 +127,13 @@ def verify_events(model: Rotor | RotorSystem | Any, result: PeriodicResult, *,
 
     Notes
     -----
-    "Not confirmed" is not proof that an event is spurious. The perturbation follows the
-    orbit's own lateral shape and the norm takes the lateral translations, so a mode the
-    orbit does not contain, such as the rigid axial translation that grows past the
-    clearance rotor's axial pitchforks near 353 rad/s (docs/validation.md case 26), is
-    not seen; neither is a mode that dominates only after more than ``iterations``
-    periods. Next to folds on a contact onset the period map is not linear on the scale
-    of the harmonic-balance truncation error.
+    "Not confirmed" is not proof that an event is spurious. With ``measure="orbit"`` the
+    perturbation follows the orbit's own lateral shape and the norm takes the lateral
+    translations, so a mode the orbit does not contain, such as the rigid axial translation
+    that grows past the clearance rotor's axial pitchforks near 353 rad/s
+    (docs/validation.md case 26), is not seen: ``measure="floquet"`` follows that mode.
+    Where the harmonic-balance orbit is far from the real trajectory (its truncation error
+    next to contact onsets) the transient may contradict Floquet's multipliers.
 
     Examples
     --------
@@ -141,17 +151,30 @@ def verify_events(model: Rotor | RotorSystem | Any, result: PeriodicResult, *,
     numbers = _check_input(system, result, events)
     _check_options(steps_per_period, iterations, periods, perturbation, margin, tolerance,
                    reach)
+    if measure not in ("orbit", "floquet"):
+        raise ModelError(f"must be 'orbit' or 'floquet', got {measure!r}", f"{WHERE}.measure")
+    if measure == "floquet" and periods < 2:
+        raise ModelError(f"must be an integer >= 2 with measure='floquet', got {periods!r}",
+                         f"{WHERE}.periods")
     excitation = _excitation(result)
     options = {"steps_per_period": int(steps_per_period), "iterations": int(iterations),
                "periods": int(periods), "perturbation": float(perturbation),
-               "margin": float(margin), "tolerance": float(tolerance), "reach": int(reach)}
+               "margin": float(margin), "tolerance": float(tolerance), "reach": int(reach),
+               "measure": measure}
     run = {"system": system, "excitation": excitation, **options}
     measured: dict[tuple[int, int], SideCheck] = {}
     periods_run: list[int] = []
     checks = []
+    modes = BranchModes(system, result, WHERE) if measure == "floquet" else None
     for number in numbers:
         before, after, crossing = _sides(result, number, margin, reach)
         column = _column(result, number)
+        if modes is not None:
+            pair = mode_sides(result, modes, (before, after), crossing, column, run,
+                              measured, periods_run)
+            checks.append(_verdict(result, number, pair[0], pair[1], crossing, margin,
+                                   modes=True))
+            continue
         sides = []
         for point in (before, after):
             if point is not None and (point, column) not in measured:
@@ -290,10 +313,10 @@ def _measure(result: PeriodicResult, point: int, column: int, run: dict[str, Any
     unstable = int(np.sum(np.abs(result.multipliers[point]) > 1.0 + run["margin"]))
     nan, empty = float("nan"), np.zeros(0)
     failures: list[str] = []
-    local = _retried(lambda pm: linearised_growth(pm, q0, v0, direction, run["iterations"]),
+    local = retried(lambda pm: linearised_growth(pm, q0, v0, direction, run["iterations"]),
                      result, point, run, periods_run, failures)
     rho_l, factors_l = (nan, empty) if local is None else (local.rho, local.factors)
-    free = None if not run["periods"] else _retried(
+    free = None if not run["periods"] else retried(
         lambda pm: trajectory_growth(pm, q0, v0, direction, run["periods"]),
         result, point, run, periods_run, failures)
     rho_t, factors_t, defect, drift = nan, empty, nan, nan
@@ -310,25 +333,6 @@ def _measure(result: PeriodicResult, point: int, column: int, run: dict[str, Any
                      factors_l, factors_t, defect, drift, ok, message)
 
 
-def _retried(measure: Any, result: PeriodicResult, point: int, run: dict[str, Any],
-             periods_run: list[int], failures: list[str]) -> Any:
-    """``measure(period_map)``, again with half the time step when Newton fails in a step
-    (a contact that closes within a step); None and the error in ``failures`` when it
-    fails twice."""
-    for steps in (run["steps_per_period"], 2 * run["steps_per_period"]):
-        pm = PeriodMap(run["system"], float(result.speed[point]),
-                       2.0 * np.pi / float(result.fundamental[point]), run["excitation"],
-                       float(result.options.get("shaft_angle", 0.0)), steps)
-        try:
-            return measure(pm)
-        except ConvergenceError as exc:
-            error = exc
-        finally:
-            periods_run.extend(pm.periods_run)
-    failures.append(f"the transient failed at T/{2 * run['steps_per_period']}: {error}")
-    return None
-
-
 def _agrees(measured: float, floquet: float, margin: float, tolerance: float) -> bool:
     """Measured growth per period against Floquet's ``max |mu|`` (module docstring)."""
     if not math.isfinite(measured):
@@ -341,7 +345,8 @@ def _agrees(measured: float, floquet: float, margin: float, tolerance: float) ->
 
 # ------------------------------------------------------------------------------ verdict
 def _verdict(result: PeriodicResult, number: int, before: SideCheck | None,
-             after: SideCheck | None, crossing: bool, margin: float) -> EventCheck:
+             after: SideCheck | None, crossing: bool, margin: float, modes: bool = False
+             ) -> EventCheck:
     ev = result.bifurcations[number]
     if before is None or after is None:
         return EventCheck(ev, number, before, after, False,
@@ -357,7 +362,9 @@ def _verdict(result: PeriodicResult, number: int, before: SideCheck | None,
         if not side.agrees:
             problems.append(f"{name} (point {side.point}, {side.parameter:.6g} rad/s): "
                             f"{side.message}")
-    if ev.kind == "fold":
+    if modes:
+        problems.extend(mode_problems(ev.kind, before, after, margin))
+    elif ev.kind == "fold":
         column = _column(result, number)
         qa, _ = result.state(before.point, 0.0)
         qb, _ = result.state(after.point, 0.0)
@@ -371,6 +378,9 @@ def _verdict(result: PeriodicResult, number: int, before: SideCheck | None,
                             "orbits of the fold")
     if problems:
         return EventCheck(ev, number, before, after, False, "; ".join(problems), separation)
+    if modes:
+        return EventCheck(ev, number, before, after, True, mode_text(before, after),
+                          separation)
     text = (f"Floquet max|mu| {before.floquet:.4g} -> {after.floquet:.4g}; measured "
             f"{before.local:.4g} -> {after.local:.4g} (linearised period map)")
     if math.isfinite(before.trajectory):

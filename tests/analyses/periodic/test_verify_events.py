@@ -9,9 +9,12 @@ of the full model next to them (``rotorsim/verification/periodic_events.py``,
 - The verdicts: a fabricated event with no Floquet crossing, and fabricated Floquet
   multipliers the integration contradicts, are not confirmed and say why.
 - Bad input raises ModelError naming the argument.
+- The Floquet-mode measurement (``measure="floquet"``): the critical mode of the linear
+  rotor grows at its exact multiplier; each rule of the side verdict can fail.
 - The clearance rotor of issue 16 (``models/clearance_rotor.toml``): every event gets a
-  verdict with its numbers from a short run on each side. They are not confirmed today
-  (the strict xfail below says why; docs/validation.md case 26 has the numbers).
+  verdict with its numbers from a short run along its critical Floquet mode on each side.
+  The folds and the axial pitchforks are confirmed; five other events are not (the strict
+  xfail below says which and why; docs/validation.md case 26 has the numbers).
 """
 
 from __future__ import annotations
@@ -24,6 +27,8 @@ import pytest
 import scipy.linalg as sl
 
 import rotorsim as rs
+from rotorsim.verification.floquet_modes import BranchModes
+from rotorsim.verification.mode_growth import ModeGrowth, mode_growth, side_verdict
 from rotorsim.verification.period_map import (
     PeriodMap,
     dominant_multipliers,
@@ -108,6 +113,57 @@ def test_measured_growth_matches_the_exact_multipliers_of_a_linear_rotor(
     assert local.periods == 13 and free.periods == 24
 
 
+def test_the_critical_floquet_mode_of_a_linear_rotor_grows_at_its_exact_multiplier(
+        linear_branches):
+    """The Floquet-mode measurement (``measure="floquet"``) on the unstable linear rotor:
+    Hsu's monodromy of a time-invariant system is ``exp(A T)`` (its steps commute), so its
+    largest multiplier is the exact one to round-off; the coordinate of that mode along two
+    free transients (8 periods, T/200) grows at it, the other modes (the neutral axial and
+    torsional ones included) projected out by the left eigenvector."""
+    rotor, branch = linear_branches[1e6]
+    W = float(branch.speed[0])
+    exact = _exact_multipliers(rs.assemble(rotor), W)[0]
+    modes = BranchModes(rotor, branch, "test")
+    point = modes.at(0)
+    mu = point.multipliers[0]
+    assert abs(mu - (exact if exact.imag * mu.imag > 0 else np.conj(exact))) < 1e-9
+    pm = PeriodMap(rs.assemble(rotor), W, 2.0 * np.pi / W, _excitation(branch), 0.0, 200)
+    q0, v0 = branch.state(0)
+    growth, _ = mode_growth(pm, q0, v0, modes, point, 0, 1e-6, 8)
+    # modulus: the average-acceleration scheme keeps amplitudes (error ~1e-5 per period,
+    # as above); phase: its period elongation (omega h)^2 / 12 per step
+    assert abs(abs(growth.measured) - abs(mu)) < 1e-4
+    assert abs(np.angle(growth.measured / mu)) < 2e-3
+    assert side_verdict(growth, 0.02) == ""
+    assert pm.periods_run == [8, 8]
+
+
+def _growth(mu, c, measured=None):
+    c = np.asarray(c, dtype=complex)
+    if measured is None:
+        measured = np.sum(c[1:] * np.conj(c[:-1])) / np.sum(np.abs(c[:-1]) ** 2)
+    return ModeGrowth(0, complex(mu), complex(measured), c)
+
+
+def test_the_side_verdicts_of_the_floquet_mode_measurement():
+    """Each rule of ``side_verdict`` can fail: growth, rate (a factor 3 in ``ln |mu|``),
+    direction (monotone for a real ``mu > 1``, alternating for ``mu < -1``, the turn of a
+    complex pair) and, on a stable side, growth beyond the margin (a neutral mode passes)."""
+    k = np.arange(9)
+    assert side_verdict(_growth(1.05, 1.05**k), 0.02) == ""
+    assert "does not grow" in side_verdict(_growth(1.05, 0.99**k), 0.02)
+    assert "factor" in side_verdict(_growth(1.05, 1.3**k), 0.02)
+    wobble = 1.05**k * np.where(k == 4, -1.0, 1.0)
+    assert "monotone" in side_verdict(_growth(1.05, wobble, 1.05), 0.02)
+    assert side_verdict(_growth(-1.06, (-1.06) ** k), 0.02) == ""
+    assert "alternate" in side_verdict(_growth(-1.06, 1.06**k, -1.06), 0.02)
+    pair = 1.04 * np.exp(0.5j)
+    assert side_verdict(_growth(pair, pair**k), 0.02) == ""
+    assert "turns" in side_verdict(_growth(pair, (1.04 * np.exp(1.2j)) ** k), 0.02)
+    assert side_verdict(_growth(0.97, np.ones(9)), 0.02) == ""     # neutral: stable
+    assert "stable side" in side_verdict(_growth(0.97, 1.03**k), 0.02)
+
+
 # ------------------------------------------------------------------------- verdicts
 def _fake_event(branch, index, kind="neimark_sacker"):
     m = branch.dofs.size
@@ -168,6 +224,10 @@ def test_bad_input_raises_model_errors(linear_branches):
         rs.verify_events(rotor, fake, steps_per_period=10)
     with pytest.raises(rs.ModelError, match=r"verify_events\.perturbation"):
         rs.verify_events(rotor, fake, perturbation=0.5)
+    with pytest.raises(rs.ModelError, match=r"verify_events\.measure: must be 'orbit'"):
+        rs.verify_events(rotor, fake, measure="modes")
+    with pytest.raises(rs.ModelError, match=r"verify_events\.periods: .*floquet"):
+        rs.verify_events(rotor, fake, measure="floquet", periods=1)
     other = rs.Rotor([rs.ShaftElement(L=0.5, idl=0.0, odl=0.05, material=STEEL)] * 2,
                      bearing_elements=[rs.BearingElement(n=0, kxx=1e7),
                                        rs.BearingElement(n=2, kxx=1e7)])
@@ -181,12 +241,13 @@ def test_bad_input_raises_model_errors(linear_branches):
 @pytest.fixture(scope="module")
 def clearance():
     """The branch over the resonance region only (300 -> 360 rad/s: the events of the
-    whole 100 -> 400 branch lie in 339-354 rad/s), and every event checked with short
-    runs: 8 power iterations and 2 x 4 free periods per side."""
+    whole 100 -> 400 branch lie in 339-354 rad/s), and every event checked along its
+    critical Floquet mode with short runs: 2 x 6 free periods per side (36-40 s of CPU
+    time for the 14 sides, the branch about 18 s)."""
     model = rs.load_model(MODEL)
     branch = rs.periodic(model, start=300.0, stop=360.0, harmonics=8,
                          unbalance=[(10, 1e-4, 0.0)], nodes=None)
-    return branch, rs.verify_events(model, branch, iterations=8, periods=4)
+    return branch, rs.verify_events(model, branch, periods=6, measure="floquet")
 
 
 def test_every_event_of_the_clearance_rotor_gets_a_verdict_with_numbers(clearance):
@@ -200,22 +261,56 @@ def test_every_event_of_the_clearance_rotor_gets_a_verdict_with_numbers(clearanc
         assert check.before.point <= ev.index < check.after.point
         between = [i for i in indices if check.before.point <= i < check.after.point]
         assert all(i == ev.index for i in between)
+        crossing = check.before.unstable != check.after.unstable
         for side in (check.before, check.after):
             assert side.floquet == pytest.approx(branch.max_multiplier[side.point])
-            assert np.isfinite(side.local) or "transient failed" in side.message
             assert side.agrees or side.message
+            if not crossing:          # nothing to follow: reported, not integrated
+                assert "no Floquet crossing" in side.message and not check.confirmed
+                continue
+            # the mode followed is one of the branch's multipliers (the same Hsu
+            # monodromy of the same stability model, rebuilt)
+            assert np.min(np.abs(branch.multipliers[side.point] - side.mode)) < 1e-8
+            c = side.coordinates
+            assert c is not None and c.size == 7 and c[0] == pytest.approx(1.0)
+            assert np.isfinite(side.measured) or "transient failed" in side.message
     assert verified.stats["periods"] > 0
     print("\n" + verified.summary())
 
 
+def test_the_folds_and_the_axial_pitchforks_are_confirmed_along_their_critical_modes(
+        clearance):
+    """The two hysteresis folds (343.64 and 342.00 rad/s) and the two axial pitchforks
+    (353.12 and 353.73 rad/s, docs/validation.md case 25) are confirmed: on their unstable
+    side (the fold's middle sheet, the window between the pitchforks) the real multiplier
+    above 1 is seen as a monotone departure of the critical mode along the free transient of
+    the full model, at a rate within a factor 3 of Floquet's in ``ln |mu|`` (measured 1.074
+    and 1.103 against 1.049 and 1.040 at the folds, 1.024 and 1.081 against 1.038 and 1.077
+    at the pitchforks); on the stable side the same mode does not grow (0.97-0.99 per
+    period)."""
+    _, verified = clearance
+    chosen = [c for c in verified.checks if c.event.kind == "fold"
+              or 352.0 < c.event.parameter < 355.0]
+    assert [c.event.kind for c in chosen] == ["fold", "fold", "branch_point", "branch_point"]
+    for check in chosen:
+        assert check.confirmed, check.reason
+        sides = sorted((check.before, check.after), key=lambda s: abs(s.mode))
+        stable, unstable = sides
+        assert unstable.mode.imag == 0.0 and unstable.mode.real > 1.02
+        assert unstable.measured.real > 1.01 and np.all(unstable.coordinates.real > 0.0)
+        assert abs(stable.measured) < 1.0
+
+
 @pytest.mark.xfail(strict=True, reason=(
-    "issue 16 finding (docs/validation.md case 26): the measurement does not confirm the "
-    "clearance rotor's events. Near the folds the H = 8 orbit is off by ~1 % at the disk "
-    "and ~20 % at the journals and the period map is not linear on that scale; the branch "
-    "points near 353 rad/s are axial pitchforks (shooting: 1.0908, an axial eigenvector) "
-    "that the lateral perturbation and norm cannot see; a direct axial check confirms them "
-    "(test_clearance_rotor.py::test_time_integration_confirms_the_axial_pitchforks_near_"
-    "353_rad_s)"))
+    "issue 16 finding (docs/validation.md case 26, addendum 'the critical Floquet mode'): "
+    "along their critical Floquet modes the two folds and the two axial pitchforks are "
+    "confirmed, five events are not: the Neimark-Sacker point at 339.26 rad/s and the "
+    "branch point at 341.06 rad/s show no Floquet crossing of 1 + margin next to them "
+    "(max |mu| 1.0009 -> 1.0000 and 1.0000 -> 1.0000); at the branch points at 342.13, "
+    "342.33 and 344.27 rad/s, next to the contact onsets where the H = 8 orbit is off by "
+    "~20 % at the journals, the free transients contradict the Floquet multipliers of "
+    "the harmonic-balance orbit (real 1.05, 1.08, 1.05 measured 0.36, -0.06, 0.78; a stable "
+    "0.68 measured 1.17)"))
 def test_every_event_of_the_clearance_rotor_is_confirmed(clearance):
     _, verified = clearance
     assert verified.all_confirmed, verified.summary()
