@@ -8,21 +8,18 @@ Its LU factors are reused while ``h`` and the tangents are unchanged (bitwise, b
 with :class:`~.local_tangent.LocalMatrix` tangents only the constant part is factorised,
 once per ``h`` and speed node, and each iteration adds a low-rank (Woodbury) update.
 
-**Varying speed (run-ups).** ``S`` depends on the spin speed ``s`` through the gyroscopic
-term. Instead of factorising at every step, the factors are kept at a *speed node*
-``s_0`` while the iteration with the frozen matrix still contracts fast: the iteration error
-then obeys ``e_{k+1} = -S_0^-1 dS e_k`` with ``dS = (1 - alpha_f) gamma h (s - s_0) G``, so it
-contracts by ``theta = kappa |s - s_0|`` per iteration with
-``kappa = (1 - alpha_f) gamma h rho(S_0^-1 G)``. ``rho`` is estimated by a few power
-iterations when the node is first used off its speed (:func:`gyroscopic_sensitivity`). The
-residual always uses the exact ``s``, so the converged step is the exact step; only the
-number of iterations depends on the node. A new node is factorised when ``theta`` would
-exceed ``Newmark.max_contraction``. The problem's ``speed_terms`` (bearings tabulated over
-speed) are local: each step adds them at its exact speed to the low-rank update, like the
-tangents of nonlinear bearings. A linear problem accepts a step after one
-solve when the predicted remaining correction ``theta / (1 - theta) h^2 beta |da|`` is within
-the Newton tolerance, and iterates otherwise (a simplified-Newton test, Hairer & Wanner,
-Solving ODEs II, section IV.8).
+**Varying speed (run-ups).** ``S`` depends on the spin speed ``s``. Its factors are kept
+at a *speed node* ``s_0`` while the iteration with the frozen matrix contracts fast: the
+error obeys ``e_{k+1} = -S_0^-1 dS e_k``, ``dS = (1 - alpha_f) gamma h (s - s_0) G`` plus
+the change of bearings tabulated over speed when they are folded into the node
+(:mod:`~rotorsim.time_integration.folded_tables`; else they join the low-rank update at
+each step's exact speed). It contracts by ``theta = kappa |s - s_0|``, ``kappa`` from a few
+power iterations (:func:`~.speed_nodes.gyroscopic_sensitivity`) plus the tables' rate; a new
+node (:func:`~.speed_nodes.new_node`) is factorised when ``theta`` would exceed
+``Newmark.max_contraction``. The residual uses the exact ``s``, so the converged step is the
+exact step. A linear step off its node takes at least two corrections and stops once the
+predicted remaining correction ``theta / (1 - theta) h^2 beta |da|`` is within the Newton
+tolerance (a simplified-Newton test, Hairer & Wanner, Solving ODEs II, section IV.8).
 """
 
 from __future__ import annotations
@@ -110,7 +107,9 @@ class StepSolver:
         for k in range(self.m.max_iter):
             check_finite(res, "residual", self.m.name, self.t1, self.s.step + 1, k)
             da = -self._lu(ev).solve(res)
-            self._count_solve(da, k)
+            self.tally["solves"] += 1
+            self.tally["iterations"] += 1
+            check_finite(da, "Newton correction", self.m.name, self.t1, self.s.step + 1, k)
             dq = self.bdt2 * np.abs(da)
             if float(np.max(dq)) <= self._tolerance(q):
                 return self._accepted(q, v, a, ev, k + 1)
@@ -146,8 +145,8 @@ class StepSolver:
                 if self.theta == 0.0:
                     return self._accepted_affine(a, k + 1)
                 remaining = self.theta / (1.0 - self.theta) * self.bdt2 * size
-                if remaining <= self._tolerance(None) or \
-                        remaining <= self._tolerance(self.q_base + self.bdt2 * a):
+                if remaining <= self._floor_hint() or remaining <= self._tolerance(None) \
+                        or remaining <= self._tolerance(self.q_base + self.bdt2 * a):
                     return self._accepted_affine(a, k + 1)
             if k + 1 < self.m.max_iter:
                 da = self._frozen_correction(lu, da)
@@ -171,13 +170,6 @@ class StepSolver:
             self.tally["solves"] += 1
             return -np.asarray(lu.solve(self._frozen_part(da)))
         return (self.node - self.spin) * (R[1] @ da[R[0]])
-
-    def _count_solve(self, da: FloatArray, iteration: int) -> None:
-        """Tally one Newton iteration and check its correction."""
-        self.tally["solves"] += 1
-        self.tally["iterations"] += 1
-        check_finite(da, "Newton correction", self.m.name, self.t1, self.s.step + 1,
-                     iteration)
 
     def _not_converged(self, dq: FloatArray, q: FloatArray,
                        res: FloatArray) -> ConvergenceError:
@@ -210,9 +202,19 @@ class StepSolver:
         """Newton tolerance on the displacement correction [m, rad]; with ``q = None``, its
         floor at the old displacements alone."""
         if self.old_scale is None:
-            self.old_scale = float(np.abs(self.s.q).max())
+            peak = int(np.argmax(np.abs(self.s.q)))
+            self.old_scale = abs(float(self.s.q[peak]))
+            if self.cache is not None:
+                self.cache.peak = peak
         scale = self.old_scale if q is None else max(float(np.abs(q).max()), self.old_scale)
         return self.m.newton_atol + self.m.newton_rtol * scale
+
+    def _floor_hint(self) -> float:
+        """The tolerance at ``|q_n|`` of the DOF where it last peaked: at most the floor of
+        :meth:`_tolerance` (so a test passed against it passes against the floor) and
+        cheaper than a reduction over ``q_n``."""
+        peak = 0 if self.cache is None else self.cache.peak
+        return self.m.newton_atol + self.m.newton_rtol * abs(float(self.s.q[peak]))
 
     def charged(self, state: State) -> State:
         """``state`` with the cost of this attempt and its factorisation cache."""

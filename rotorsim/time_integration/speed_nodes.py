@@ -68,6 +68,8 @@ class FactorCache:
     """The frozen map (:meth:`frozen_map`) once ``mapped``."""
     last: tuple[float, float] = (math.nan, math.nan)
     """Time [s] and speed [rad/s] of the last step that used these factors."""
+    peak: int = 0
+    """The DOF where ``|q|`` last peaked when the Newton tolerance's floor was computed."""
 
     def frozen_map(self, problem: SecondOrderProblem, weight: float, gdt: float,
                    spin: float) -> tuple[IntArray, FloatArray] | None:
