@@ -218,17 +218,35 @@ class SecondOrderProblem:
     def linear_force(self, q: FloatArray, v: FloatArray, spin: float,
                      external: FloatArray) -> FloatArray:
         """``(C + s G + C_s(s)) v + (K + K_s(s)) q - f`` at the schedule value ``spin`` with
-        the load ``external`` [N]: the net force without the restoring force."""
-        g = self.stiffness @ q
-        if self.damping is not None:
-            g = g + self.damping @ v
+        the load ``external`` [N]: the net force without the restoring force.
+
+        With dense ``K`` (and ``C``) the speed terms are written into copies of them, once
+        per schedule value (:class:`SpeedFolded`), so that a step's force evaluations cost
+        what they cost without speed terms."""
+        folded = self._speed_folded
+        if folded is not None:
+            K, C = folded.at(spin)
+            g = K @ q + C @ v
+        else:
+            g = self.stiffness @ q
+            if self.damping is not None:
+                g = g + self.damping @ v
         if self.gyroscopic is not None:
             g = g + spin * (self.gyroscopic @ v)
-        if self.speed_terms is not None:
+        if self.speed_terms is not None and folded is None:
             dofs = self.speed_terms.dofs
             Ks, Cs = self.speed_terms(spin)
             g[dofs] += Ks @ q[dofs] + Cs @ v[dofs]
         return g - external
+
+    @cached_property
+    def _speed_folded(self) -> SpeedFolded | None:
+        """Dense ``K + K_s``, ``C + C_s`` kept at the last schedule value (None without
+        speed terms or with sparse ``K`` or ``C``)."""
+        terms = self.speed_terms
+        if terms is None or sp.issparse(self.stiffness) or sp.issparse(self.damping):
+            return None
+        return SpeedFolded(terms, self.stiffness, self.damping)
 
     def damping_at(self, spin: float) -> Matrix | None:
         """``C + s G + C_s(s)`` at the schedule value ``spin`` (None when all are absent)."""
@@ -246,6 +264,35 @@ class SecondOrderProblem:
         K, C = self.speed_terms(spin)
         dofs = self.speed_terms.dofs
         return LocalMatrix.trusted(self.n, dofs, K), LocalMatrix.trusted(self.n, dofs, C)
+
+
+class SpeedFolded:
+    """Dense ``K + P K_s(s) P^T`` and ``C + P C_s(s) P^T`` at the last schedule value ``s``
+    asked for (``P``: the columns of the identity at the speed terms' DOFs). Only the
+    entries where the terms can be nonzero (their ``pattern`` when they tell it) are
+    rewritten."""
+
+    def __init__(self, terms: SpeedTerms, stiffness: FloatArray,
+                 damping: FloatArray | None) -> None:
+        n, dofs = stiffness.shape[0], terms.dofs
+        self.terms = terms
+        pattern = getattr(terms, "pattern", None)
+        self.cells = np.flatnonzero(np.ones((dofs.size, dofs.size), dtype=bool)
+                                    if pattern is None else np.asarray(pattern))
+        self.flat = (dofs[:, None] * n + dofs[None, :]).ravel()[self.cells]
+        self.K = np.array(stiffness, dtype=float)
+        self.C = np.zeros((n, n)) if damping is None else np.array(damping, dtype=float)
+        self.K0, self.C0 = self.K.ravel()[self.flat], self.C.ravel()[self.flat]
+        self.spin = math.nan
+
+    def at(self, spin: float) -> tuple[FloatArray, FloatArray]:
+        """The two matrices at the schedule value ``spin`` (kept by this object)."""
+        if spin != self.spin:
+            Ks, Cs = self.terms(spin)
+            self.K.ravel()[self.flat] = self.K0 + Ks.ravel()[self.cells]
+            self.C.ravel()[self.flat] = self.C0 + Cs.ravel()[self.cells]
+            self.spin = spin
+        return self.K, self.C
 
 
 def combine(terms: list[tuple[float, Matrix | None]], n: int) -> Matrix:

@@ -23,6 +23,7 @@ net force); it is refused at a varying speed unless it is constant over the tabl
 
 from __future__ import annotations
 
+import bisect
 import hashlib
 from collections.abc import Sequence
 from dataclasses import dataclass, field
@@ -67,6 +68,11 @@ class SpeedDependentBearings:
     stiffness: FloatArray
     damping: FloatArray
     _last: tuple[float, FloatArray, FloatArray] | None = field(default=None, repr=False)
+    _origin: FloatArray = field(init=False, repr=False)
+    _slopes: FloatArray = field(init=False, repr=False)
+    _pattern: NDArray[np.bool_] = field(init=False, repr=False)
+    _starts: list[float] = field(init=False, repr=False)
+    _breaks: list[float] = field(init=False, repr=False)
 
     @classmethod
     def from_system(cls, system: RotorSystem, *, check_mass: bool = True
@@ -102,21 +108,46 @@ class SpeedDependentBearings:
                 C[i][cells] += mats.C[np.ix_(keep, keep)]
         return cls(system.n_free, dofs, grid, K, C)
 
+    def __post_init__(self) -> None:
+        # values and slopes per segment, K and C stacked: one interpolation serves both
+        # (segment 0 below the grid and segment p above it hold the end values)
+        both = np.stack([self.stiffness, self.damping], axis=1)  # (p, 2, k, k)
+        self._origin = np.concatenate([both[:1], both])
+        slopes = np.zeros_like(self._origin)
+        if self.grid.size > 1:
+            slopes[1:-1] = np.diff(both, axis=0) / np.diff(self.grid)[:, None, None, None]
+        self._slopes = slopes
+        self._pattern = np.any(both != 0.0, axis=(0, 1))
+        self._starts = [float(self.grid[0]), *(float(g) for g in self.grid)]
+        self._breaks = [float(g) for g in self.grid]
+
+    def segment(self, w: float) -> int:
+        """Index of the table segment holding ``w`` [rad/s]: 0 below the grid, ``i`` for
+        ``[grid[i-1], grid[i])``, ``p`` from the last grid point on."""
+        return bisect.bisect_right(self._breaks, w)
+
+    @property
+    def pattern(self) -> NDArray[np.bool_]:
+        """(k, k) true where ``K_b`` or ``C_b`` is not zero at some grid speed."""
+        return self._pattern
+
+    @property
+    def slopes(self) -> FloatArray:
+        """``dK_b/dW``, ``dC_b/dW`` per segment (p + 1, 2, k, k) [N s/m, N s^2/m]: zero
+        below and above the grid."""
+        return self._slopes
+
     def __call__(self, w: float) -> tuple[FloatArray, FloatArray]:
         """``K_b``, ``C_b`` (k, k) on ``dofs`` at spin speed ``w`` [rad/s] (the last speed's
-        are kept: a step asks several times)."""
-        if self._last is not None and self._last[0] == w:
-            return self._last[1], self._last[2]
-        g = self.grid
-        if w <= g[0] or g.size == 1:
-            K, C = self.stiffness[0], self.damping[0]
-        elif w >= g[-1]:
-            K, C = self.stiffness[-1], self.damping[-1]
-        else:
-            i = int(np.searchsorted(g, w, side="right")) - 1
-            u = (w - g[i]) / (g[i + 1] - g[i])
-            K = (1.0 - u) * self.stiffness[i] + u * self.stiffness[i + 1]
-            C = (1.0 - u) * self.damping[i] + u * self.damping[i + 1]
+        are kept: a step asks several times). Linear between the grid points, from the
+        segment's start value and slope, held at the end values outside."""
+        last = self._last
+        if last is not None and last[0] == w:
+            return last[1], last[2]
+        i = bisect.bisect_right(self._breaks, w)
+        both = self._origin[i] + (w - self._starts[i]) * self._slopes[i] \
+            if 0 < i < len(self._breaks) else self._origin[i]
+        K, C = both[0], both[1]
         self._last = (w, K, C)
         return K, C
 
