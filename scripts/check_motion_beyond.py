@@ -50,17 +50,21 @@ def two_trajectories(system, point, ex, revolutions: int = 40, seed: int = 1) ->
     q0[active] += 1e-3 * size * rng.uniform(-1.0, 1.0, active.size)
     kw = dict(speed=w, unbalance=UNBALANCE, excitation=ex, method="average_acceleration")
     a = rs.transient(system, SETTLE * rev, dt, initial=(q0, v0), **kw)
-    free, t0 = a.dof_map.free, a.final.t
+    final = a.final
+    assert final is not None
+    free, t0 = a.dof_map.free, final.t
     qa, va = np.zeros(a.dof_map.ndof), np.zeros(a.dof_map.ndof)
-    qa[free], va[free] = a.final.q, a.final.v
+    qa[free], va[free] = final.q, final.v
     qb = qa.copy()
     qb[free] += 1e-9 * size * rng.standard_normal(free.size)
     times = t0 + rev * np.arange(revolutions + 1)
     out = rs.Output(times=times, velocities=True)
     runs = [rs.transient(system, (t0, times[-1]), dt, initial=(q, va), output=out, **kw)
             for q in (qa, qb)]
+    va_run, vb_run = runs[0].v, runs[1].v
+    assert va_run is not None and vb_run is not None
     d = np.sqrt(((runs[0].q - runs[1].q) ** 2).sum(axis=1)
-                + ((runs[0].v - runs[1].v) ** 2).sum(axis=1) / w ** 2)
+                + ((va_run - vb_run) ** 2).sum(axis=1) / w ** 2)
     window = (d > 100 * d[0]) & (d < 1e-2 * size)
     if window.sum() < 3:                    # no growth: the slope over the whole run
         window = np.ones(d.size, dtype=bool)
