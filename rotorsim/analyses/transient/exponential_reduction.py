@@ -44,8 +44,8 @@ from rotorsim.analyses.transient.auto_reduction import Reduced, _cluster_end, _i
 from rotorsim.analyses.transient.loads import RestoringForce, TransientLoads
 from rotorsim.analyses.transient.reduction import reduce_problem
 from rotorsim.assembly.reduction import fixed_interface_modes
-from rotorsim.elements.base import FloatArray
 from rotorsim.assembly.system import RotorSystem
+from rotorsim.elements.base import FloatArray
 from rotorsim.time_integration.problem import SecondOrderProblem
 
 MODE_COUNTS = (8, 16, 24, 32, 48)

@@ -55,10 +55,11 @@ def reduce_problem(system: RotorSystem, problem: SecondOrderProblem, loads: Tran
                              damping=reduced["damping"], restoring=restoring,
                              load=lambda t: T.T @ loads(t), gyroscopic=reduced["gyroscopic"],
                              speed=problem.speed)
-    report = {"fixed_interface_modes": int(basis.frequencies.size),
-              "requested_modes": int(num_modes), "size": basis.size,
-              "full_size": system.n_free, "static_vectors": basis.n_static,
-              "highest_mode": float(basis.frequencies[-1]) if basis.frequencies.size else 0.0}
+    report: dict[str, Any] = {"fixed_interface_modes": int(basis.frequencies.size),
+                              "requested_modes": int(num_modes), "size": basis.size,
+                              "full_size": system.n_free, "static_vectors": basis.n_static,
+                              "highest_mode": float(basis.frequencies[-1])
+                              if basis.frequencies.size else 0.0}
     if freq is not None:
         report |= {"max_relative_error": freq["max_relative_error"],
                    "check_frequencies_full": np.asarray(freq["full"]).tolist(),
