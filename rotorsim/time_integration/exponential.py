@@ -192,11 +192,10 @@ class Exponential:
 
     def _accepted(self, old: State, attempt: Attempt, out: tuple[Any, ...], factor: float,
                   tally: Counters) -> State:
-        q, v, rho, force, z, err = out
+        q, v, rho, force, z, motion, err = out
         cache, h = attempt.cache, attempt.h
         history = cache.pack(rho, old.history[-2:],
                              float(meta(old.history, self.stages)[2]), z, attempt.theta)
-        motion = np.maximum(old.peak, cache.moved(q, old.history[-2]))
         counters = old.counters.plus(dataclasses.replace(
             tally, max_iterations=attempt.tally.max_iterations))
         return dataclasses.replace(old, t=old.t + h, q=q, v=v, a=-cache.modes.minv @ force,

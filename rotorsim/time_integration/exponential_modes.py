@@ -29,6 +29,7 @@ sections 2.1-2.3 (variation of constants, the ``phi_k`` functions and their recu
 
 from __future__ import annotations
 
+import cmath
 import hashlib
 import math
 from dataclasses import dataclass
@@ -167,7 +168,7 @@ class HarmonicLoad:
         self.frequency = float(frequency)
 
     def __call__(self, t: float) -> FloatArray:
-        return np.asarray(self.constant + (self.amplitude * np.exp(1j * self.frequency * t)
+        return np.asarray(self.constant + (self.amplitude * cmath.exp(1j * self.frequency * t)
                                            ).real)
 
     def __repr__(self) -> str:
@@ -354,6 +355,9 @@ class StepWeights:
         ``e^{+-iW t_n}``, times the modal loads.
     W : complex (p, s + 1, N)
         ``int_0^{x h} e^{lambda (x h - s)} l_j(s / h) ds`` of the Lagrange basis ``l_j``.
+    mono : complex (p, m, N)
+        The same integrals of the monomials ``(s / h)^m`` (``W = L mono``: the weights of
+        another basis at the same fractions cost one product).
     """
 
     E: ComplexArray
@@ -361,6 +365,7 @@ class StepWeights:
     plus: ComplexArray
     minus: ComplexArray
     W: ComplexArray
+    mono: ComplexArray
 
     @classmethod
     def of(cls, modes: LinearModes, h: float, x: FloatArray, L: FloatArray) -> StepWeights:
@@ -385,4 +390,4 @@ class StepWeights:
         mono = (scale[None, :, None] * powers.transpose(0, 2, 1)) * phis[1:].transpose(
             1, 0, 2)  # (p, m, N)
         W = np.matmul(L[None, :, :], mono)  # (p, j, N)
-        return cls(E, const, plus, minus, W)
+        return cls(E, const, plus, minus, W, mono)

@@ -182,7 +182,7 @@ class StepCache:
         # block (i, j) = Re(C diag(W_ij) Bp): stage i's bearing motion per unit rho_j
         blocks = [np.matmul(C[None, None, :, :] * w.W[:, 1:, None, :], m.Bp).real
                   .transpose(0, 2, 1, 3).reshape(s * k, s * k) for C in (Cq, Cv)]
-        D = StepWeights.of(m, h, np.ones(1), self.L_error).W[0]
+        D = self.L_error @ w.mono[-1]  # the error weights at the end node (c_s = 1)
         if len(self.ops) >= CACHED_STEPS:
             self.ops.pop(next(iter(self.ops)))
         self.ops[h] = StepOps(w, blocks[0], blocks[1], D)
@@ -247,8 +247,8 @@ class Attempt:
         return Counters(**self.count, max_iterations=self.count["iterations"])
 
     def run(self) -> tuple[Any, ...] | None:
-        """``(q, v, rho (s + 1, k), net force, z, scaled error)`` or None when Newton
-        failed."""
+        """``(q, v, rho (s + 1, k), net force, z, peak motion, scaled error)`` or None when
+        Newton failed."""
         m, s, h, cache = self.m, self.s, self.h, self.cache
         modes = cache.modes
         n, k, S = modes.n, modes.dofs.size, m.stages
@@ -329,6 +329,7 @@ class Attempt:
         dz = np.sum(ops.D * (all_rho @ modes.Bp.T), axis=0)
         eq = (cache.error_map @ dz).real
         sc = cache.scales
-        scale = sc.scale(np.maximum(self.s.peak, cache.moved(q, self.s.history[-2])))
+        peak = np.maximum(self.s.peak, cache.moved(q, self.s.history[-2]))
+        scale = sc.scale(peak)
         err = float(np.max(sc.weights * np.abs(eq))) / (self.m.local_tol * scale)
-        return q, v, all_rho, force, z_end, err
+        return q, v, all_rho, force, z_end, peak, err

@@ -36,7 +36,7 @@ KW = dict(speed=SPEED, unbalance=UNBALANCE, nodes=[PROBE])
 
 @pytest.mark.validation
 @pytest.mark.parametrize("rtol", [1e-1, 1e-2])
-def test_reduced_run_meets_the_accuracy_asked_and_agrees_with_the_full_path(reference, rtol):
+def test_reduced_run_meets_the_accuracy_asked_and_agrees_with_the_full_path(reference, rtol):  # noqa: F811
     times, ref = reference
     rotor, bearings = small_rolling_rotor()
     out = rs.Output(times=times)
