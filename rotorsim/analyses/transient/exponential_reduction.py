@@ -41,7 +41,12 @@ import scipy.linalg as sl
 import scipy.sparse as sp
 from scipy.sparse.csgraph import connected_components
 
-from rotorsim.analyses.transient.auto_reduction import Reduced, _cluster_end, _interior
+from rotorsim.analyses.transient.auto_reduction import (
+    Reduced,
+    _cluster_end,
+    _interior,
+    split_dofs,
+)
 from rotorsim.analyses.transient.loads import RestoringForce, TransientLoads
 from rotorsim.analyses.transient.reduction import reduce_problem
 from rotorsim.assembly.reduction import fixed_interface_modes
@@ -82,10 +87,8 @@ def exponential_reduction(system: RotorSystem, problem: SecondOrderProblem,
     reason = _ineligible(system, problem, loads, motion, weights, speed)
     if reason:
         return problem, None, {"reduced": False, "reason": reason}
-    assert system.nonlinear is not None and weights is not None and motion
-    n = system.n_free
-    boundary = np.unique(system.nonlinear.dofs)
-    inner = np.setdiff1d(np.arange(n), boundary)
+    assert weights is not None and motion
+    n, boundary, inner = split_dofs(system)
     largest = min(max(MODE_COUNTS), int(MAX_FRACTION * n) - boundary.size - 3,
                   inner.size - 2)
     if largest < MODE_COUNTS[0]:
