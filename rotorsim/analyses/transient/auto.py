@@ -203,6 +203,9 @@ def auto_path(system: RotorSystem, problems: tuple[SecondOrderProblem, SecondOrd
                                 {**chosen, "for": "exponential"},
                                 auto_stepper(system, small, loads, profile, t0, t_end, q0,
                                              rtol, new_basis, floor))
+            if new_basis is not None:  # (the reduced loads failed the harmonic check)
+                chosen = {**chosen, "reduced": False,
+                          "reason": "the reduced problem's loads are not harmonic"}
             decision = {**decision, "exponential": chosen}
         return AutoPath(problem, None, None, fast, decision, radau)
     report = {k: v for k, v in decision.items() if k not in ("reduced", "reason", "tried")}
