@@ -1,6 +1,7 @@
 """Where the automatic transient path spends its time on the small benchmark rotors.
 
-Wraps the eigen-decomposition of exponential collocation (``LinearModes.build``), the
+Wraps the automatic Craig-Bampton reduction ahead of exponential collocation (its choice
+and basis, ``exponential_reduction``), the eigen-decomposition (``LinearModes.build``), the
 batched bearing evaluations (``RestoringForce.batch``), the steps (``Exponential.step``)
 and the dense output (``Exponential.interpolate``) with ``time.process_time`` counters and
 runs ``rs.transient(..., rtol=)`` on the ``bench`` and ``issue14`` models of
@@ -35,6 +36,7 @@ import numpy as np  # noqa: E402
 from bench_transient import MODELS, first_order, rotorsim_run  # noqa: E402
 
 import rotorsim.analyses.transient.auto_exponential as auto_exponential  # noqa: E402
+import rotorsim.analyses.transient.exponential_reduction as reduction  # noqa: E402
 import rotorsim.analyses.transient.loads as loads  # noqa: E402
 import rotorsim.time_integration.exponential as exponential  # noqa: E402
 import rotorsim.time_integration.exponential_modes as modes  # noqa: E402
@@ -60,6 +62,7 @@ def timed(owner: Any, name: str, key: str, clock: dict[str, float]) -> None:
 
 def main() -> None:
     clock: dict[str, float] = {}
+    timed(reduction, "exponential_reduction", "reduction (choice and basis)", clock)
     timed(modes.LinearModes, "build", "eigen-decomposition", clock)
     timed(loads.RestoringForce, "batch", "bearing evaluations", clock)
     timed(exponential.Exponential, "step", "steps (with their bearings)", clock)
@@ -79,7 +82,8 @@ def main() -> None:
         total = (time.process_time() - begin) / REPEATS
         print(f"{name} rtol {rtol:g} ({res.method}): {1e3 * total:.1f} ms CPU per run, "
               f"{res.stats['steps']} steps + {res.stats['rejected_steps']} rejected, "
-              f"{res.stats['residual_evaluations']} bearing calls")
+              f"{res.stats['residual_evaluations']} bearing calls, reduced to "
+              f"{(res.options['reduction'] or {}).get('size', 'none')}")
         for key, value in clock.items():
             share = value / REPEATS
             print(f"  {key:30s} {1e3 * share:7.1f} ms {100 * share / total:5.1f} %")

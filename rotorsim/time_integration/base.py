@@ -15,7 +15,6 @@ resume from the key fields stored beside it (the same matrix gives the same fact
 
 from __future__ import annotations
 
-import dataclasses
 from dataclasses import dataclass, field
 from typing import Any, ClassVar, Protocol, runtime_checkable
 
@@ -63,10 +62,13 @@ class Counters:
 
     def plus(self, other: Counters) -> Counters:
         """Counters of ``self`` followed by ``other`` (the maximum is a maximum)."""
-        summed = {f.name: getattr(self, f.name) + getattr(other, f.name)
-                  for f in dataclasses.fields(self)}
-        summed["max_iterations"] = max(self.max_iterations, other.max_iterations)
-        return Counters(**summed)
+        return Counters(self.rejected_steps + other.rejected_steps,
+                        self.newton_failures + other.newton_failures,
+                        self.factorizations + other.factorizations,
+                        self.solves + other.solves,
+                        self.residual_evaluations + other.residual_evaluations,
+                        self.iterations + other.iterations,
+                        max(self.max_iterations, other.max_iterations))
 
 
 @dataclass(frozen=True, eq=False)

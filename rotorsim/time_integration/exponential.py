@@ -84,6 +84,12 @@ class Exponential:
     fixed : bool
         Take every step with the size given (``dt``) and no error control (to measure the
         order of the method).
+    basis : array (n_full, n), optional
+        For a reduced problem (``q = T x``): the basis ``T``. The local error is then
+        measured on the physical displacements ``T e`` with ``basis_weights`` (one per
+        physical DOF), not on the reduced coordinates (whose errors may cancel in ``T e``).
+    basis_weights : tuple of float, optional
+        Weights of the physical DOFs of ``basis`` (1 if omitted).
 
     Examples
     --------
@@ -103,6 +109,8 @@ class Exponential:
     dt_max: float = math.inf
     max_rejections: int = 40
     fixed: bool = False
+    basis: FloatArray | None = field(default=None, repr=False, compare=False)
+    basis_weights: tuple[float, ...] | None = field(default=None, repr=False)
 
     def __post_init__(self) -> None:
         check_step_control("Exponential", self, ((
@@ -134,7 +142,7 @@ class Exponential:
         rho0, r0 = cache.rho_at(q, v, float(t0))
         state = State(float(t0), q, v, np.zeros(n), np.zeros(n), dt=min(float(dt),
                                                                         self.dt_max),
-                      peak=np.zeros(n), cache=cache,
+                      peak=np.zeros(cache.scales.weights.size), cache=cache,
                       counters=Counters(factorizations=1, residual_evaluations=1))
         history = cache.pack(np.repeat(rho0[None, :], self.stages + 1, axis=0),
                              np.stack([q, v]), float(t0), cache.modes.modal(q, v))
@@ -184,11 +192,10 @@ class Exponential:
 
     def _accepted(self, old: State, attempt: Attempt, out: tuple[Any, ...], factor: float,
                   tally: Counters) -> State:
-        q, v, rho, force, z, err = out
+        q, v, rho, force, z, motion, err = out
         cache, h = attempt.cache, attempt.h
         history = cache.pack(rho, old.history[-2:],
                              float(meta(old.history, self.stages)[2]), z, attempt.theta)
-        motion = np.maximum(old.peak, np.abs(q - old.history[-2]))
         counters = old.counters.plus(dataclasses.replace(
             tally, max_iterations=attempt.tally.max_iterations))
         return dataclasses.replace(old, t=old.t + h, q=q, v=v, a=-cache.modes.minv @ force,

@@ -11,6 +11,7 @@ section 2.3; E. Hairer, G. Wanner, *Solving Ordinary Differential Equations II*,
 
 from __future__ import annotations
 
+import cmath
 import math
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
@@ -81,6 +82,10 @@ class StepCache:
     L: FloatArray
     L_error: FloatArray
     damping: Any
+    basis: Any = None
+    """``T`` of a reduced problem (the motion and the error are measured on ``T q``)."""
+    error_map: Any = None
+    """Displacement error per unit modal error ``dz``: ``V[:n]``, or ``T V[:n]``."""
     ops: dict[float, StepOps] = field(default_factory=dict)
     at_bearings: tuple[Any, ...] = ()
     """``V`` on the bearing displacements and velocities (transposed), the weights of the
@@ -115,13 +120,23 @@ class StepCache:
         low = np.zeros_like(L)
         low[1:, :s] = lagrange_coefficients(nodes[1:])
         weights = None if method.weights is None else np.asarray(method.weights)
-        scales = MotionScale.of(weights, q, method.motion)
+        own = MotionScale.of(weights, q, method.motion)
         k = modes.dofs.size
         at = (np.ascontiguousarray(modes.V[modes.dofs].T),
               np.ascontiguousarray(modes.V[n + modes.dofs].T),
-              np.tile(scales.weights[modes.dofs], s), np.eye(s * k))
-        return cls(method, problem, modes, scales, h0, nodes, L, L - low, D,
-                   at_bearings=at)
+              np.tile(own.weights[modes.dofs], s), np.eye(s * k))
+        T = _basis(method, n)
+        scales = own if T is None else MotionScale.of(
+            None if method.basis_weights is None else np.asarray(method.basis_weights),
+            T @ q, method.motion)
+        emap = modes.V[:n] if T is None else T @ modes.V[:n]
+        return cls(method, problem, modes, scales, h0, nodes, L, L - low, D, T,
+                   error_map=np.ascontiguousarray(emap), at_bearings=at)
+
+    def moved(self, q: FloatArray, q0: FloatArray) -> FloatArray:
+        """``|q - q0|`` per unknown, or per physical DOF (``|T (q - q0)|``) when reduced."""
+        d = q - q0
+        return np.abs(d if self.basis is None else self.basis @ d)
 
     def ladder(self, h: float, h_max: float) -> float:
         """The largest ``h0 * 2^(j / LADDER) <= min(h, h_max)``."""
@@ -167,7 +182,7 @@ class StepCache:
         # block (i, j) = Re(C diag(W_ij) Bp): stage i's bearing motion per unit rho_j
         blocks = [np.matmul(C[None, None, :, :] * w.W[:, 1:, None, :], m.Bp).real
                   .transpose(0, 2, 1, 3).reshape(s * k, s * k) for C in (Cq, Cv)]
-        D = StepWeights.of(m, h, np.ones(1), self.L_error).W[0]
+        D = self.L_error @ w.mono[-1]  # the error weights at the end node (c_s = 1)
         if len(self.ops) >= CACHED_STEPS:
             self.ops.pop(next(iter(self.ops)))
         self.ops[h] = StepOps(w, blocks[0], blocks[1], D)
@@ -199,9 +214,20 @@ class StepCache:
 def _stage_states(m: LinearModes, w: StepWeights, z: Any, t: float, rho: FloatArray) -> Any:
     """Modal states at the weights' fractions: exact linear part, loads and the
     interpolant of ``rho`` (s + 1, k)."""
-    e = np.exp(1j * m.frequency * t)
+    e = cmath.exp(1j * m.frequency * t)
     forced = w.E * z[None, :] + w.const + e * w.plus + np.conj(e) * w.minus
     return forced + np.einsum("pjn,nj->pn", w.W, m.Bp @ rho.T)
+
+
+def _basis(method: Exponential, n: int) -> FloatArray | None:
+    """The method's basis ``T`` (n_full, n) checked, or None."""
+    if method.basis is None:
+        return None
+    T = np.asarray(method.basis, dtype=float)
+    if T.ndim != 2 or T.shape[1] != n or not np.all(np.isfinite(T)):
+        raise ModelError(f"basis must be a finite matrix with {n} columns, got shape "
+                         f"{T.shape}", method.name)
+    return T
 
 
 class Attempt:
@@ -221,15 +247,15 @@ class Attempt:
         return Counters(**self.count, max_iterations=self.count["iterations"])
 
     def run(self) -> tuple[Any, ...] | None:
-        """``(q, v, rho (s + 1, k), net force, z, scaled error)`` or None when Newton
-        failed."""
+        """``(q, v, rho (s + 1, k), net force, z, peak motion, scaled error)`` or None when
+        Newton failed."""
         m, s, h, cache = self.m, self.s, self.h, self.cache
         modes = cache.modes
         n, k, S = modes.n, modes.dofs.size, m.stages
         ops = cache.step_ops(h)
         z = cache.modal(s)
         rho0 = s.history[S, :k]  # rho at the end of the last step (or at the start)
-        e = np.exp(1j * modes.frequency * s.t)
+        e = cmath.exp(1j * modes.frequency * s.t)
         w = ops.weights
         base = w.E * z[None, :] + w.const + e * w.plus + np.conj(e) * w.minus + \
             w.W[:, 0, :] * (modes.Bp @ rho0)[None, :]
@@ -301,8 +327,9 @@ class Attempt:
         q, v = y[:n], y[n:]
         force = cache.net_force(q, v, r, self.s.t + self.h)
         dz = np.sum(ops.D * (all_rho @ modes.Bp.T), axis=0)
-        eq = (modes.V[:n] @ dz).real
+        eq = (cache.error_map @ dz).real
         sc = cache.scales
-        scale = sc.scale(np.maximum(self.s.peak, np.abs(q - self.s.history[-2])))
+        peak = np.maximum(self.s.peak, cache.moved(q, self.s.history[-2]))
+        scale = sc.scale(peak)
         err = float(np.max(sc.weights * np.abs(eq))) / (self.m.local_tol * scale)
-        return q, v, all_rho, force, z_end, err
+        return q, v, all_rho, force, z_end, peak, err

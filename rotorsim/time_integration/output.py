@@ -159,6 +159,13 @@ class OutputRecorder:
         self._v = None if self.velocity_dofs is None else _Rows(len(self.velocity_dofs),
                                                                 saved.get("v"))
         self._next = int(saved["next_time"][0]) if "next_time" in saved else 0
+        vd = self.velocity_dofs
+        # one interpolation for the kept DOFs and the velocity DOFs (the bearing DOFs'
+        # velocities are kept even when no velocities are asked for)
+        self._union = self.dofs if vd is None or np.array_equal(vd, self.dofs) else \
+            np.union1d(self.dofs, vd)
+        self._at = (np.searchsorted(self._union, self.dofs),
+                    None if vd is None else np.searchsorted(self._union, vd))
         self._accumulators: list[Accumulator] = [
             r.accumulator(n, _saved_reducer(saved, r.key)) for r in spec.reducers]
 
@@ -187,10 +194,9 @@ class OutputRecorder:
             stop = int(np.searchsorted(times, new.t, side="right"))
             if stop > self._next:
                 ts = times[self._next: stop]
-                q, v = stepper.interpolate(old, new, ts, self.dofs)
-                vdofs = self.velocity_dofs
-                if vdofs is not None and not np.array_equal(vdofs, self.dofs):
-                    v = stepper.interpolate(old, new, ts, vdofs)[1]
+                q, v = stepper.interpolate(old, new, ts, self._union)
+                if self._union is not self.dofs:
+                    q, v = q[:, self._at[0]], v[:, self._at[1]]
                 self._append(ts, q, v)
                 self._next = stop
         self._reduce(new)

@@ -154,15 +154,18 @@ class AutoPath:
 def auto_path(system: RotorSystem, problems: tuple[SecondOrderProblem, SecondOrderProblem],
               loads: TransientLoads, profile: BoundSpeed, span: tuple[float, float],
               q0: FloatArray, rtol: float, basis: ReducedBasis | None, basis_speed: float,
-              may_reduce: bool) -> AutoPath:
+              may_reduce: bool, method: str | None = None) -> AutoPath:
     """The stepper at ``rtol`` and, when ``may_reduce`` and no ``basis`` is given, the
     reduction chosen by :func:`~.auto_reduction.auto_reduction`.
 
     ``problems`` is the full problem and the one to integrate (reduced on ``basis`` when a
     reduction was given); ``q0`` is the start on the free DOFs (on ``basis`` for a
-    continued reduced run). The motion floor comes from the full model either way."""
+    continued reduced run). The motion floor comes from the full model either way.
+    ``method``: the method of the run being continued (a given basis is then integrated by
+    it; otherwise by exponential collocation where it applies)."""
     from rotorsim.analyses.transient.auto_exponential import exponential_stepper
     from rotorsim.analyses.transient.auto_reduction import auto_reduction
+    from rotorsim.analyses.transient.exponential_reduction import exponential_reduction
 
     rtol = check_rtol(rtol)
     t0, t_end = span
@@ -171,8 +174,13 @@ def auto_path(system: RotorSystem, problems: tuple[SecondOrderProblem, SecondOrd
     floor = None if weights is None or q0.size != problem.n else motion_floor(
         problem, loads, profile, t0, t_end, q0, weights)
     if basis is not None:  # reduction given: weights through the basis
-        return AutoPath(given, basis, None, auto_stepper(
-            system, given, loads, profile, t0, t_end, q0, rtol, basis, floor), None)
+        radau = auto_stepper(system, given, loads, profile, t0, t_end, q0, rtol, basis,
+                             floor)
+        fast = None if method not in (None, "exponential") else exponential_stepper(
+            given, loads, profile, span, rtol, radau.weights, floor, basis.T, weights)
+        if fast is not None:
+            return AutoPath(given, basis, None, fast, None, radau)
+        return AutoPath(given, basis, None, radau, None)
     top = max(abs(profile.speed(t0)), abs(profile.speed(t_end)))
     reduced, new_basis, decision = auto_reduction(
         system, problem, loads, (basis_speed, top), t_end - t0, rtol, floor, weights,
@@ -180,9 +188,26 @@ def auto_path(system: RotorSystem, problems: tuple[SecondOrderProblem, SecondOrd
     if new_basis is None:
         radau = Radau(rtol=rtol, weights=weights, motion=floor)
         fast = exponential_stepper(problem, loads, profile, span, rtol, weights, floor)
-        if fast is not None:
-            return AutoPath(problem, None, None, fast, decision, radau)
-        return AutoPath(problem, None, None, radau, decision)
+        if fast is None:
+            return AutoPath(problem, None, None, radau, decision)
+        if may_reduce:
+            small, new_basis, chosen = exponential_reduction(
+                system, problem, loads, top, rtol, floor, weights)
+            fast_small = None if new_basis is None else exponential_stepper(
+                small, loads, profile, span, rtol, dof_weights(system, small.n, new_basis),
+                floor, new_basis.T, weights)
+            if fast_small is not None and new_basis is not None:
+                report = {k: v for k, v in chosen.items()
+                          if k not in ("reduced", "reason", "tried")}
+                return AutoPath(small, new_basis, report, fast_small,
+                                {**chosen, "for": "exponential"},
+                                auto_stepper(system, small, loads, profile, t0, t_end, q0,
+                                             rtol, new_basis, floor))
+            if new_basis is not None:  # (the reduced loads failed the harmonic check)
+                chosen = {**chosen, "reduced": False,
+                          "reason": "the reduced problem's loads are not harmonic"}
+            decision = {**decision, "exponential": chosen}
+        return AutoPath(problem, None, None, fast, decision, radau)
     report = {k: v for k, v in decision.items() if k not in ("reduced", "reason", "tried")}
     stepper = auto_stepper(system, reduced, loads, profile, t0, t_end, q0, rtol,
                            new_basis, floor)

@@ -22,6 +22,7 @@ import numpy as np
 
 from rotorsim.analyses.transient.loads import TransientLoads
 from rotorsim.analyses.transient.speed_profile import BoundSpeed
+from rotorsim.elements.base import FloatArray
 from rotorsim.time_integration.exponential import Exponential
 from rotorsim.time_integration.exponential_modes import HarmonicLoad
 from rotorsim.time_integration.problem import SecondOrderProblem
@@ -36,9 +37,11 @@ CHECK_POINTS = 5
 
 
 def harmonic_load(problem: SecondOrderProblem, loads: TransientLoads, profile: BoundSpeed,
-                  span: tuple[float, float]) -> HarmonicLoad | None:
+                  span: tuple[float, float], T: FloatArray | None = None
+                  ) -> HarmonicLoad | None:
     """The loads as ``constant + Re(u e^{i W t})`` when they are that over ``span`` at a
-    constant speed ``W`` (checked at :data:`CHECK_POINTS` times), else None."""
+    constant speed ``W`` (checked at :data:`CHECK_POINTS` times), else None. ``T``: the
+    basis of a reduced problem (``q = T x``; the loads are then ``T^T f``)."""
     t0, t_end = span
     if loads.torsion is not None or loads.forces is not None or loads.base is not None or \
             loads.unbalance_ratio is not None:
@@ -52,7 +55,10 @@ def harmonic_load(problem: SecondOrderProblem, loads: TransientLoads, profile: B
         return None
     amplitude = np.zeros(problem.n, dtype=complex) if loads.unbalance is None else \
         loads.unbalance * W * W * np.exp(1j * (profile.angle(0.0)))
-    load = HarmonicLoad(np.asarray(loads.constant, dtype=float), amplitude, W)
+    constant = np.asarray(loads.constant, dtype=float)
+    if T is not None:
+        constant, amplitude = T.T @ constant, T.T @ amplitude
+    load = HarmonicLoad(constant, amplitude, W)
     for t in times:
         f = problem.external(float(t))
         if not np.allclose(load(float(t)), f, rtol=1e-9,
@@ -63,15 +69,18 @@ def harmonic_load(problem: SecondOrderProblem, loads: TransientLoads, profile: B
 
 def exponential_stepper(problem: SecondOrderProblem, loads: TransientLoads,
                         profile: BoundSpeed, span: tuple[float, float], rtol: float,
-                        weights: tuple[float, ...] | None, floor: float | None
-                        ) -> Exponential | None:
+                        weights: tuple[float, ...] | None, floor: float | None,
+                        T: FloatArray | None = None,
+                        physical: tuple[float, ...] | None = None) -> Exponential | None:
     """The exponential collocation stepper at ``rtol`` when it applies (module docstring),
-    else None."""
+    else None; ``T`` as in :func:`harmonic_load`, ``physical`` the weights of the full
+    model's DOFs (the error of a reduced run is measured on them)."""
     if problem.n > EXPONENTIAL_LIMIT or problem.speed_terms is not None or \
             getattr(problem.restoring, "batch", None) is None or \
             getattr(problem.restoring, "damping", None) is not None:
         return None
-    load = harmonic_load(problem, loads, profile, span)
+    load = harmonic_load(problem, loads, profile, span, T)
     if load is None:
         return None
-    return Exponential(load, rtol=rtol, weights=weights, motion=floor)
+    return Exponential(load, rtol=rtol, weights=weights, motion=floor, basis=T,
+                       basis_weights=physical)

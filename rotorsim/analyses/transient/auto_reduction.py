@@ -96,10 +96,8 @@ def auto_reduction(system: RotorSystem, problem: SecondOrderProblem, loads: Tran
     reason = _ineligible(system, problem, loads, motion, weights, eligible, revolutions)
     if reason:
         return problem, None, {"reduced": False, "reason": reason}
-    assert system.nonlinear is not None and weights is not None and motion
-    n = system.n_free
-    boundary = np.unique(system.nonlinear.dofs)
-    inner = np.setdiff1d(np.arange(n), boundary)
+    assert weights is not None and motion
+    n, boundary, inner = split_dofs(system)
     K_ii, M_ii, S = _interior(system, loads, inner, speeds)
     largest = min(MAX_MODES, int(MAX_FRACTION * n) - boundary.size - 4, inner.size)
     if largest < MODE_COUNTS[0]:
@@ -123,6 +121,14 @@ def auto_reduction(system: RotorSystem, problem: SecondOrderProblem, loads: Tran
                                     "tried": tried, **report}
     return problem, None, {"reduced": False, "tried": tried,
                            "reason": "no mode count up to the size limit passed the checks"}
+
+
+def split_dofs(system: RotorSystem) -> tuple[int, np.ndarray, np.ndarray]:
+    """The number of free DOFs, the nonlinear (boundary) DOFs and the interior ones."""
+    assert system.nonlinear is not None
+    n = system.n_free
+    boundary = np.unique(system.nonlinear.dofs)
+    return n, boundary, np.setdiff1d(np.arange(n), boundary)
 
 
 def _cluster_end(freqs: FloatArray, count: int) -> int:

@@ -258,7 +258,7 @@ def transient(
             previous.stepper.q  # type: ignore[union-attr]
         path = auto_path(system, (full, problem), loads_fn, profile, (t0, t_end), start_q,
                          DEFAULT_RTOL if rtol is None else rtol, basis, basis_speed,
-                         may_reduce)
+                         may_reduce, None if previous is None else previous.method)
         stepper, decision, fallback = path.stepper, path.decision, path.fallback
         if path.basis is not None and basis is None:
             problem, basis, report = path.problem, path.basis, path.report

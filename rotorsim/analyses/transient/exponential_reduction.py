@@ -1,0 +1,170 @@
+"""The automatic path's Craig-Bampton reduction ahead of exponential collocation.
+
+Exponential collocation (:mod:`rotorsim.time_integration.exponential`) starts with a dense
+eigen-decomposition of the linear rotor, of size ``2 n``: on the 150-DOF benchmark rotor
+about a quarter of a short run. A Craig-Bampton model (:mod:`rotorsim.assembly.reduction`:
+the bearing DOFs kept physical, constraint modes, the lowest fixed-interface modes and the
+static responses to gravity and both phases of the unbalance) shrinks it; the bearing
+forces still see physical displacements, and the quasi-static response to the loads is
+exact.
+
+What a reduced run cannot hold is the *ringing* of the dropped modes: the unbalance,
+switched on at full speed at ``t0``, sets every mode ``j`` of the interior oscillating
+about its static share ``phi_j phi_j^T f / w_j^2`` with about that amplitude, undamped. The
+a-priori estimate of that error is the interior static response to the unbalance outside
+the kept modes, ``r = S - Phi Phi^T M_ii S`` with ``S = K_ii^-1 f_i`` (as in
+:mod:`~.auto_reduction`), weighted as the error is and relative to the a-priori motion.
+Measured on the rotors ``bench`` and ``issue14`` of ``benchmarks/bench_transient.py`` (the
+floor of the reduced runs' error at the probe, where the unbalance acts, against a tight
+full-model reference, with 8 to 64 modes), the error was 0.1 to 1.1 times the estimate
+(the table is in ``docs/benchmarks.md``); hence the small share of ``rtol`` it is held to.
+The reduction is used when, for the fewest modes of :data:`MODE_COUNTS`,
+
+1. the estimate is at most :data:`SHARE` of ``rtol`` (the rest is left to the stepper);
+2. the lowest dropped fixed-interface frequency is at least :data:`CUTOFF` times the
+   speed (the unbalance's frequency), so that the dropped modes respond quasi-statically
+   to the load (their ringing apart);
+3. the reduced model has at most :data:`MAX_FRACTION` of the unknowns (below that the
+   eigen-decomposition saved does not repay the interior eigensolution and the basis).
+
+Otherwise the full model is integrated; the decision, with the estimates tried, is in
+``result.options["auto_reduction"]``. At tight ``rtol`` (1e-5 on the benchmark rotors) no
+count passes: the unbalance's point load at its own node converges slowly with the modes.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+import scipy.linalg as sl
+import scipy.sparse as sp
+from scipy.sparse.csgraph import connected_components
+
+from rotorsim.analyses.transient.auto_reduction import (
+    Reduced,
+    _cluster_end,
+    _interior,
+    split_dofs,
+)
+from rotorsim.analyses.transient.loads import RestoringForce, TransientLoads
+from rotorsim.analyses.transient.reduction import reduce_problem
+from rotorsim.assembly.reduction import fixed_interface_modes
+from rotorsim.assembly.system import RotorSystem
+from rotorsim.elements.base import FloatArray
+from rotorsim.time_integration.problem import SecondOrderProblem
+
+MODE_COUNTS = (8, 16, 24, 32, 48)
+"""Numbers of fixed-interface modes tried, in this order (from one eigensolution)."""
+SHARE = 0.05
+"""Share of ``rtol`` allowed to the a-priori truncation estimate (module docstring)."""
+CUTOFF = 5.0
+"""Lowest dropped fixed-interface frequency, in multiples of the speed."""
+MAX_FRACTION = 0.5
+"""Largest reduced size as a fraction of the full one."""
+
+
+def exponential_reduction(system: RotorSystem, problem: SecondOrderProblem,
+                          loads: TransientLoads, speed: float, rtol: float,
+                          motion: float | None, weights: tuple[float, ...] | None) -> Reduced:
+    """The problem for exponential collocation at the constant ``speed`` [rad/s]: reduced
+    when the checks of the module docstring pass, else ``problem`` itself.
+
+    Parameters
+    ----------
+    motion : float or None
+        A-priori motion of the full model (largest weighted unbalance amplitude) [m].
+    weights : tuple of float or None
+        Weights of the free DOFs in the error (:func:`~.auto.dof_weights`).
+
+    Returns
+    -------
+    (problem, basis or None, decision) : the decision has ``reduced`` (bool), ``reason``
+    and ``tried`` (per mode count: ``modes``, ``estimate`` relative to the motion and the
+    lowest dropped frequency ``cutoff`` [rad/s]); when reduced, the report of
+    :func:`~.reduction.reduce_problem` too.
+    """
+    reason = _ineligible(system, problem, loads, motion, weights, speed)
+    if reason:
+        return problem, None, {"reduced": False, "reason": reason}
+    assert weights is not None and motion
+    n, boundary, inner = split_dofs(system)
+    largest = min(max(MODE_COUNTS), int(MAX_FRACTION * n) - boundary.size - 3,
+                  inner.size - 2)
+    if largest < MODE_COUNTS[0]:
+        return problem, None, {"reduced": False, "reason": "too few interior DOFs"}
+    K_ii, M_ii, S = _interior(system, loads, inner, (speed, speed))
+    freqs, phi = interior_modes(K_ii, M_ii, largest + 1)
+    w = np.asarray(weights)[inner]
+    tried: list[dict[str, Any]] = []
+    for count in (c for c in MODE_COUNTS if c <= largest):
+        count = _cluster_end(freqs, count)
+        if count >= freqs.size:
+            break
+        kept = phi[:, :count]
+        r = S - kept @ (kept.T @ (M_ii @ S))
+        record = {"modes": count, "cutoff": float(freqs[count]),
+                  "estimate": float(np.max(w[:, None] * np.abs(r))) / motion}
+        tried.append(record)
+        if record["estimate"] <= SHARE * rtol and record["cutoff"] >= CUTOFF * abs(speed):
+            reduced, basis, report = reduce_problem(
+                system, problem, loads, count, speed, modes=(freqs[:count], kept),
+                check=False)
+            if basis.size <= MAX_FRACTION * n:
+                return reduced, basis, {"reduced": True, "reason": "checks passed",
+                                        "tried": tried, **report}
+    return problem, None, {"reduced": False, "tried": tried,
+                           "reason": "no mode count up to the size limit passed the checks"}
+
+
+def interior_modes(K_ii: Any, M_ii: Any, count: int) -> tuple[FloatArray, FloatArray]:
+    """The lowest ``count`` fixed-interface modes (at least; the last cluster of equal
+    frequencies whole), as :func:`~rotorsim.assembly.reduction.fixed_interface_modes`
+    returns them, from one dense eigensolution per group of interior DOFs that neither
+    ``K_ii`` nor ``M_ii`` couples (the two bending planes, axial motion and torsion of a
+    shaft carry no coupling without the bearings: four problems of a quarter of the size
+    cost about a sixteenth of one).
+
+    Returns
+    -------
+    frequencies : array (m,) [rad/s], ascending; modes : array (n_i, m), mass-normalised.
+    """
+    K, M = sp.csr_matrix(K_ii), sp.csr_matrix(M_ii)
+    groups, labels = connected_components((abs(K) + abs(M)) != 0, directed=False)
+    if groups == 1:
+        return fixed_interface_modes(K, M, count)
+    n = K.shape[0]
+    lams, cols = [], []
+    for g in range(groups):
+        idx = np.flatnonzero(labels == g)
+        sub = np.ix_(idx, idx)
+        top = min(count + 2, idx.size)
+        # all pairs and a slice: at these sizes LAPACK's full solver is faster than the
+        # subset one (measured: 0.4 against 1.0 ms at 46 DOFs)
+        lam, vec = sl.eigh(K[sub].toarray(), M[sub].toarray())
+        full = np.zeros((n, top))
+        full[idx] = vec[:, :top]
+        lams.append(lam[:top])
+        cols.append(full)
+    lam = np.concatenate(lams)
+    order = np.argsort(lam, kind="stable")
+    w = np.sqrt(np.maximum(lam[order], 0.0))
+    phi = np.hstack(cols)[:, order]
+    keep = min(_cluster_end(w, min(count, w.size)), w.size)
+    return w[:keep], phi[:, :keep]
+
+
+def _ineligible(system: RotorSystem, problem: SecondOrderProblem, loads: TransientLoads,
+                motion: float | None, weights: tuple[float, ...] | None, speed: float
+                ) -> str:
+    """Why the run is integrated in full without trying modes ('' when it may not be)."""
+    checks = [
+        (system.nonlinear is None or not isinstance(problem.restoring, RestoringForce),
+         "no nonlinear bearing DOFs to keep as boundary"),
+        (problem.speed_terms is not None, "speed-dependent linear bearings"),
+        (any(x is not None for x in (loads.base, loads.forces, loads.torsion)),
+         "base excitation, force function or torsion loads (not in the estimate)"),
+        (loads.unbalance is None or not motion or weights is None or speed == 0.0,
+         "no unbalance: no a-priori motion and error estimate"),
+    ]
+    return next((text for bad, text in checks if bad), "")
