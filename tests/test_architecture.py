@@ -74,8 +74,9 @@ RULES = (
     Rule("analyses-periodic", "periodic imports only statics, linear and quasiperiodic (to "
          "which it hands unbalance with incommensurate varying compliance)",
          (FAMILIES[3],), (FAMILIES[2], FAMILIES[4])),
-    Rule("analyses-quasiperiodic", "quasiperiodic imports only statics and linear",
-         (FAMILIES[6],), FAMILIES[2:6]),
+    Rule("analyses-quasiperiodic", "quasiperiodic imports only statics, linear and "
+         "transient (whose runs find what the motion is where a torus loses stability)",
+         (FAMILIES[6],), FAMILIES[3:6]),
     Rule("analyses-standards", "standards (the API checks) imports only linear and statics",
          (FAMILIES[5],), (*FAMILIES[2:5], FAMILIES[6])),
     Rule("analyses-no-front-ends", "no analysis imports the command line or the figures",
