@@ -1,11 +1,11 @@
 """What the textbook rigid rotor does where its torus is unstable, checked independently
 of the variational equation (docs/validation.md, case 36 second addendum; issue 17).
 
-For each speed: ``rs.motion_beyond`` (spectral order and the trajectory's Lyapunov exponent
-from the variational equation), then an independent estimate of the largest Lyapunov
-exponent from two trajectories of ``rs.transient`` alone: after the same settling, a copy of
-the state displaced by 1e-9 of the motion in a random direction is integrated beside it,
-and the exponential growth rate of their distance is fitted (see ``two_trajectories``).
+For each speed: ``rs.motion_beyond`` (spectral order, and the largest Lyapunov exponent
+from the growth of its distance to a twin), then a repeat of the exponent with
+``rs.transient`` alone, from another random start and perturbation (``two_trajectories``).
+The variational estimate along the record, the method the twin replaced, is recorded in
+docs/validation.md beside them.
 
 Cases: the first unstable torus past the fold near 637 rad/s (the branch of
 ``tests/analyses/test_quasi_periodic_rotor.py``), and 1000 rad/s (a doubled torus).

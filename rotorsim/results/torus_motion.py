@@ -36,9 +36,11 @@ class MotionBeyond:
         [rad/s]: the strongest line left after the ``q = 1`` tones, or NaN when the order
         is 1.
     lyapunov : float
-        Largest Lyapunov exponent of the recorded trajectory [1/s].
+        Largest Lyapunov exponent of the recorded motion [1/s]: the growth rate of its
+        distance to a twin started 1e-9 of the motion away.
     resolution : float
-        [1/s]: exponents below it do not count as positive.
+        [1/s]: ``ln(1e4) / T`` of the record; a chaotic motion also needs its twin to part
+        by 1e4 within it.
     departure : float
         Largest distance of the record from the torus, over the torus's peak-to-peak
         (nonlinear DOFs).
@@ -62,5 +64,5 @@ class MotionBeyond:
         extra = f", new line at {self.frequency:.6g} rad/s" if np.isfinite(self.frequency) \
             else ""
         return (f"{self.kind} (order {self.order}; unexplained by q = 1..{self.unexplained.size}"
-                f": {left}; trajectory Lyapunov {self.lyapunov:.4g} 1/s against "
+                f": {left}; Lyapunov from a twin {self.lyapunov:.4g} 1/s against "
                 f"{self.resolution:.3g}; {self.departure:.3g} of the torus away{extra})")
