@@ -176,6 +176,8 @@ def test_past_a_doubling_of_the_torus_the_rotor_settles_on_the_doubled_torus(rig
     assert motion.departure > 0.5
     assert motion.lyapunov < motion.resolution
     assert motion.frequency == pytest.approx(point.vc_frequency / 2, rel=0.02)
+    with pytest.raises(ModelError, match="settle >= 0"):
+        rs.motion_beyond(point, unbalance, ex, settle=-1)
 
 
 def test_bad_input_is_refused(rigid_rotor) -> None:
@@ -189,6 +191,8 @@ def test_bad_input_is_refused(rigid_rotor) -> None:
         trajectory_lyapunov_exponent(_cubic(), 1.0, W2, t, q, q, per_period=60)
     with pytest.raises(OptionError, match="beyond"):
         rs.StabilityOptions(beyond=5)
+    with pytest.raises(ModelError, match="QuasiPeriodicPoint"):
+        rs.motion_beyond(object(), [], None)
     rotor, ex = rigid_rotor
     with pytest.raises(ModelError, match="beyond"):
         rs.quasi_periodic(rotor, start=600.0, stop=610.0, unbalance=[(0, 2e-6, 0.0)],

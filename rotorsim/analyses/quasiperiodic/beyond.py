@@ -159,10 +159,14 @@ def motion_beyond(point: Any, unbalance: Any, excitation: Any, *, settle: int = 
     Raises
     ------
     ModelError
-        ``settle < 0``, ``record < 4`` or ``samples < 16``.
+        ``point`` is not a torus point, or ``settle < 0``, ``record < 4`` or
+        ``samples < 16``.
     """
     from rotorsim.analyses.transient.transient import transient  # analyses above this one
 
+    if not all(hasattr(point, name) for name in ("solution", "rotor_problem", "system")):
+        raise ModelError(f"point must be a QuasiPeriodicPoint (rs.quasi_periodic_point or a "
+                         f"branch's points), got {type(point).__name__}", "motion_beyond")
     if settle < 0 or record < 4 or samples < 16:
         raise ModelError(f"need settle >= 0 and record >= 4 revolutions and samples >= 16, "
                          f"got {settle}, {record} and {samples}", "motion_beyond")
