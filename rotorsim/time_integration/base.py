@@ -21,7 +21,7 @@ from typing import Any, ClassVar, Protocol, runtime_checkable
 import numpy as np
 from numpy.typing import NDArray
 
-from rotorsim.errors import ModelError, Status
+from rotorsim.errors import ConvergenceError, ModelError, Status
 from rotorsim.time_integration.problem import SecondOrderProblem
 
 FloatArray = NDArray[np.float64]
@@ -204,6 +204,31 @@ def cubic_hermite(old: State, new: State, t: FloatArray,
          + (3 * s2 - 2 * s3) * q1 + (s3 - s2) * h * v1)
     v = (6 * (s2 - s) / h * (q0 - q1) + (3 * s2 - 4 * s + 1) * v0 + (3 * s2 - 2 * s) * v1)
     return q, v
+
+
+def retry_step(method: Any, ladder: Any, h: float, factor: float, t: float,
+               step: int) -> float:
+    """The next trial step [s] of an error-controlled implicit method after a rejected
+    attempt of ``h`` [s]: ``h`` times the controller's ``factor``, kept within
+    ``[method.min_shrink, 0.9]``, put on the method's step ladder (``ladder(h, dt_max)``)
+    below ``method.dt_max``.
+
+    Raises
+    ------
+    ConvergenceError
+        The step fell below 1e-14 of ``t`` [s] (:func:`step_size_failure`).
+    """
+    h = ladder(h * max(method.min_shrink, min(factor, 0.9)), method.dt_max)
+    if h < 1e-14 * max(abs(t), 1e-300):
+        raise step_size_failure(method, h, t, step)
+    return h
+
+
+def step_size_failure(method: Any, h: float, t: float, step: int) -> ConvergenceError:
+    """The error of a method that found no acceptable step at ``t`` [s] (the last trial
+    ``h`` [s], after ``method.max_rejections`` rejections or below 1e-14 of ``t``)."""
+    return ConvergenceError(f"step size {h:.3e} s after {method.max_rejections} rejections "
+                            f"at t = {t:.9g} s", method.name, step=step)
 
 
 def check_step_control(owner: str, method: Any,

@@ -42,6 +42,8 @@ from rotorsim.time_integration.base import (
     IntArray,
     State,
     check_step_control,
+    retry_step,
+    step_size_failure,
 )
 from rotorsim.time_integration.exponential_modes import HarmonicLoad
 from rotorsim.time_integration.exponential_step import (
@@ -182,13 +184,9 @@ class Exponential:
             err = math.inf if out is None else out[-1]
             factor = 0.5 if out is None else 0.9 * err ** (-1.0 / (self.stages + 1))
             tally = tally.plus(Counters(rejected_steps=1, newton_failures=int(out is None)))
-            h = cache.ladder(h * max(self.min_shrink, min(factor, 0.9)), self.dt_max)
+            h = retry_step(self, cache.ladder, h, factor, state.t, state.step + 1)
             rejected = True
-            if h < 1e-14 * max(abs(state.t), 1e-300):
-                break
-        raise ConvergenceError(f"step size {h:.3e} s after {self.max_rejections} "
-                               f"rejections at t = {state.t:.9g} s", self.name,
-                               step=state.step + 1)
+        raise step_size_failure(self, h, state.t, state.step + 1)
 
     def _accepted(self, old: State, attempt: Attempt, out: tuple[Any, ...], factor: float,
                   tally: Counters) -> State:

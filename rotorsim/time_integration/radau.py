@@ -31,13 +31,15 @@ from typing import Any
 
 import numpy as np
 
-from rotorsim.errors import ConvergenceError, ModelError
+from rotorsim.errors import ModelError
 from rotorsim.time_integration.base import (
     Counters,
     FloatArray,
     IntArray,
     State,
     check_step_control,
+    retry_step,
+    step_size_failure,
 )
 from rotorsim.time_integration.finite_checks import finite_vector
 from rotorsim.time_integration.hermite import quintic_hermite
@@ -198,13 +200,9 @@ class Radau:
                 return self._accepted(state, new, attempt, err, grow, tally)
             tally = tally.plus(Counters(rejected_steps=1,
                                         newton_failures=int(new is None)))
-            h = cache.ladder(h * max(self.min_shrink, min(factor, 0.9)), self.dt_max)
+            h = retry_step(self, cache.ladder, h, factor, state.t, state.step + 1)
             rejected = True
-            if h < 1e-14 * max(abs(state.t), 1e-300):
-                break
-        raise ConvergenceError(f"step size {h:.3e} s after {self.max_rejections} "
-                               f"rejections at t = {state.t:.9g} s", self.name,
-                               step=state.step + 1)
+        raise step_size_failure(self, h, state.t, state.step + 1)
 
     def _accepted(self, old: State, new: _Solution, attempt: _Attempt,
                   err: float, factor: float, tally: Counters) -> State:
