@@ -177,3 +177,15 @@ def test_bad_options_are_refused(options, culprit):
 def test_wrong_number_of_weights_is_refused():
     with pytest.raises(ModelError, match="weights"):
         run(oscillator(), 1e-4, np.linspace(0, 1, 3), weights=(1.0, 1.0))
+
+
+def test_exhausted_rejections_raise_and_name_the_time():
+    """With one retry allowed (the least accepted), a first step far too long for rtol
+    1e-12 is rejected twice and the run stops with a ConvergenceError naming the step size
+    and the time (the retry logic shared with exponential collocation,
+    ``time_integration/base.py``)."""
+    from rotorsim.errors import ConvergenceError
+
+    with pytest.raises(ConvergenceError, match=r"step size .* after 1 rejections at t = 0 s"):
+        integrate(oscillator(), Radau(rtol=1e-12, max_rejections=1), (0.0, 1.0), [1.0],
+                  [0.0], dt=0.5)
