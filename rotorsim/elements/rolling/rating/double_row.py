@@ -9,9 +9,10 @@
 
   double-row angular-contact ball bearings (ISO 281 Table 3, double-row columns; the 25,
   30 and 40 deg rows as printed in the Koyo and LYC catalogues, the 35 deg row as SKF prints
-  it for its 35 deg four-point contact bearings, the 20 deg row consistent with Koyo's
-  interpolated 24 deg row; the 45 deg row is not confirmed by a printed source apart from
-  ``Y_2 = 0.81``), double-row roller
+  it for its 35 deg four-point contact bearings, the 20 deg row as NSK prints it (for its
+  18 deg pairs), the 45 deg ``Y_1, X_2, Y_2`` as Schaeffler prints them for its 45 deg
+  series 33..-DA; the catalogues print ``e = 1.33`` there, rotorsim keeps ISO's 1.34),
+  double-row roller
   bearings with ``a != 0`` (ISO 281 Table 8): ``e = 1.5 tan a``, ``Y_1 = 0.45 cot a``,
   ``X_2 = 0.67``, ``Y_2 = 0.67 cot a``. ``L10 = (C_unit / P)^p``.
 * **ISO/TS 16281, per row.** Each row is rated as a single-row bearing (its ``C_row``, its
@@ -38,7 +39,10 @@ double-row angular-contact rows ``e = 0.8: Y1 = 0.78, X2 = 0.63, Y2 = 1.24`` (30
 bearings" (25 deg: ``0.68, 0.92, 0.67, 1.41``); Koyo's double-row rows at 24 deg
 (``0.66, 0.95, 0.68, 1.45``) and 32 deg (``0.86, 0.73, 0.62, 1.17``), which are the table
 interpolated linearly in the angle; SKF Rolling bearings catalogue, four-point contact ball
-bearings: ``P = F_r + 0.66 F_a`` (``F_a/F_r <= 0.95``), ``0.6 F_r + 1.07 F_a`` above
+bearings: ``P = F_r + 0.66 F_a`` (``F_a/F_r <= 0.95``), ``0.6 F_r + 1.07 F_a`` above;
+NSK *Super Precision Bearings* (2009), Table 1.1 (20 deg: ``0.57, 1.09, 0.70, 1.63``);
+Schaeffler catalogue HR 1 (2006), double row angular contact ball bearings, pp. 251-253
+(45 deg: ``P = F_r + 0.47 F_a`` up to ``F_a/F_r = 1.33``, ``0.54 F_r + 0.81 F_a`` above)
 (docs/validation.md, case 29b).
 """
 
