@@ -1,25 +1,29 @@
 """Bearing friction torque by Palmgren's load and viscous terms, ``M = M_0 + M_1``.
 
-Palmgren's model as given by Harris & Kotzalas (*Essential Concepts of Bearing Technology*,
-5th ed., ch. 9 "Friction in rolling bearings"), in its customary units inside (N mm, mm,
-rpm, cSt = mm^2/s) and SI at the interface::
+Palmgren's model (Harris & Kotzalas, *Essential Concepts of Bearing Technology*, 5th ed.,
+ch. 9), with the formulas, factors and load rules as printed in Schaeffler's catalogue HR 1
+*Rolling Bearings* (Schaeffler KG, June 2006, "Friction and increases in temperature",
+pp. 55-60), in its units inside (N mm, mm, rpm, cSt = mm^2/s) and SI at the interface::
 
     M_0 = 1e-7 f_0 (nu_0 n)^(2/3) d_m^3     nu_0 n >= 2000     (viscous, speed dependent)
     M_0 = 160e-7 f_0 d_m^3                   nu_0 n <  2000
     M_1 = f_1 P_1 d_m                                           (load dependent)
 
 with ``n`` the speed of the turning ring [rpm], ``nu_0`` the lubricant's kinematic viscosity
-at operating temperature, ``d_m`` the pitch diameter. **Convention for ``f_0``**: a factor of
-the bearing type and the lubrication method (oil bath, jet, mist, grease) that the user
-gives; tables in Harris & Kotzalas and bearing catalogues, no default here. **``f_1``**:
-given, or ``z (P_0 / C_0)^y`` for ball bearings and a constant for roller bearings
-(:data:`F1_FACTORS`, Palmgren's values as tabulated by Harris & Kotzalas), ``P_0`` the static
-equivalent load, taken here as the load ``P_1`` of the friction formula (a stated
-simplification: ISO 76's ``P_0 = X_0 F_r + Y_0 F_a`` differs by its factors). ``P_1``
-(:data:`P1_RULES`): deep-groove ``3 F_a - 0.1 F_r``, angular contact ``F_a - 0.1 F_r``,
-thrust ball ``F_a``, radial roller ``0.8 F_a cot a``, cylindrical ``F_r``; never below
-``F_r``. The torque opposes the relative rotation of the rings; it is counted positive
-(the sign of a friction torque in :mod:`rotorsim.analyses.transient.torque_laws`).
+at operating temperature (of the base oil for grease), ``d_m`` the pitch diameter.
+**Convention for ``f_0``**: a factor of the bearing series and the lubrication (grease or
+oil mist, oil bath or recirculating oil) that the user gives from a catalogue; no default
+here. **``f_1``**: given, or ``z (P_0 / C_0)^y`` (:data:`F1_FACTORS`, the catalogue's values
+for one named series per type), ``P_0`` the static equivalent load, taken here as the load
+``P_1`` of the friction formula (a stated simplification: ISO 76's ``P_0 = X_0 F_r + Y_0
+F_a`` differs by its factors). ``P_1`` (:data:`P1_RULES`, the catalogue's rules for single
+bearings): deep groove ``3.3 F_a - 0.1 F_r``, angular contact ``F_a - 0.1 F_r``, thrust ball
+``F_a``, tapered ``0.8 F_a cot a`` (the catalogue's ``2 Y F_a`` with ISO 281's ``Y = 0.4 cot
+a``), spherical ``1.6 F_a / e`` for ``F_a / F_r > e``, else ``F_r (1 + 0.6 (F_a / (e
+F_r))^3)`` with ``e = 1.5 tan a`` (ISO 281's ``e`` of double-row roller bearings),
+cylindrical ``F_r``; never below ``F_r``. The torque opposes the relative rotation of the
+rings; it is counted positive (the sign of a friction torque in
+:mod:`rotorsim.analyses.transient.torque_laws`).
 
 The loads come from any analysis: a bearing equilibrium (its ``load``), the reactions of a
 static rotor, or a transient's bearing-force history; :func:`friction_torque` takes arrays
@@ -41,18 +45,21 @@ from rotorsim.errors import ModelError
 FloatArray = NDArray[np.float64]
 
 F1_FACTORS: dict[str, tuple[float, float]] = {
-    "deep_groove": (0.0005, 0.55),
+    "deep_groove": (0.0009, 0.5),
     "angular_contact": (0.001, 0.33),
-    "thrust_ball": (0.0008, 0.33),
+    "thrust_ball": (0.0012, 0.33),
     "cylindrical": (0.0003, 0.0),
     "tapered": (0.0004, 0.0),
-    "spherical": (0.00045, 0.0),
+    "spherical": (0.0005, 0.33),
 }
-"""``(z, y)`` of ``f_1 = z (P_0/C_0)^y`` (rollers ``y = 0``: ``f_1 = z``). Harris & Kotzalas
-list ranges where these are mid values: deep groove ``z = 0.0004-0.0006``, cylindrical
-``0.0002-0.0004``, spherical ``0.0004-0.0005``; give ``f1`` to use another. Recalled, not
-confirmed from a readable copy (docs/validation.md, case 29b); an independent model uses
-``0.0007 (P_0/C_0)^0.5`` for deep groove bearings, 1.6 times this at ``P_0/C_0 = 0.1``."""
+"""``(z, y)`` of ``f_1 = z (P_0/C_0)^y`` (``y = 0``: ``f_1 = z``), Schaeffler HR 1 (2006)
+pp. 57-59 for the series named: deep groove 62, 63, 64 (the catalogue: 618 ``0.0005``; 160,
+60, 619 ``0.0007``; 42, 43 double row ``0.0010``; all ``y = 0.5``); angular contact 70, 72,
+73 (and double row); thrust ball 511 to 514 (``P_0 = F_a``); cylindrical with cage 2 (10,
+19: ``0.0002``; 3: ``0.00035``; 4, 22, 23, 30: ``0.0004``; full complement ``0.00055``);
+tapered all series; spherical 213, 222 (223: ``0.0008, 0.33``; 230, 239: ``0.00075, 0.5``;
+231, 240: ``0.0012, 0.5``; 232: ``0.0016, 0.5``; 241: ``0.0022, 0.5``). Give ``f1`` for
+another series (docs/validation.md, case 29b)."""
 P1_RULES = ("deep_groove", "angular_contact", "thrust_ball", "cylindrical", "tapered",
             "spherical")
 """Bearing types of the ``P_1`` rules (module docstring)."""
@@ -116,16 +123,21 @@ class PalmgrenFriction:
 
     def load_term(self, radial: ArrayLike, axial: ArrayLike) -> FloatArray:
         """``P_1`` [N] from radial and axial loads [N] (magnitudes; module docstring)."""
-        fr, fa = np.abs(np.asarray(radial, float)), np.abs(np.asarray(axial, float))
+        fr, fa = np.broadcast_arrays(np.abs(np.asarray(radial, float)),
+                                     np.abs(np.asarray(axial, float)))
         rule = self.bearing_type
         if rule == "deep_groove":
-            p1 = 3.0 * fa - 0.1 * fr
+            p1 = 3.3 * fa - 0.1 * fr
         elif rule == "angular_contact":
             p1 = fa - 0.1 * fr
         elif rule == "thrust_ball":
             p1 = fa
-        elif rule in ("tapered", "spherical"):
+        elif rule == "tapered":
             p1 = 0.8 * fa / math.tan(self.contact_angle)
+        elif rule == "spherical":
+            e = 1.5 * math.tan(self.contact_angle)
+            ratio = np.divide(fa, e * fr, out=np.zeros_like(fa), where=fr > 0)
+            p1 = np.where(fa > e * fr, 1.6 * fa / e, fr * (1.0 + 0.6 * ratio**3))
         else:
             p1 = fr
         return np.asarray(np.maximum(p1, fr))

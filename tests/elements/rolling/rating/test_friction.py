@@ -11,6 +11,7 @@ import pytest
 
 import rotorsim as rs
 from rotorsim.elements.rolling.rating.friction import (
+    F1_FACTORS,
     PalmgrenFriction,
     friction_torque,
 )
@@ -21,15 +22,35 @@ RPM = math.pi / 30.0
 
 def test_the_torque_is_palmgrens_formula_in_its_own_units():
     # deep groove, d_m = 38.5 mm, f0 = 2 (oil bath), 30 cSt, 3000 rpm, Fr = 1 kN, Fa = 0.5 kN:
-    # P1 = max(3 Fa - 0.1 Fr, Fr) = 1400 N, f1 = 0.0005 (P1/C0)^0.55 with C0 = 7800 N,
+    # P1 = max(3.3 Fa - 0.1 Fr, Fr) = 1550 N, f1 = 0.0009 (P1/C0)^0.5 with C0 = 7800 N,
     # M0 = 1e-7 f0 (nu n)^(2/3) dm^3 [N mm], M1 = f1 P1 dm [N mm]
     m = PalmgrenFriction("deep_groove", pitch_diameter=0.0385, f0=2.0, viscosity=30e-6,
                          C0=7800.0)
-    f1 = 0.0005 * (1400.0 / 7800.0) ** 0.55
+    f1 = 0.0009 * (1550.0 / 7800.0) ** 0.5
     m0 = 1e-7 * 2.0 * (30.0 * 3000.0) ** (2.0 / 3.0) * 38.5**3
-    m1 = f1 * 1400.0 * 38.5
+    m1 = f1 * 1550.0 * 38.5
     got = m.torque(1000.0, 500.0, 3000.0 * RPM)
     assert float(got) == pytest.approx((m0 + m1) * 1e-3, rel=1e-12)
+
+
+def test_f1_factors_are_the_printed_catalogue_values():
+    """Schaeffler, catalogue HR 1 *Rolling Bearings* (Schaeffler KG, June 2006), "Friction
+    and increases in temperature", pp. 57-59, bearing factor f1 (numbers only): deep groove
+    62, 63, 64: 0.0009 (P0/C0)^0.5; angular contact 70-B, 72-B, 73-B: 0.001 (P0/C0)^0.33;
+    axial deep groove ball 511-514: 0.0012 (Fa/C0)^0.33; cylindrical with cage 2..-E:
+    0.00030; tapered 302, 303, 313, 320, 322, 323, 329, 330-332: 0.0004; spherical 213, 222:
+    0.0005 (P0/C0)^0.33. Cross-check from a second catalogue (KRW, "Reibung", pp. 53-54):
+    deep groove 62, 63, 64: 0.00089 (P0/C0)^0.53, tapered 0.00040, cylindrical series 2:
+    0.00030 (the deep groove z within 1.2 % of Schaeffler's, whose y = 0.5 is taken).
+    Tolerance: exact (the catalogue prints these digits)."""
+    printed = {"deep_groove": (0.0009, 0.5), "angular_contact": (0.001, 0.33),
+               "thrust_ball": (0.0012, 0.33), "cylindrical": (0.00030, 0.0),
+               "tapered": (0.0004, 0.0), "spherical": (0.0005, 0.33)}
+    assert F1_FACTORS == printed
+    for kind, (z, y) in printed.items():
+        m = PalmgrenFriction(kind, pitch_diameter=0.05, f0=1.0, viscosity=20e-6, C0=2e4,
+                             contact_angle=math.radians(12.0))
+        assert float(m.load_factor(2000.0)) == pytest.approx(z * 0.1**y, rel=1e-14)
 
 
 def test_the_low_speed_viscous_term_is_constant_and_meets_the_high_speed_one():
@@ -43,17 +64,39 @@ def test_the_low_speed_viscous_term_is_constant_and_meets_the_high_speed_one():
 
 
 @pytest.mark.parametrize(("kind", "angle", "fr", "fa", "p1"), [
-    ("deep_groove", 0.0, 1000.0, 200.0, 1000.0),         # 3 Fa - 0.1 Fr < Fr
-    ("deep_groove", 0.0, 1000.0, 500.0, 1400.0),
+    # Schaeffler HR 1 (2006) p. 60, P1 of single bearings, never below Fr
+    ("deep_groove", 0.0, 1000.0, 300.0, 1000.0),         # 3.3 Fa - 0.1 Fr < Fr
+    ("deep_groove", 0.0, 1000.0, 500.0, 1550.0),
     ("angular_contact", 0.0, 1000.0, 2000.0, 1900.0),
     ("thrust_ball", 0.0, 0.0, 3000.0, 3000.0),
     ("cylindrical", 0.0, 5000.0, 100.0, 5000.0),
-    ("tapered", math.radians(15.0), 1000.0, 2000.0, 1600.0 / math.tan(math.radians(15.0))),
+    # 2 Y Fa with the catalogue's Y = 0.4 cot a of a single-row tapered bearing
+    ("tapered", math.radians(15.0), 1000.0, 2000.0, 2 * 0.4 * 2000.0 / math.tan(
+        math.radians(15.0))),
+    # e = 1.5 tan(10 deg) = 0.2645: 1.6 Fa / e above it, Fr (1 + 0.6 (Fa/(e Fr))^3) below
+    ("spherical", math.radians(10.0), 1000.0, 1000.0, 1.6 * 1000.0 / (1.5 * math.tan(
+        math.radians(10.0)))),
+    ("spherical", math.radians(10.0), 1000.0, 100.0, 1000.0 * (1.0 + 0.6 * (100.0 / (
+        1.5 * math.tan(math.radians(10.0)) * 1000.0)) ** 3)),
+    ("spherical", math.radians(10.0), 0.0, 500.0, 1.6 * 500.0 / (1.5 * math.tan(
+        math.radians(10.0)))),
 ])
 def test_p1_rules(kind, angle, fr, fa, p1):
     m = PalmgrenFriction(kind, pitch_diameter=0.05, f0=1.0, viscosity=20e-6, C0=1e4,
                          contact_angle=angle)
     assert float(m.load_term(fr, fa)) == pytest.approx(p1, rel=1e-14)
+
+
+def test_the_spherical_p1_branches_meet_at_e():
+    # at Fa/Fr = e both branches give 1.6 Fr (the catalogue's rule is continuous)
+    a = math.radians(11.0)
+    m = PalmgrenFriction("spherical", pitch_diameter=0.05, f0=1.0, viscosity=20e-6,
+                         C0=1e4, contact_angle=a)
+    e = 1.5 * math.tan(a)
+    below, above = m.load_term([1000.0, 1000.0], [e * 1000.0 * (1 - 1e-12),
+                                                  e * 1000.0 * (1 + 1e-12)])
+    assert below == pytest.approx(1600.0, rel=1e-10) and above == pytest.approx(1600.0,
+                                                                                 rel=1e-10)
 
 
 def test_the_torque_law_of_a_torque_driven_transient():
