@@ -310,6 +310,22 @@ def test_double_row_factors_at_20_and_45_deg_match_printed_catalogue_rows():
         below, above = 1.0 + 0.47 * fa_fr, 0.54 + 0.81 * fa_fr
         assert abs(below - above) / above < 0.005
 
+
+@pytest.mark.parametrize("angle", [10.0, 12.0, 15.0, 20.0, 28.0])
+def test_double_row_roller_factors_match_schaeffler_tapered_pairs(angle):
+    """Schaeffler, catalogue HR 1 *Rolling Bearings* (2006), tapered roller bearings, matched
+    pairs under dynamic load: P = Fr + 1,12 Y Fa below e, P = 0,67 Fr + 1,68 Y Fa above,
+    Y the single bearing's factor; single bearings P = 0,4 Fr + Y Fa, i.e. ISO 281's
+    Y = 0.4 cot a. rotorsim's double-row roller row (ISO 281 Table 8: Y1 = 0.45 cot a,
+    X2 = 0.67, Y2 = 0.67 cot a) gives 1.125 Y and 1.675 Y: the printed factors to half
+    their last digit (tolerance)."""
+    a = math.radians(angle)
+    _, y1, x2, y2 = double_row_factors("roller", a)
+    y_single = 0.4 / math.tan(a)
+    assert x2 == pytest.approx(0.67, abs=1e-12)
+    assert y1 / y_single == pytest.approx(1.12, abs=0.005 + 1e-9)
+    assert y2 / y_single == pytest.approx(1.68, abs=0.005 + 1e-9)
+
 @pytest.mark.parametrize("row", [BALL, TAPERED], ids=["ball", "tapered"])
 def test_iso16281_rows_combined_reduce_to_the_iso281_unit_rating(row):
     # two equal rows, pure radial load: L10r(unit) = 2^(-1/e) L10r(row), which with
