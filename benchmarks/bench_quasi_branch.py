@@ -9,6 +9,12 @@ response and where it lies. CPU time is printed beside wall time: on a shared ma
 the CPU column.
 
 Run: ``OPENBLAS_NUM_THREADS=1 .venv/bin/python benchmarks/bench_quasi_branch.py``.
+
+``--with-stability``: only the branch with stability, as the first run in its process.
+``--compare``: the exponents of the same 190 tori twice in one run, with the box grown at
+every torus and by :func:`~rotorsim.analyses.quasiperiodic.branch_stability.
+branch_stability`'s rules: CPU times, tori checked, the largest difference of the largest
+real parts and of the verdicts.
 """
 
 from __future__ import annotations
@@ -52,6 +58,47 @@ def run(stability: str | None) -> None:
              if stability else ""))
 
 
+def compare() -> None:
+    import rotorsim.analyses.quasiperiodic.branch as qb
+
+    captured: list[Any] = []
+    schedule = qb.branch_stability
+
+    def capture(points: Any, every: int = 8) -> Any:
+        captured.extend(points)
+        return schedule(points, every)
+
+    qb.branch_stability = capture          # the branch's own tori, solved once
+    model = rs.load_model(ROOT / "models" / "default.toml")
+    spec: Any = model.analyses["branch"]
+    rs.periodic(model, start=spec.start, stop=spec.stop, harmonics=spec.harmonics,
+                unbalance=list(model.loads.unbalance), nodes=list(spec.nodes or ()),
+                continuation=spec.continuation, stability=rs.StabilityOptions(beyond=0))
+    qb.branch_stability = schedule
+    results = {}
+    for label, every in (("box grown at every torus", 1), ("branch_stability rules", 8)):
+        cpu = time.process_time()
+        results[label] = schedule(captured, every)
+        cpu = time.process_time() - cpu
+        checked = sum(s.checked for s in results[label])
+        print(f"{label:26s} {len(captured)} tori, {checked:3d} checked, CPU {cpu:6.1f} s")
+    every_torus, rules = results.values()
+    big = np.array([s.exponents.largest for s in every_torus])
+    small = np.array([s.exponents.largest for s in rules])
+    rel = np.abs(small - big) / np.abs(big)
+    k = int(np.argmax(rel))
+    same = sum(a.stable == b.stable for a, b in zip(every_torus, rules, strict=True))
+    print(f"largest real parts: max difference {rel[k]:.2e} of itself "
+          f"({abs(small[k] - big[k]):.2e} 1/s, at {captured[k].speed / RPM:.1f} rpm, where "
+          f"the full check tried {len(every_torus[k].boxes)} boxes); same verdict at "
+          f"{same}/{len(captured)} tori")
+
+
 if __name__ == "__main__":
-    run(None)
-    run("auto")
+    if "--compare" in sys.argv[1:]:
+        compare()
+    elif "--with-stability" in sys.argv[1:]:     # alone: the first run in its process
+        run("auto")
+    else:
+        run(None)
+        run("auto")

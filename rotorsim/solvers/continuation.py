@@ -32,6 +32,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from rotorsim.errors import ModelError, Status
 from rotorsim.progress import progress_bar
+from rotorsim.solvers.allocator import keep_freed_memory
 from rotorsim.solvers.continuation_checkpoint import (
     load_continuation_checkpoint,
     save_continuation_checkpoint,
@@ -192,6 +193,7 @@ def continue_branch(residual: ResidualCallback, x0: ArrayLike, lam0: float,
     2
     """
     opts = options if options is not None else Continuation()
+    keep_freed_memory()      # the corrector's work arrays: no page faults per iteration
     if int(checkpoint_every) != checkpoint_every or checkpoint_every < 1:
         raise ModelError(f"checkpoint_every must be a positive integer, got "
                          f"{checkpoint_every!r}", "continue_branch")

@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 import scipy.linalg as sl
@@ -28,6 +29,7 @@ from rotorsim.errors import ConvergenceError
 FloatArray = NDArray[np.float64]
 IntArray = NDArray[np.int64]
 _GBTRF, _GBTRS = sl.get_lapack_funcs(("gbtrf", "gbtrs"), (np.zeros((1, 1)),))
+_ZGBTRF, _ZGBTRS = sl.get_lapack_funcs(("gbtrf", "gbtrs"), (np.zeros((1, 1), complex),))
 
 
 def max_band(n: int) -> int:
@@ -70,19 +72,27 @@ class BandLayout:
         band_rows = kl + ku + offset  # row of A[i, j] in band storage (LAPACK: kl + ku + i - j)
         return cls(n, kl, ku, cols * (2 * kl + ku + 1) + band_rows)
 
-    def factorize(self, data: FloatArray, where: str) -> BandedLU:
-        """Banded LU of the matrix with the entries ``data`` on this layout.
+    def factorize(self, data: NDArray[np.float64] | NDArray[np.complex128], where: str
+                  ) -> BandedLU:
+        """Banded LU of the matrix with the entries ``data`` (real or complex) on this
+        layout.
 
         Raises
         ------
         ConvergenceError
-            When a pivot is exactly zero (the matrix is singular).
+            When a pivot is zero, or not finite for complex data (the matrix is
+            singular).
         """
-        ab = np.zeros((2 * self.kl + self.ku + 1, self.n), order="F")
+        complex_ = np.iscomplexobj(data)
+        ab = np.zeros((2 * self.kl + self.ku + 1, self.n), dtype=complex if complex_ else
+                      float, order="F")
         ab.ravel(order="F")[self.flat] = data  # a view: ab is Fortran-ordered
-        lu, piv, info = _GBTRF(ab, self.kl, self.ku, overwrite_ab=1)
+        lu, piv, info = (_ZGBTRF if complex_ else _GBTRF)(ab, self.kl, self.ku, overwrite_ab=1)
         if info != 0:
             raise ConvergenceError(f"matrix is singular (zero pivot in column {info})", where)
+        if complex_ and not np.all(np.isfinite(lu[self.kl + self.ku])):   # U's diagonal
+            # the tone-by-tone condensation's check (the steppers catch non-finite states)
+            raise ConvergenceError("matrix is singular (a pivot is not finite)", where)
         return BandedLU(self.n, self.kl, self.ku, lu, piv)
 
 
@@ -94,13 +104,20 @@ class BandedLU:
     n: int
     kl: int
     ku: int
-    lu: FloatArray
+    lu: NDArray[Any]
     piv: NDArray[np.int32]
 
-    def solve(self, b: FloatArray) -> FloatArray:
-        """Solve ``A x = b`` for ``b`` of shape ``(n,)`` or ``(n, k)``."""
-        rhs = np.asarray(b, dtype=float)
-        x, info = _GBTRS(self.lu, self.kl, self.ku, rhs.reshape(self.n, -1), self.piv)
+    def solve(self, b: NDArray[Any]) -> NDArray[Any]:
+        """Solve ``A x = b`` for ``b`` of shape ``(n,)`` or ``(n, k)`` (complex ``b`` with
+        real factors: its two parts in turn)."""
+        if np.iscomplexobj(self.lu):
+            rhs = np.asarray(b, dtype=complex)
+            x, info = _ZGBTRS(self.lu, self.kl, self.ku, rhs.reshape(self.n, -1), self.piv)
+        elif np.iscomplexobj(b):
+            return self.solve(np.real(b)) + 1j * self.solve(np.imag(b))
+        else:
+            rhs = np.asarray(b, dtype=float)
+            x, info = _GBTRS(self.lu, self.kl, self.ku, rhs.reshape(self.n, -1), self.piv)
         if info != 0:
             raise ValueError(f"gbtrs failed with info = {info}")
         return x.reshape(rhs.shape)

@@ -26,6 +26,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from rotorsim.analyses.quasiperiodic.branch_stability import branch_stability
 from rotorsim.analyses.quasiperiodic.continuation import SpeedResidual
 from rotorsim.analyses.quasiperiodic.point import (
     QuasiPeriodicPoint,
@@ -187,7 +188,7 @@ def quasi_periodic(model: Any, *, start: float, stop: float, step: float | None 
     if stability == "lyapunov":
         exponents = np.array([p.stability(periods=periods).exponent for p in points])
     elif stability:
-        checks = [p.exponents() for p in points]
+        checks = list(branch_stability(points))
         exponents = np.array([c.exponents.largest for c in checks])  # type: ignore[union-attr]
     else:
         exponents = np.full(len(points), np.nan)

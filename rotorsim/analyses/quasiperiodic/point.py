@@ -83,16 +83,17 @@ class QuasiPeriodicPoint:
         return largest_lyapunov_exponent(self.rotor_problem.problem, self.solution,
                                          periods=periods, steps_per_period=steps_per_period)
 
-    def exponents(self, box: tuple[int, int] | None = None, cutoff: float | None = None
-                  ) -> TorusStability:
+    def exponents(self, box: tuple[int, int] | None = None, cutoff: float | None = None,
+                  first: TorusStability | None = None) -> TorusStability:
         """Characteristic exponents of the torus by the quasi-periodic Hill method on a
         Craig-Bampton model (:func:`~rotorsim.analyses.quasiperiodic.stability.
         torus_stability`): stable when ``.exponents.largest < 0`` [1/s], resolved whatever
         the damping, unlike :meth:`stability`. ``box`` fixes the stability tones (default:
-        grown until converged), ``cutoff`` [rad/s] the fixed-interface modes."""
+        grown until converged), ``cutoff`` [rad/s] the fixed-interface modes; ``first``
+        this torus's result for the box (1, 1) alone, reused."""
         sol = self.solution
         return torus_stability(self.rotor_problem.problem, sol.X, sol.aft, sol.w1, sol.w2,
-                               box=box, cutoff=cutoff)
+                               box=box, cutoff=cutoff, first=first)
 
     def state(self, t: float = 0.0) -> tuple[FloatArray, FloatArray]:
         """Displacements and velocities on ALL DOFs (``6 n_nodes``) at time ``t`` [s]: the

@@ -125,6 +125,11 @@ class TorusStability:
     tolerance : float
         [1/s]: stable when the largest real part is below it (:data:`STABILITY_TOL` per
         shaft revolution).
+    checked : bool
+        True: the boxes were grown at this torus. False: only the first box was solved
+        here, and ``converged`` rests on the tori checked on both sides of it along the
+        branch (:func:`~rotorsim.analyses.quasiperiodic.branch_stability.
+        branch_stability`).
     """
 
     exponents: TorusExponents
@@ -133,6 +138,7 @@ class TorusStability:
     boxes: tuple[tuple[int, int], ...]
     modes: int
     tolerance: float = 0.0
+    checked: bool = True
 
     @property
     def stable(self) -> bool:
@@ -151,8 +157,8 @@ def _boxes(aft: Any) -> list[tuple[int, int]]:
 
 
 def torus_stability(problem: QuasiProblem, X: FloatArray, aft: Any, w1: float, w2: float,
-                    box: tuple[int, int] | None = None, cutoff: float | None = None
-                    ) -> TorusStability:
+                    box: tuple[int, int] | None = None, cutoff: float | None = None,
+                    first: TorusStability | None = None) -> TorusStability:
     """Exponents of the torus with coefficients ``X (rows, n)`` of ``problem``'s DOFs on the
     reduced model (module docstring).
 
@@ -164,14 +170,25 @@ def torus_stability(problem: QuasiProblem, X: FloatArray, aft: Any, w1: float, w
     closes (a rigid rotor in its clearance) can need every VC order of the solution: its
     parametric instability is missed by any box with fewer (the sign is then wrong), which
     is why the VC orders come first.
+
+    ``first``: this torus's result for the first box alone (``box=(1, 1)``, the same
+    ``cutoff``), whose exponents are then reused instead of solved again.
     """
     boxes = [box] if box is not None else _boxes(aft)
+    if first is not None and (box is not None or first.boxes != (boxes[0],)):
+        raise ModelError(f"first must be the result of the box {boxes[0]} alone, got the "
+                         f"boxes {first.boxes}", f"{WHERE}.first")
     X_nl = np.asarray(X)[:, np.asarray(problem.nl_dofs, dtype=np.int64)]
     largest: list[float] = []
     tried: list[tuple[int, int]] = []
     ex, reduced, modes, reach = None, problem, 0, -1.0
     tol = STABILITY_TOL * w1 / (2 * np.pi)
     for b in boxes:
+        if first is not None and not tried:
+            ex, modes = first.exponents, first.modes
+            largest.append(ex.largest)
+            tried.append(b)
+            continue
         need = CUTOFF_FACTOR * (abs(b[0]) * w1 + abs(b[1]) * w2) if cutoff is None \
             else float(cutoff)
         if need > reach:      # the modes a wider box reaches

@@ -36,6 +36,7 @@ from numpy.typing import NDArray
 
 from rotorsim.errors import ModelError
 from rotorsim.harmonic_balance.quasi.aft import TorusAFT
+from rotorsim.harmonic_balance.quasi.banded_tones import BandedTones
 from rotorsim.solvers.linear import factorize
 
 FloatArray = NDArray[np.float64]
@@ -118,6 +119,9 @@ class LinearBlocks:
     L: IntArray
     blocks: dict[str, tuple[Any, Any, Any, Any]]
     dense: bool
+    band: BandedTones | None = None
+    """The ``LL`` blocks in band storage when their band is narrow: the damped tones'
+    ``Z_LL`` are then factorised banded (:mod:`.banded_tones`)."""
 
     @classmethod
     def of(cls, problem: QuasiProblem) -> LinearBlocks:
@@ -132,7 +136,8 @@ class LinearBlocks:
             LL = rows_L[:, L]
             out[name] = (rows_N[:, N].toarray(), rows_N[:, L].toarray(),
                          rows_L[:, N].toarray(), LL.toarray() if dense else LL.tocsc())
-        return cls(N, L, out, dense)
+        band = BandedTones.of({name: out[name][3] for name in out}) if L.size else None
+        return cls(N, L, out, dense, band)
 
     def block(self, name: str, b: int) -> Any:
         """Block ``b`` (0 NN, 1 NL, 2 LN, 3 LL) of matrix ``name`` (zero when the problem
@@ -178,14 +183,18 @@ def condense(problem: QuasiProblem, aft: TorusAFT, w1: float, w2: float,
     load = np.empty((omega.size, N.size), dtype=complex)
     linear, factors = [], []
     for j, w in enumerate(omega):
-        ZNN, ZNL, ZLN, ZLL = lb.z(float(w), spin, D)
-        if L.size == 0:
-            S[j], load[j] = ZNN, F[j, N]
-            linear.append(np.zeros((0, N.size + 1), dtype=complex))
-            continue
-        lu = factorize(ZLL, where=f"quasi-periodic HB, linear DOFs at tone {j} "
-                             f"(Omega = {w:.6g} rad/s)", dense_threshold=DENSE_LINEAR,
-                        check_condition=j == 0 or not damped)
+        where = f"quasi-periodic HB, linear DOFs at tone {j} (Omega = {w:.6g} rad/s)"
+        if lb.band is not None and j > 0 and damped:     # regular by construction
+            ZNN, ZNL, ZLN = lb.z(float(w), spin, D, which=(0, 1, 2))
+            lu: Any = lb.band.factorize(float(w), spin, where)
+        else:
+            ZNN, ZNL, ZLN, ZLL = lb.z(float(w), spin, D)
+            if L.size == 0:
+                S[j], load[j] = ZNN, F[j, N]
+                linear.append(np.zeros((0, N.size + 1), dtype=complex))
+                continue
+            lu = factorize(ZLL, where=where, dense_threshold=DENSE_LINEAR,
+                           check_condition=j == 0 or not damped)
         Y = lu.solve(np.column_stack([ZLN, F[j, L]]))
         S[j] = ZNN - ZNL @ Y[:, :-1]
         load[j] = F[j, N] - ZNL @ Y[:, -1]
