@@ -40,6 +40,7 @@ import numpy as np
 import scipy.sparse as sp
 from numpy.typing import ArrayLike
 
+from rotorsim.harmonic_balance.banded_tones import BandedTones
 from rotorsim.harmonic_balance.fourier import (
     AFT,
     ComplexArray,
@@ -62,6 +63,7 @@ from rotorsim.harmonic_balance.residual import (
 )
 from rotorsim.solvers.linear import DENSE_THRESHOLD, Factorization, factorize
 from rotorsim.solvers.stats import Stats
+from rotorsim.time_integration.banded_lu import BandedLU
 
 CACHED_OMEGAS = 2
 """Number of ``omega`` values whose factorisations are kept (a continuation step and its
@@ -75,8 +77,8 @@ class HarmonicFactors:
     Attributes
     ----------
     omega : float
-    lu : tuple of Factorization or None
-        Factors of ``Z_LL,h``, ``h = 0..H`` (None without linear DOFs).
+    lu : tuple of Factorization, BandedLU or None
+        Factors of ``Z_LL,h``, ``h = 0..H`` (None without linear DOFs; ``solve(b)``).
     coupling : tuple of complex arrays (k, n_L)
         ``Z_NL,h``.
     transfer : complex array (H + 1, n_L, k)
@@ -89,7 +91,7 @@ class HarmonicFactors:
     """
 
     omega: float
-    lu: tuple[Factorization | None, ...]
+    lu: tuple[Factorization | BandedLU | None, ...]
     coupling: tuple[ComplexArray, ...]
     transfer: ComplexArray
     reduced: FloatArray
@@ -216,7 +218,7 @@ class CondensedResidual:
     def _build(self, omega: float, stats: Stats | None) -> HarmonicFactors:
         pb, H, k = self.problem, self.harmonics, self.problem.k
         nL = pb.linear_dofs.size
-        lus: list[Factorization | None] = []
+        lus: list[Factorization | BandedLU | None] = []
         couplings: list[ComplexArray] = []
         transfer = np.zeros((H + 1, nL, k), dtype=complex)
         reduced = np.zeros((self.aft.rows * k, self.aft.rows * k))
@@ -225,12 +227,18 @@ class CondensedResidual:
             S = self._dynamic("NN", h, omega)
             magnitude[h] = np.abs(S)
             couplings.append(self._dynamic("NL", h, omega))
-            lu = None
+            lu: Factorization | BandedLU | None = None
             if nL:
-                lu = factorize(self._dynamic("LL", h, omega), stats=stats,
-                               where=f"HB condensation, harmonic {h} at omega = "
-                                     f"{omega:.6g} rad/s",
-                               check_condition=not (h and self._damped_linear))
+                where = f"HB condensation, harmonic {h} at omega = {omega:.6g} rad/s"
+                if h and self._damped_linear and self._band is not None:
+                    # regular by construction: banded LU (harmonic_balance/banded_tones.py)
+                    if stats is not None:
+                        stats.factorizations += 1
+                    lu = self._band.factorize(h * omega, self.problem.spin_speed(omega),
+                                              where)
+                else:
+                    lu = factorize(self._dynamic("LL", h, omega), stats=stats, where=where,
+                                   check_condition=not (h and self._damped_linear))
                 transfer[h] = lu.solve(self._dynamic("LN", h, omega))
                 S = S - couplings[h] @ transfer[h]
                 magnitude[h] += np.abs(couplings[h]) @ np.abs(transfer[h])
@@ -261,6 +269,17 @@ class CondensedResidual:
         if block is None:
             return False
         return bool(block.nnz if sp.issparse(block) else np.any(block != 0))
+
+    @cached_property
+    def _band(self) -> BandedTones | None:
+        """The ``LL`` blocks in band storage when their band is narrow (a shaft line)."""
+        ll = {key: self._blocks[name]["LL"] for key, name in (
+            ("K", "stiffness"), ("M", "mass"), ("C", "damping"), ("G", "gyroscopic"))
+            if name in self._blocks}
+        if "K" not in ll or "M" not in ll:
+            return None
+        zero = sp.csc_matrix(ll["K"].shape)
+        return BandedTones.of({key: ll.get(key, zero) for key in ("K", "M", "C", "G")})
 
     @cached_property
     def _blocks(self) -> dict[str, dict[str, Matrix]]:

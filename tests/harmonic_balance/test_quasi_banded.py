@@ -1,5 +1,5 @@
 """The banded factorisation of the linear DOFs' dynamic stiffness in the quasi-periodic
-condensation (``rotorsim/harmonic_balance/quasi/banded_tones.py``).
+condensation (``rotorsim/harmonic_balance/banded_tones.py``).
 
 Reference: the dense LU path of the same condensation (``scipy.linalg.lu_factor``), and
 numpy's dense solve. Both are backward-stable LU factorisations with partial pivoting, so
@@ -15,8 +15,8 @@ import pytest
 import scipy.sparse as sp
 
 from rotorsim.errors import ConvergenceError
+from rotorsim.harmonic_balance.banded_tones import BandedTones
 from rotorsim.harmonic_balance.quasi import QuasiProblem, TorusAFT, TorusHarmonics
-from rotorsim.harmonic_balance.quasi.banded_tones import BandedTones
 from rotorsim.harmonic_balance.quasi.residual import LinearBlocks, condense
 
 

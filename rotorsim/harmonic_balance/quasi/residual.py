@@ -35,8 +35,8 @@ import scipy.sparse as sp
 from numpy.typing import NDArray
 
 from rotorsim.errors import ModelError
+from rotorsim.harmonic_balance.banded_tones import BandedTones
 from rotorsim.harmonic_balance.quasi.aft import TorusAFT
-from rotorsim.harmonic_balance.quasi.banded_tones import BandedTones
 from rotorsim.solvers.linear import factorize
 
 FloatArray = NDArray[np.float64]
@@ -121,7 +121,7 @@ class LinearBlocks:
     dense: bool
     band: BandedTones | None = None
     """The ``LL`` blocks in band storage when their band is narrow: the damped tones'
-    ``Z_LL`` are then factorised banded (:mod:`.banded_tones`)."""
+    ``Z_LL`` are then factorised banded (:mod:`~rotorsim.harmonic_balance.banded_tones`)."""
 
     @classmethod
     def of(cls, problem: QuasiProblem) -> LinearBlocks:
