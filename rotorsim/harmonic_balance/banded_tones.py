@@ -12,7 +12,11 @@ hold non-zeros. The branch up to 1000 rpm took 3.8 s instead of 5.0 s.
 
 :class:`BandedTones` keeps the four matrices' entries on the union of their patterns and
 the :class:`~rotorsim.time_integration.banded_lu.BandLayout` of that pattern; it exists
-only when the band is narrow (:func:`~rotorsim.time_integration.banded_lu.max_band`).
+only when the band is narrow: the banded LU's ``n kl (kl + ku)`` operations at most a
+quarter of the dense LU's ``n^3 / 3`` (the alternative here is always the dense LU or
+SuperLU). The smooth 102-DOF rotor of ``benchmarks/bench_periodic.py`` (88 linear DOFs,
+half-bandwidths 10 and 10) qualifies; a narrower limit, as for the steppers, would refuse
+it.
 """
 
 from __future__ import annotations
@@ -46,14 +50,16 @@ class BandedTones:
     @classmethod
     def of(cls, blocks: dict[str, Any]) -> BandedTones | None:
         """From the ``LL`` blocks ``{"K": ..., "M": ..., "C": ..., "G": ...}`` (dense or
-        sparse, one size); None when their joint band is too wide for a banded LU."""
+        sparse, one size); None when their joint band is too wide for a banded LU (module
+        docstring)."""
         mats = {name: sp.csc_matrix(A) for name, A in blocks.items()}
         pattern = sum((abs(A) for A in mats.values()), sp.csc_matrix(
             next(iter(mats.values())).shape))
         pattern = sp.csc_matrix(pattern)
         pattern.sort_indices()
-        layout = BandLayout.of(pattern)
-        if layout is None:
+        n = pattern.shape[0]
+        layout = BandLayout.of(pattern, widest=2 * n)
+        if layout is None or 3 * layout.kl * (layout.kl + layout.ku) > n * n / 4:
             return None
         cols = np.repeat(np.arange(pattern.shape[1]), np.diff(pattern.indptr))
         rows = pattern.indices

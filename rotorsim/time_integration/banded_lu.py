@@ -58,16 +58,16 @@ class BandLayout:
     flat: IntArray
 
     @classmethod
-    def of(cls, A: sp.csc_matrix) -> BandLayout | None:
-        """Layout of the CSC pattern of ``A`` (sorted indices), or None when its band is
-        wider than :func:`max_band`."""
+    def of(cls, A: sp.csc_matrix, widest: int | None = None) -> BandLayout | None:
+        """Layout of the CSC pattern of ``A`` (sorted indices), or None when its ``kl + ku``
+        exceeds ``widest`` (default :func:`max_band`)."""
         n = int(A.shape[0])
         cols = np.repeat(np.arange(n, dtype=np.int64), np.diff(A.indptr))
         rows = A.indices.astype(np.int64)
         offset = rows - cols
         kl = int(max(offset.max(initial=0), 0))
         ku = int(max(-offset.min(initial=0), 0))
-        if kl + ku > max_band(n):
+        if kl + ku > (max_band(n) if widest is None else widest):
             return None
         band_rows = kl + ku + offset  # row of A[i, j] in band storage (LAPACK: kl + ku + i - j)
         return cls(n, kl, ku, cols * (2 * kl + ku + 1) + band_rows)
