@@ -33,6 +33,7 @@ import cmath
 import hashlib
 import math
 from dataclasses import dataclass
+from functools import cached_property
 from typing import Any
 
 import numpy as np
@@ -143,6 +144,8 @@ def _series(kmax: int) -> FloatArray:
 
 
 _SERIES: dict[int, FloatArray] = {}
+_FACTORIALS = np.array([float(math.factorial(m)) for m in range(8)])
+"""``m!`` for the monomial weights of :class:`StepWeights` (``stages <= 6``)."""
 
 
 def lagrange_coefficients(nodes: FloatArray) -> FloatArray:
@@ -230,6 +233,13 @@ class LinearModes:
     @property
     def n(self) -> int:
         return self.V.shape[0] // 2
+
+    @cached_property
+    def shifts(self) -> ComplexArray:
+        """``lambda``, ``lambda - i W`` and ``lambda + i W`` (3, N): the arguments of the
+        ``phi`` functions of the modes and of the two halves of the harmonic load."""
+        return np.stack([self.lam, self.lam - 1j * self.frequency,
+                         self.lam + 1j * self.frequency])
 
     @classmethod
     def build(cls, M: Any, K: Any, D: Any, dofs: IntArray, K0: FloatArray, C0: FloatArray,
@@ -378,11 +388,11 @@ class StepWeights:
         """Weights at the fractions ``x`` for the basis coefficients ``L`` (p_basis, m)."""
         lam, w = modes.lam, modes.frequency
         degree = L.shape[1]
-        tau = np.asarray(x, dtype=float)[:, None] * h  # (p, 1)
+        x = np.asarray(x, dtype=float)
+        tau = x[:, None] * h  # (p, 1)
         p, N = tau.size, lam.size
         # with phi_1 of (lam -+ iW) tau, the two halves of the harmonic load (one call)
-        every = phi_functions(np.stack([lam[None, :] * tau, (lam[None, :] - 1j * w) * tau,
-                                        (lam[None, :] + 1j * w) * tau]).ravel(), degree)
+        every = phi_functions((modes.shifts[:, None, :] * tau[None]).ravel(), degree)
         every = every.reshape(degree + 1, 3, p, N)
         phis, shifted = every[:, 0], every[1, 1:]
         E = phis[0]
@@ -391,9 +401,9 @@ class StepWeights:
         plus = turn * tau * shifted[0] * modes.b_plus[None, :]
         minus = np.conj(turn) * tau * shifted[1] * modes.b_minus[None, :]
         # int_0^tau e^{lam (tau - s)} (s/h)^m ds = m! tau^{m+1} h^-m phi_{m+1}(lam tau)
-        scale = np.array([math.factorial(m) / h ** m for m in range(degree)])
-        powers = tau[:, :, None] ** (np.arange(degree) + 1)[None, None, :]  # (p, 1, m)
-        mono = (scale[None, :, None] * powers.transpose(0, 2, 1)) * phis[1:].transpose(
-            1, 0, 2)  # (p, m, N)
+        # = m! h x^{m+1} phi_{m+1}(lam tau)
+        m = np.arange(degree)
+        coef = h * _FACTORIALS[:degree] * x[:, None] ** (m + 1)  # (p, m)
+        mono = coef[:, :, None] * phis[1:].transpose(1, 0, 2)  # (p, m, N)
         W = np.matmul(L[None, :, :], mono)  # (p, j, N)
         return cls(E, const, plus, minus, W, mono)

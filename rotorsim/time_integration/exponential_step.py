@@ -90,6 +90,8 @@ class StepCache:
     error_map: Any = None
     """Displacement error per unit modal error ``dz``: ``V[:n]``, or ``T V[:n]``."""
     ops: dict[float, StepOps] = field(default_factory=dict)
+    rows: Any = None
+    """The key and the rows of :meth:`output_rows` last asked for."""
     at_bearings: tuple[Any, ...] = ()
     """``V`` on the bearing displacements and velocities (transposed), the weights of the
     stage displacements, the identity of the Newton matrix and ``V`` on the bearing
@@ -202,6 +204,18 @@ class StepCache:
         """``V`` on the bearing displacements, then velocities (2 k, N)."""
         return self.at_bearings[4]
 
+    def output_rows(self, dofs: Any) -> tuple[Any, Any]:
+        """``V`` on the displacements and velocities of ``dofs``, transposed (N, m) each:
+        kept for the last ``dofs`` asked (the recorder asks for the same ones at every
+        sample; gathering them cost two copies of ``m x N`` per sample)."""
+        key = np.asarray(dofs, dtype=np.int64).tobytes()
+        if self.rows is None or self.rows[0] != key:
+            at = np.asarray(dofs, dtype=np.int64)
+            V, n = self.modes.V, self.modes.n
+            self.rows = (key, np.ascontiguousarray(V[at].T),
+                         np.ascontiguousarray(V[n + at].T))
+        return self.rows[1], self.rows[2]
+
     def rho_at(self, q: FloatArray, v: FloatArray, t: float) -> tuple[FloatArray, FloatArray]:
         """``rho`` and ``r`` on the nonlinear DOFs at one point."""
         m = self.modes
@@ -291,7 +305,7 @@ class Attempt:
             self.count["residual_evaluations"] += 1
             self.count["iterations"] += 1
             self.count["solves"] += 1
-            R = rho - ((Q[:, modes.dofs] @ K0.T + Vel[:, modes.dofs] @ C0.T) - r).ravel()
+            R = rho - ((qb.reshape(S, k) @ K0.T + vb.reshape(S, k) @ C0.T) - r).ravel()
             J = eye - (np.matmul(K0[None] - Kt, ops.Hq.reshape(S, k, S * k)) +
                        np.matmul(C0[None] - Ct, ops.Hv.reshape(S, k, S * k))
                        ).reshape(S * k, S * k)
@@ -337,11 +351,12 @@ class Attempt:
         n = modes.n
         ops = cache.step_ops(self.h)
         all_rho = np.concatenate([rho0[None, :], rho])
-        z_end = base[-1] + np.sum(ops.weights.W[-1, 1:] * (rho @ modes.Bp.T), axis=0)
+        loads = all_rho @ modes.Bp.T  # modal loads of rho at the nodes (s + 1, N)
+        z_end = base[-1] + np.sum(ops.weights.W[-1, 1:] * loads[1:], axis=0)
         y = (modes.V @ z_end).real
         q, v = y[:n], y[n:]
         force = cache.net_force(q, v, r, self.s.t + self.h)
-        dz = np.sum(ops.D * (all_rho @ modes.Bp.T), axis=0)
+        dz = np.sum(ops.D * loads, axis=0)
         eq = (cache.error_map @ dz).real
         sc = cache.scales
         peak = np.maximum(self.s.peak, cache.moved(q, self.s.history[-2]))
