@@ -12,6 +12,7 @@ section 2.3; E. Hairer, G. Wanner, *Solving Ordinary Differential Equations II*,
 from __future__ import annotations
 
 import cmath
+import functools
 import math
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
@@ -53,6 +54,21 @@ def lobatto_nodes(s: int) -> FloatArray:
     """
     inner = np.polynomial.legendre.Legendre.basis(s).deriv().roots()
     return np.concatenate([[0.0], np.sort((inner.real + 1.0) / 2.0), [1.0]])
+
+
+@functools.lru_cache(maxsize=8)
+def _node_tables(s: int) -> tuple[FloatArray, FloatArray, FloatArray]:
+    """The nodes, the monomial coefficients ``L`` of their Lagrange basis and those of the
+    error interpolant (``L`` minus the basis through the stage nodes only), computed once
+    per ``s`` (read-only: every run shares them)."""
+    nodes = lobatto_nodes(s)
+    L = lagrange_coefficients(nodes)
+    low = np.zeros_like(L)
+    low[1:, :s] = lagrange_coefficients(nodes[1:])
+    out = (nodes, L, L - low)
+    for a in out:
+        a.setflags(write=False)
+    return out
 
 
 def meta(history: FloatArray, stages: int) -> FloatArray:
@@ -121,10 +137,7 @@ class StepCache:
                                   np.asarray(dofs, dtype=np.int64), K0[0], C0[0],
                                   method.load, where)
         s = method.stages
-        nodes = lobatto_nodes(s)
-        L = lagrange_coefficients(nodes)
-        low = np.zeros_like(L)
-        low[1:, :s] = lagrange_coefficients(nodes[1:])
+        nodes, L, L_error = _node_tables(s)
         weights = None if method.weights is None else np.asarray(method.weights)
         own = MotionScale.of(weights, q, method.motion)
         k = modes.dofs.size
@@ -137,7 +150,7 @@ class StepCache:
             None if method.basis_weights is None else np.asarray(method.basis_weights),
             T @ q, method.motion)
         emap = modes.V[:n] if T is None else T @ modes.V[:n]
-        return cls(method, problem, modes, scales, h0, nodes, L, L - low, D, T,
+        return cls(method, problem, modes, scales, h0, nodes, L, L_error, D, T,
                    error_map=np.ascontiguousarray(emap), at_bearings=at)
 
     def moved(self, q: FloatArray, q0: FloatArray) -> FloatArray:
@@ -309,7 +322,7 @@ class Attempt:
             J = eye - (np.matmul(K0[None] - Kt, ops.Hq.reshape(S, k, S * k)) +
                        np.matmul(C0[None] - Ct, ops.Hv.reshape(S, k, S * k))
                        ).reshape(S * k, S * k)
-            if not np.all(np.isfinite(R)):
+            if not np.isfinite(R).all():
                 return None
             # LAPACK directly: numpy's solve costs about 30 us of checks and error-state
             # handling per call at this size (36 unknowns), several times the solve
@@ -318,7 +331,7 @@ class Attempt:
                 return None
             rho = rho + d
             dq = ops.Hq @ d
-            norm = float(np.max(wb * np.abs(dq))) / tol
+            norm = float((wb * np.abs(dq)).max()) / tol
             # remaining error predicted from the contraction (Hairer & Wanner IV.8, 8.10)
             # the first iteration uses the contraction of the last step's final one
             rate = norm / old_norm if it > 0 else theta
@@ -352,14 +365,14 @@ class Attempt:
         ops = cache.step_ops(self.h)
         all_rho = np.concatenate([rho0[None, :], rho])
         loads = all_rho @ modes.Bp.T  # modal loads of rho at the nodes (s + 1, N)
-        z_end = base[-1] + np.sum(ops.weights.W[-1, 1:] * loads[1:], axis=0)
+        z_end = base[-1] + (ops.weights.W[-1, 1:] * loads[1:]).sum(axis=0)
         y = (modes.V @ z_end).real
         q, v = y[:n], y[n:]
         force = cache.net_force(q, v, r, self.s.t + self.h)
-        dz = np.sum(ops.D * loads, axis=0)
+        dz = (ops.D * loads).sum(axis=0)
         eq = (cache.error_map @ dz).real
         sc = cache.scales
         peak = np.maximum(self.s.peak, cache.moved(q, self.s.history[-2]))
         scale = sc.scale(peak)
-        err = float(np.max(sc.weights * np.abs(eq))) / (self.m.local_tol * scale)
+        err = float((sc.weights * np.abs(eq)).max()) / (self.m.local_tol * scale)
         return q, v, all_rho, force, z_end, peak, err
