@@ -92,7 +92,15 @@ def phi_functions(z: ComplexArray, kmax: int) -> ComplexArray:
             fact *= k
     if count:
         zs = z if count == z.size else z[small]
-        out[1:, small] = _series(kmax) @ _powers(zs)
+        powers = _powers(zs)
+        # real coefficients times complex powers as one real product on the interleaved
+        # real and imaginary parts (the same sums; numpy would cast the coefficients to
+        # complex and multiply by zeros)
+        series = (_series(kmax) @ powers.view(float)).view(complex)
+        if count == z.size:
+            out[1:] = series
+        else:
+            out[1:, small] = series
     return out
 
 
@@ -121,14 +129,19 @@ def cexp(z: ComplexArray) -> ComplexArray:
 def _powers(z: ComplexArray) -> ComplexArray:
     """``z^m`` for ``m = 0 .. TAYLOR_TERMS - 1`` (TAYLOR_TERMS, len(z)), by products.
 
-    One ``multiply`` per power, row after row: the same products as ``cumprod`` along the
-    first axis, which numpy runs about three times slower on complex rows (measured: 91
-    against 36 us for 150 values)."""
+    Blocks of rows by doubling: rows ``b .. 2b - 1`` are rows ``0 .. b - 1`` times
+    ``z^b`` (five products for 17 rows instead of 15 row by row, or ``cumprod``, which
+    numpy runs about three times slower still on complex rows: measured 91 against 36 us
+    for 150 values row by row). Each power is a product of at most five factors, so its
+    relative round-off stays a few units of the last place."""
     rows = np.empty((TAYLOR_TERMS, z.size), dtype=complex)
     rows[0] = 1.0
     rows[1] = z
-    for m in range(2, TAYLOR_TERMS):
-        np.multiply(rows[m - 1], z, out=rows[m])
+    b = 2
+    while b < TAYLOR_TERMS:
+        top = min(2 * b, TAYLOR_TERMS)
+        np.multiply(rows[:top - b], rows[b - 1] * z, out=rows[b:top])
+        b = top
     return rows
 
 
