@@ -410,7 +410,8 @@ class StepWeights:
         phis, shifted = every[:, 0], every[1, 1:]
         E = phis[0]
         const = tau * phis[1] * modes.b_const[None, :]
-        turn = cexp(1j * w * tau)
+        # e^{iW tau} of the p fractions (a few numbers: cmath is cheaper than an array call)
+        turn = np.array([cmath.exp(1j * w * t) for t in tau[:, 0].tolist()])[:, None]
         plus = turn * tau * shifted[0] * modes.b_plus[None, :]
         minus = np.conj(turn) * tau * shifted[1] * modes.b_minus[None, :]
         # int_0^tau e^{lam (tau - s)} (s/h)^m ds = m! tau^{m+1} h^-m phi_{m+1}(lam tau)
