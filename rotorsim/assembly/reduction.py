@@ -23,6 +23,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 import scipy.linalg as sl
@@ -78,7 +79,8 @@ class ReducedBasis:
 
 def craig_bampton(system: RotorSystem, boundary: ArrayLike, num_modes: int, *,
                   static_loads: Sequence[ArrayLike] = (), speed: float = 0.0,
-                  modes: tuple[FloatArray, FloatArray] | None = None) -> ReducedBasis:
+                  modes: tuple[FloatArray, FloatArray] | None = None,
+                  interior: tuple[Any, Any, Any] | None = None) -> ReducedBasis:
     """Build the Craig-Bampton basis of ``system`` (module docstring).
 
     Parameters
@@ -97,6 +99,10 @@ def craig_bampton(system: RotorSystem, boundary: ArrayLike, num_modes: int, *,
     modes : (frequencies, shapes), optional
         The fixed-interface modes, already computed by :func:`fixed_interface_modes` on
         this boundary (``num_modes`` is then ignored).
+    interior : (K_ii, M_ii, factorisation of K_ii), optional
+        The interior blocks of the matrices at ``speed`` on this boundary and the LU of
+        ``K_ii`` (:func:`~rotorsim.solvers.linear.factorize`), already computed by the
+        caller: not extracted and factorised again.
 
     Raises
     ------
@@ -114,15 +120,19 @@ def craig_bampton(system: RotorSystem, boundary: ArrayLike, num_modes: int, *,
         raise ModelError(f"num_modes must lie in 0..{inner.size} (interior DOFs), got {num_modes}",
                          "craig_bampton")
     mats = system.matrices(speed)
-    K, M = sp.csr_matrix(mats.K), sp.csr_matrix(mats.M)
-    K_ii, M_ii = K[inner][:, inner], M[inner][:, inner]
-    try:
-        lu = factorize(K_ii, where="craig_bampton: interior stiffness")
-    except ConvergenceError:
-        raise ModelError("the interior is not held by the boundary (K_ii is singular): a "
-                         "part of the rotor moves freely when the bearing DOFs are held; "
-                         "add DOFs of that part to the boundary", "craig_bampton") from None
-    psi = -np.asarray(lu.solve(K[inner][:, b].toarray())).reshape(inner.size, b.size)
+    K_i = sp.csr_matrix(mats.K)[inner]
+    if interior is not None:
+        K_ii, M_ii, lu = interior
+    else:
+        K_ii, M_ii = K_i[:, inner], sp.csr_matrix(mats.M)[inner][:, inner]
+        try:
+            lu = factorize(K_ii, where="craig_bampton: interior stiffness")
+        except ConvergenceError:
+            raise ModelError("the interior is not held by the boundary (K_ii is singular): "
+                             "a part of the rotor moves freely when the bearing DOFs are "
+                             "held; add DOFs of that part to the boundary",
+                             "craig_bampton") from None
+    psi = -np.asarray(lu.solve(K_i[:, b].toarray())).reshape(inner.size, b.size)
     freqs, phi = fixed_interface_modes(K_ii, M_ii, int(num_modes)) if modes is None \
         else modes
     extra = [np.asarray(lu.solve(np.asarray(f, dtype=float)[inner])).reshape(-1)
@@ -229,17 +239,26 @@ def _complete(K_ii: sp.spmatrix, M_ii: sp.spmatrix, lam: FloatArray, vec: FloatA
 
 
 def _independent(vectors: list[FloatArray], phi: FloatArray, M: sp.csr_matrix) -> FloatArray:
-    """``vectors`` M-orthogonalised against ``phi`` and each other; dependent ones dropped."""
-    basis = [phi[:, j] for j in range(phi.shape[1])]
-    out = []
+    """``vectors`` M-orthogonalised against ``phi`` and each other; dependent ones dropped.
+
+    The projection on the modes is one block product per pass (``phi`` and ``M phi``
+    formed once), taken twice: classical Gram-Schmidt repeated once is as accurate as the
+    modified one (Giraud, Langou, Rozloznik, Comput. Math. Appl. 50 (2005) 1069, "twice is
+    enough"), at two matrix products instead of two sparse products per mode and vector.
+    """
+    Mphi = np.asarray(M @ phi).reshape(phi.shape)
+    d = np.einsum("ij,ij->j", phi, Mphi)  # u^T M u of each mode
+    out: list[FloatArray] = []
     for v in vectors:
-        w = v.copy()
-        for u in basis:
-            w -= (u @ (M @ w)) / (u @ (M @ u)) * u
+        w = np.array(v, dtype=float)
+        for _ in range(2):
+            if phi.shape[1]:
+                w -= phi @ ((Mphi.T @ w) / d)
+            for u in out:
+                w -= (u @ (M @ w)) / (u @ (M @ u)) * u
         norm = float(np.sqrt(max(w @ (M @ w), 0.0)))
         if norm > 1e-8 * float(np.sqrt(max(v @ (M @ v), 1e-300))):
             w /= norm
-            basis.append(w)
             out.append(w)
     return np.column_stack(out) if out else np.zeros((M.shape[0], 0))
 

@@ -213,8 +213,7 @@ class Exponential:
         x = (np.asarray(t, dtype=float) - old.t) / h
         rho = new.history[:self.stages + 1, :cache.modes.dofs.size]
         z = cache.propagate(old, h, x, rho)
-        n = cache.modes.n
-        return (np.asarray((z @ cache.modes.V[dofs].T).real),
-                np.asarray((z @ cache.modes.V[n + np.asarray(dofs)].T).real))
+        Vq, Vv = cache.output_rows(dofs)
+        return np.asarray((z @ Vq).real), np.asarray((z @ Vv).real)
 
 

@@ -33,6 +33,7 @@ import cmath
 import hashlib
 import math
 from dataclasses import dataclass
+from functools import cached_property
 from typing import Any
 
 import numpy as np
@@ -91,7 +92,15 @@ def phi_functions(z: ComplexArray, kmax: int) -> ComplexArray:
             fact *= k
     if count:
         zs = z if count == z.size else z[small]
-        out[1:, small] = _series(kmax) @ _powers(zs)
+        powers = _powers(zs)
+        # real coefficients times complex powers as one real product on the interleaved
+        # real and imaginary parts (the same sums; numpy would cast the coefficients to
+        # complex and multiply by zeros)
+        series = (_series(kmax) @ powers.view(float)).view(complex)
+        if count == z.size:
+            out[1:] = series
+        else:
+            out[1:, small] = series
     return out
 
 
@@ -118,11 +127,22 @@ def cexp(z: ComplexArray) -> ComplexArray:
 
 
 def _powers(z: ComplexArray) -> ComplexArray:
-    """``z^m`` for ``m = 0 .. TAYLOR_TERMS - 1`` (TAYLOR_TERMS, len(z)), by products."""
+    """``z^m`` for ``m = 0 .. TAYLOR_TERMS - 1`` (TAYLOR_TERMS, len(z)), by products.
+
+    Blocks of rows by doubling: rows ``b .. 2b - 1`` are rows ``0 .. b - 1`` times
+    ``z^b`` (five products for 17 rows instead of 15 row by row, or ``cumprod``, which
+    numpy runs about three times slower still on complex rows: measured 91 against 36 us
+    for 150 values row by row). Each power is a product of at most five factors, so its
+    relative round-off stays a few units of the last place."""
     rows = np.empty((TAYLOR_TERMS, z.size), dtype=complex)
     rows[0] = 1.0
-    rows[1:] = z[None, :]
-    return np.cumprod(rows, axis=0)
+    rows[1] = z
+    b = 2
+    while b < TAYLOR_TERMS:
+        top = min(2 * b, TAYLOR_TERMS)
+        np.multiply(rows[:top - b], rows[b - 1] * z, out=rows[b:top])
+        b = top
+    return rows
 
 
 def _series(kmax: int) -> FloatArray:
@@ -137,6 +157,8 @@ def _series(kmax: int) -> FloatArray:
 
 
 _SERIES: dict[int, FloatArray] = {}
+_FACTORIALS = np.array([float(math.factorial(m)) for m in range(8)])
+"""``m!`` for the monomial weights of :class:`StepWeights` (``stages <= 6``)."""
 
 
 def lagrange_coefficients(nodes: FloatArray) -> FloatArray:
@@ -224,6 +246,13 @@ class LinearModes:
     @property
     def n(self) -> int:
         return self.V.shape[0] // 2
+
+    @cached_property
+    def shifts(self) -> ComplexArray:
+        """``lambda``, ``lambda - i W`` and ``lambda + i W`` (3, N): the arguments of the
+        ``phi`` functions of the modes and of the two halves of the harmonic load."""
+        return np.stack([self.lam, self.lam - 1j * self.frequency,
+                         self.lam + 1j * self.frequency])
 
     @classmethod
     def build(cls, M: Any, K: Any, D: Any, dofs: IntArray, K0: FloatArray, C0: FloatArray,
@@ -372,22 +401,23 @@ class StepWeights:
         """Weights at the fractions ``x`` for the basis coefficients ``L`` (p_basis, m)."""
         lam, w = modes.lam, modes.frequency
         degree = L.shape[1]
-        tau = np.asarray(x, dtype=float)[:, None] * h  # (p, 1)
+        x = np.asarray(x, dtype=float)
+        tau = x[:, None] * h  # (p, 1)
         p, N = tau.size, lam.size
         # with phi_1 of (lam -+ iW) tau, the two halves of the harmonic load (one call)
-        every = phi_functions(np.stack([lam[None, :] * tau, (lam[None, :] - 1j * w) * tau,
-                                        (lam[None, :] + 1j * w) * tau]).ravel(), degree)
+        every = phi_functions((modes.shifts[:, None, :] * tau[None]).ravel(), degree)
         every = every.reshape(degree + 1, 3, p, N)
         phis, shifted = every[:, 0], every[1, 1:]
         E = phis[0]
         const = tau * phis[1] * modes.b_const[None, :]
-        turn = cexp(1j * w * tau)
+        # e^{iW tau} of the p fractions (a few numbers: cmath is cheaper than an array call)
+        turn = np.array([cmath.exp(1j * w * t) for t in tau[:, 0].tolist()])[:, None]
         plus = turn * tau * shifted[0] * modes.b_plus[None, :]
         minus = np.conj(turn) * tau * shifted[1] * modes.b_minus[None, :]
         # int_0^tau e^{lam (tau - s)} (s/h)^m ds = m! tau^{m+1} h^-m phi_{m+1}(lam tau)
-        scale = np.array([math.factorial(m) / h ** m for m in range(degree)])
-        powers = tau[:, :, None] ** (np.arange(degree) + 1)[None, None, :]  # (p, 1, m)
-        mono = (scale[None, :, None] * powers.transpose(0, 2, 1)) * phis[1:].transpose(
-            1, 0, 2)  # (p, m, N)
+        # = m! h x^{m+1} phi_{m+1}(lam tau)
+        m = np.arange(degree)
+        coef = h * _FACTORIALS[:degree] * x[:, None] ** (m + 1)  # (p, m)
+        mono = coef[:, :, None] * phis[1:].transpose(1, 0, 2)  # (p, m, N)
         W = np.matmul(L[None, :, :], mono)  # (p, j, N)
         return cls(E, const, plus, minus, W, mono)

@@ -12,11 +12,13 @@ section 2.3; E. Hairer, G. Wanner, *Solving Ordinary Differential Equations II*,
 from __future__ import annotations
 
 import cmath
+import functools
 import math
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
+import scipy.linalg.lapack as lapack
 
 from rotorsim.errors import ModelError
 from rotorsim.time_integration.base import Counters, FloatArray, State
@@ -33,8 +35,10 @@ if TYPE_CHECKING:
 
 LADDER = 4
 """Step sizes lie on ``h0 * 2^(j / LADDER)`` (the weights of a few sizes are reused)."""
-CACHED_STEPS = 12
-"""Step sizes whose weights are kept."""
+CACHED_STEPS = 24
+"""Step sizes whose weights are kept, the least recently used evicted first (24 sizes on
+the ladder span a factor 64; at most about 0.3 MB each at the 400 unknowns of
+:data:`~rotorsim.analyses.transient.auto_exponential.EXPONENTIAL_LIMIT`)."""
 NEWTON_KAPPA = 0.03
 """Newton stops when its correction of the bearing displacements is below this fraction of
 the local tolerance."""
@@ -50,6 +54,21 @@ def lobatto_nodes(s: int) -> FloatArray:
     """
     inner = np.polynomial.legendre.Legendre.basis(s).deriv().roots()
     return np.concatenate([[0.0], np.sort((inner.real + 1.0) / 2.0), [1.0]])
+
+
+@functools.lru_cache(maxsize=8)
+def _node_tables(s: int) -> tuple[FloatArray, FloatArray, FloatArray]:
+    """The nodes, the monomial coefficients ``L`` of their Lagrange basis and those of the
+    error interpolant (``L`` minus the basis through the stage nodes only), computed once
+    per ``s`` (read-only: every run shares them)."""
+    nodes = lobatto_nodes(s)
+    L = lagrange_coefficients(nodes)
+    low = np.zeros_like(L)
+    low[1:, :s] = lagrange_coefficients(nodes[1:])
+    out = (nodes, L, L - low)
+    for a in out:
+        a.setflags(write=False)
+    return out
 
 
 def meta(history: FloatArray, stages: int) -> FloatArray:
@@ -87,9 +106,12 @@ class StepCache:
     error_map: Any = None
     """Displacement error per unit modal error ``dz``: ``V[:n]``, or ``T V[:n]``."""
     ops: dict[float, StepOps] = field(default_factory=dict)
+    rows: Any = None
+    """The key and the rows of :meth:`output_rows` last asked for."""
     at_bearings: tuple[Any, ...] = ()
     """``V`` on the bearing displacements and velocities (transposed), the weights of the
-    stage displacements and the identity of the Newton matrix."""
+    stage displacements, the identity of the Newton matrix and ``V`` on the bearing
+    displacements and velocities (2 k, N)."""
 
     @classmethod
     def build(cls, method: Exponential, problem: SecondOrderProblem, q: FloatArray,
@@ -115,22 +137,20 @@ class StepCache:
                                   np.asarray(dofs, dtype=np.int64), K0[0], C0[0],
                                   method.load, where)
         s = method.stages
-        nodes = lobatto_nodes(s)
-        L = lagrange_coefficients(nodes)
-        low = np.zeros_like(L)
-        low[1:, :s] = lagrange_coefficients(nodes[1:])
+        nodes, L, L_error = _node_tables(s)
         weights = None if method.weights is None else np.asarray(method.weights)
         own = MotionScale.of(weights, q, method.motion)
         k = modes.dofs.size
         at = (np.ascontiguousarray(modes.V[modes.dofs].T),
               np.ascontiguousarray(modes.V[n + modes.dofs].T),
-              np.tile(own.weights[modes.dofs], s), np.eye(s * k))
+              np.tile(own.weights[modes.dofs], s), np.eye(s * k),
+              np.ascontiguousarray(modes.V[np.concatenate([modes.dofs, n + modes.dofs])]))
         T = _basis(method, n)
         scales = own if T is None else MotionScale.of(
             None if method.basis_weights is None else np.asarray(method.basis_weights),
             T @ q, method.motion)
         emap = modes.V[:n] if T is None else T @ modes.V[:n]
-        return cls(method, problem, modes, scales, h0, nodes, L, L - low, D, T,
+        return cls(method, problem, modes, scales, h0, nodes, L, L_error, D, T,
                    error_map=np.ascontiguousarray(emap), at_bearings=at)
 
     def moved(self, q: FloatArray, q0: FloatArray) -> FloatArray:
@@ -171,22 +191,43 @@ class StepCache:
         return flat[:N] + 1j * flat[N:2 * N]
 
     def step_ops(self, h: float) -> StepOps:
-        found = self.ops.get(h)
+        """The weights of the step size ``h`` (kept for the :data:`CACHED_STEPS` sizes
+        used last)."""
+        found = self.ops.pop(h, None)
         if found is not None:
+            self.ops[h] = found  # most recently used last: the first is evicted
             return found
         m = self.modes
-        n = m.n
         w = StepWeights.of(m, h, self.nodes[1:], self.L)
-        Cq, Cv = m.V[m.dofs], m.V[n + m.dofs]
         s, k = self.nodes.size - 1, m.dofs.size
-        # block (i, j) = Re(C diag(W_ij) Bp): stage i's bearing motion per unit rho_j
-        blocks = [np.matmul(C[None, None, :, :] * w.W[:, 1:, None, :], m.Bp).real
-                  .transpose(0, 2, 1, 3).reshape(s * k, s * k) for C in (Cq, Cv)]
+        # block (i, j) = Re(C diag(W_ij) Bp): stage i's bearing motion (C: the rows of V
+        # on the bearing displacements, then velocities) per unit rho_j; one product
+        # W_ij Bp shared by both
+        B = np.matmul(self.bearing_rows, w.W[:, 1:, :, None] * m.Bp[None, None]).real
+        Hq, Hv = (B[:, :, rows].transpose(0, 2, 1, 3).reshape(s * k, s * k)
+                  for rows in (slice(0, k), slice(k, 2 * k)))
         D = self.L_error @ w.mono[-1]  # the error weights at the end node (c_s = 1)
         if len(self.ops) >= CACHED_STEPS:
             self.ops.pop(next(iter(self.ops)))
-        self.ops[h] = StepOps(w, blocks[0], blocks[1], D)
+        self.ops[h] = StepOps(w, Hq, Hv, D)
         return self.ops[h]
+
+    @property
+    def bearing_rows(self) -> Any:
+        """``V`` on the bearing displacements, then velocities (2 k, N)."""
+        return self.at_bearings[4]
+
+    def output_rows(self, dofs: Any) -> tuple[Any, Any]:
+        """``V`` on the displacements and velocities of ``dofs``, transposed (N, m) each:
+        kept for the last ``dofs`` asked (the recorder asks for the same ones at every
+        sample; gathering them cost two copies of ``m x N`` per sample)."""
+        key = np.asarray(dofs, dtype=np.int64).tobytes()
+        if self.rows is None or self.rows[0] != key:
+            at = np.asarray(dofs, dtype=np.int64)
+            V, n = self.modes.V, self.modes.n
+            self.rows = (key, np.ascontiguousarray(V[at].T),
+                         np.ascontiguousarray(V[n + at].T))
+        return self.rows[1], self.rows[2]
 
     def rho_at(self, q: FloatArray, v: FloatArray, t: float) -> tuple[FloatArray, FloatArray]:
         """``rho`` and ``r`` on the nonlinear DOFs at one point."""
@@ -277,19 +318,20 @@ class Attempt:
             self.count["residual_evaluations"] += 1
             self.count["iterations"] += 1
             self.count["solves"] += 1
-            R = rho - ((Q[:, modes.dofs] @ K0.T + Vel[:, modes.dofs] @ C0.T) - r).ravel()
+            R = rho - ((qb.reshape(S, k) @ K0.T + vb.reshape(S, k) @ C0.T) - r).ravel()
             J = eye - (np.matmul(K0[None] - Kt, ops.Hq.reshape(S, k, S * k)) +
                        np.matmul(C0[None] - Ct, ops.Hv.reshape(S, k, S * k))
                        ).reshape(S * k, S * k)
-            if not np.all(np.isfinite(R)):
+            if not np.isfinite(R).all():
                 return None
-            try:
-                d = -np.linalg.solve(J, R)
-            except np.linalg.LinAlgError:
+            # LAPACK directly: numpy's solve costs about 30 us of checks and error-state
+            # handling per call at this size (36 unknowns), several times the solve
+            _, _, d, info = lapack.dgesv(J, -R, overwrite_a=True, overwrite_b=True)
+            if info != 0:  # a zero pivot: the Newton matrix is singular
                 return None
             rho = rho + d
             dq = ops.Hq @ d
-            norm = float(np.max(wb * np.abs(dq))) / tol
+            norm = float((wb * np.abs(dq)).max()) / tol
             # remaining error predicted from the contraction (Hairer & Wanner IV.8, 8.10)
             # the first iteration uses the contraction of the last step's final one
             rate = norm / old_norm if it > 0 else theta
@@ -322,14 +364,15 @@ class Attempt:
         n = modes.n
         ops = cache.step_ops(self.h)
         all_rho = np.concatenate([rho0[None, :], rho])
-        z_end = base[-1] + np.sum(ops.weights.W[-1, 1:] * (rho @ modes.Bp.T), axis=0)
+        loads = all_rho @ modes.Bp.T  # modal loads of rho at the nodes (s + 1, N)
+        z_end = base[-1] + (ops.weights.W[-1, 1:] * loads[1:]).sum(axis=0)
         y = (modes.V @ z_end).real
         q, v = y[:n], y[n:]
         force = cache.net_force(q, v, r, self.s.t + self.h)
-        dz = np.sum(ops.D * (all_rho @ modes.Bp.T), axis=0)
+        dz = (ops.D * loads).sum(axis=0)
         eq = (cache.error_map @ dz).real
         sc = cache.scales
         peak = np.maximum(self.s.peak, cache.moved(q, self.s.history[-2]))
         scale = sc.scale(peak)
-        err = float(np.max(sc.weights * np.abs(eq))) / (self.m.local_tol * scale)
+        err = float((sc.weights * np.abs(eq)).max()) / (self.m.local_tol * scale)
         return q, v, all_rho, force, z_end, peak, err

@@ -83,6 +83,27 @@ def test_phi_functions_match_their_integrals():
             assert abs(P[k, i] - exact) <= 1e-12 * abs(exact)
 
 
+@pytest.mark.parametrize("spread", [0.9, 3.0])  # all in the Taylor region / mixed
+def test_phi_functions_match_a_long_double_reference(spread):
+    # the Taylor part (powers by doubling blocks, the sums as one real product) and the
+    # recurrence against the same formulas in 80-bit arithmetic (numpy longdouble): the
+    # series terms are positive multiples of z^m with at most five rounded factors each and
+    # the recurrence, used at |z| >= 1, loses at most k / |z| of a digit per level, so
+    # 1e-14 relative is about 50 units of the last place and leaves room for any libm
+    rng = np.random.default_rng(7)
+    z = spread * (rng.uniform(-1, 1, 400) + 1j * rng.uniform(-1, 1, 400)) / math.sqrt(2)
+    P = phi_functions(z, 4)
+    zl = z.astype(np.clongdouble)
+    small = np.abs(z) < 1.0
+    ref = [np.exp(zl)]
+    for k in range(1, 5):
+        series = sum(zl ** m / factorial(m + k) for m in range(40))
+        recurrence = (ref[-1] - np.longdouble(1) / factorial(k - 1)) / zl
+        ref.append(np.where(small, series, recurrence))
+    for k in range(5):
+        assert np.max(np.abs(P[k] - ref[k]) / np.abs(ref[k])) <= 1e-14
+
+
 def test_lobatto_nodes_are_the_roots_of_p_prime():
     x = lobatto_nodes(3)
     assert np.allclose(x, [0.0, (1 - 1 / math.sqrt(5)) / 2, (1 + 1 / math.sqrt(5)) / 2, 1.0],

@@ -61,8 +61,11 @@ def harmonic_load(problem: SecondOrderProblem, loads: TransientLoads, profile: B
     load = HarmonicLoad(constant, amplitude, W)
     for t in times:
         f = problem.external(float(t))
-        if not np.allclose(load(float(t)), f, rtol=1e-9,
-                           atol=1e-12 * max(float(np.max(np.abs(f))), 1e-300)):
+        size = np.abs(f)
+        # numpy's allclose test (|a - f| <= atol + rtol |f|, NaN failing), without its
+        # wrapper's cost (about 20 us a call, ten calls per run)
+        if not (np.abs(load(float(t)) - f) <= 1e-12 * max(float(size.max()), 1e-300)
+                + 1e-9 * size).all():
             return None
     return load
 

@@ -98,7 +98,7 @@ def auto_reduction(system: RotorSystem, problem: SecondOrderProblem, loads: Tran
         return problem, None, {"reduced": False, "reason": reason}
     assert weights is not None and motion
     n, boundary, inner = split_dofs(system)
-    K_ii, M_ii, S = _interior(system, loads, inner, speeds)
+    K_ii, M_ii, S, _ = _interior(system, loads, inner, speeds)
     largest = min(MAX_MODES, int(MAX_FRACTION * n) - boundary.size - 4, inner.size)
     if largest < MODE_COUNTS[0]:
         return problem, None, {"reduced": False, "reason": "too few interior DOFs"}
@@ -161,9 +161,10 @@ def _ineligible(system: RotorSystem, problem: SecondOrderProblem, loads: Transie
 
 
 def _interior(system: RotorSystem, loads: TransientLoads, inner: np.ndarray,
-              speeds: tuple[float, float]) -> tuple[Any, Any, FloatArray]:
-    """``K_ii``, ``M_ii`` and the interior static responses (n_i, 2) to both phases of the
-    unbalance load at the top speed."""
+              speeds: tuple[float, float]) -> tuple[Any, Any, FloatArray, Any]:
+    """``K_ii``, ``M_ii``, the interior static responses (n_i, 2) to both phases of the
+    unbalance load at the top speed and the factorisation of ``K_ii`` (which
+    :func:`~rotorsim.assembly.reduction.craig_bampton` can reuse)."""
     mats = system.matrices(speeds[0])
     K, M = sp.csr_matrix(mats.K), sp.csr_matrix(mats.M)
     K_ii, M_ii = K[inner][:, inner].tocsc(), M[inner][:, inner].tocsc()
@@ -172,4 +173,4 @@ def _interior(system: RotorSystem, loads: TransientLoads, inner: np.ndarray,
     f = (np.asarray(ratio * speeds[1]) ** 2 * loads.unbalance)[inner]
     lu = factorize(K_ii, where="transient: reduction estimate")
     S = np.asarray(lu.solve(np.column_stack([f.real, f.imag]))).reshape(inner.size, 2)
-    return K_ii, M_ii, S
+    return K_ii, M_ii, S, lu

@@ -28,11 +28,13 @@ from rotorsim.time_integration.problem import SecondOrderProblem
 def reduce_problem(system: RotorSystem, problem: SecondOrderProblem, loads: TransientLoads,
                    num_modes: int, speed: float,
                    modes: tuple[FloatArray, FloatArray] | None = None,
-                   check: bool = True
+                   check: bool = True, interior: tuple[Any, Any, Any] | None = None
                    ) -> tuple[SecondOrderProblem, ReducedBasis, dict[str, Any]]:
     """The reduced problem, its basis and the accuracy report (``modes``: the
     fixed-interface modes when already computed; ``check`` False leaves out the frequency
-    check, for a caller that checks the basis otherwise)."""
+    check, for a caller that checks the basis otherwise; ``interior``: ``K_ii``, ``M_ii``
+    and the factorisation of ``K_ii`` when already computed, as for
+    :func:`~rotorsim.assembly.reduction.craig_bampton`)."""
     nl = system.nonlinear
     if nl is None or not isinstance(problem.restoring, RestoringForce):
         raise ModelError("reduction keeps the nonlinear DOFs physical: the model has none",
@@ -44,7 +46,7 @@ def reduce_problem(system: RotorSystem, problem: SecondOrderProblem, loads: Tran
         shapes.append(loads.base)
     basis = craig_bampton(system, nl.dofs, num_modes,
                           static_loads=[s for s in shapes if np.any(s)], speed=speed,
-                          modes=modes)
+                          modes=modes, interior=interior)
     freq = accuracy(system, basis, nominal_tangent(system), speed=speed) if check else None
     T = basis.T
     reduced = {name: None if getattr(problem, name) is None else basis.reduce(

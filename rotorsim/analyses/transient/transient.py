@@ -263,7 +263,8 @@ def transient(
         if path.basis is not None and basis is None:
             problem, basis, report = path.problem, path.basis, path.report
             if q0 is not None and v0 is not None:
-                q0, v0 = basis.project(q0), basis.project(v0)
+                # one least-squares solve for both (its SVD of T is most of the cost)
+                q0, v0 = basis.project(np.column_stack([q0, v0])).T
     identity = model_identity(system, full)
     resumed = None if previous is None else cont.start_state(previous, identity, problem,
                                                             stepper, dt, basis)

@@ -109,7 +109,7 @@ def test_the_estimate_is_the_static_share_of_the_dropped_modes():
     _, loads = rotor_problem(system, profile, 0.0, rs.Excitation(unbalance=UNBALANCE))
     assert system.nonlinear is not None
     inner = np.setdiff1d(np.arange(system.n_free), system.nonlinear.dofs)
-    K_ii, M_ii, S = _interior(system, loads, inner, (SPEED, SPEED))
+    K_ii, M_ii, S, _ = _interior(system, loads, inner, (SPEED, SPEED))
     w2, phi = sl.eigh(K_ii.toarray(), M_ii.toarray())
     f = K_ii @ S  # the interior unbalance loads
     count = 8
