@@ -42,7 +42,7 @@ def _rows(*largest_real_multiplier):
 
 def test_real_multipliers_above_the_circle_are_counted():
     assert real_unstable([1.2, 1.0 + 1e-9, -1.3, 1.1 + 0.2j, 1.1 - 0.2j], TOL) == 1
-    assert real_unstable(NEUTRAL + [0.99], TOL) == 0
+    assert real_unstable([*NEUTRAL, 0.99], TOL) == 0
     assert largest_real([-2.0, 0.5, 1.1 + 0.2j]) == 0.5
     assert largest_real([-2.0, 1.1 + 0.2j]) == 0.0
 
