@@ -178,21 +178,13 @@ def confirmed_events(residual: HBResidual, branch: Branch, model: StabilityModel
     floquet = multipliers if model is not None and multipliers.size else None
     tol = model.tol if model is not None else 0.0
     found = candidates(branch, floquet, tol)
-    checks = {"sampling": SamplingCheck(residual, branch, model)}
-    reasons = {}
-    for c in found:        # the cheap check on the branch's own multipliers first
-        if c.kind != "branch_point":
-            reasons[c] = checks["sampling"].confirms(c, floquet)
-            continue
-        reasons[c] = "" if floquet is None else missing_crossing(c, floquet, tol)
-        if not reasons[c]:      # more samples and more harmonics at once
-            if "harmonics" not in checks:
-                checks["harmonics"] = SamplingCheck(residual, branch, model, harmonics=(
-                    math.ceil(MORE_HARMONICS * residual.harmonics)), max_iter=HARMONIC_ITER)
-            reasons[c] = checks["harmonics"].confirms(c, floquet)
-    if floquet is not None:
-        reasons.update(window_partners(found, reasons, floquet, tol))
-    keep = {(c.kind, c.i, c.j) for c, r in reasons.items() if not r}
+    own, checks = _checked(residual, branch, model, floquet, found)
+
+    def windows() -> dict[Any, str]:   # from each edge's own verdict: no chains
+        return {} if floquet is None else window_partners(found, own, floquet, tol)
+
+    window = windows()
+    keep = {(c.kind, c.i, c.j) for c in found if not (own[c] or window.get(c))}
     events = list(detect_bifurcations(fun, branch, options=BifurcationOptions(
         kinds=("fold", "branch_point"), relative_tol=RELATIVE_TOL, screen_jumps=True),
         pairs=keep)) \
@@ -204,9 +196,9 @@ def confirmed_events(residual: HBResidual, branch: Branch, model: StabilityModel
     for e in events:
         c = Candidate(e.kind, e.index, e.next_index)
         located[c] = e
-        reasons[c] = "" if e.kind == "fold" else _irregular(e)
-    if floquet is not None:    # a window whose edge turned out irregular is not resolved
-        reasons.update(window_partners(found, reasons, floquet, tol))
+        own[c] = "" if e.kind == "fold" else _irregular(e)
+    window = windows()       # a window whose edge turned out irregular is not resolved
+    reasons = {c: own[c] or window.get(c, "") for c in own}
     artefacts = [_artefact(branch, c, r) for c, r in reasons.items() if r]
     regular = [e for c, e in located.items() if not reasons[c]]
     stats = {"candidates": float(len(found)), "confirmed": float(len(regular)),
@@ -214,6 +206,28 @@ def confirmed_events(residual: HBResidual, branch: Branch, model: StabilityModel
                  k.stats.residual_evaluations for k in checks.values()))}
     return Review(tuple(sorted(regular, key=lambda e: (e.index, float(e.lam)))),
                   merged(artefacts), stats)
+
+
+def _checked(residual: HBResidual, branch: Branch, model: StabilityModel | None,
+             floquet: np.ndarray | None, found: list[Candidate]
+             ) -> tuple[dict[Any, str], dict[str, SamplingCheck]]:
+    """Each candidate's own verdict ("" or the reason) and the checks used: a branch point
+    on the branch's multipliers first (free), then with more harmonics and samples; the
+    other kinds with more samples."""
+    checks = {"sampling": SamplingCheck(residual, branch, model)}
+    tol = model.tol if model is not None else 0.0
+    own: dict[Any, str] = {}
+    for c in found:
+        if c.kind != "branch_point":
+            own[c] = checks["sampling"].confirms(c, floquet)
+            continue
+        own[c] = "" if floquet is None else missing_crossing(c, floquet, tol)
+        if not own[c]:
+            if "harmonics" not in checks:
+                checks["harmonics"] = SamplingCheck(residual, branch, model, harmonics=(
+                    math.ceil(MORE_HARMONICS * residual.harmonics)), max_iter=HARMONIC_ITER)
+            own[c] = checks["harmonics"].confirms(c, floquet)
+    return own, checks
 
 
 def merged(artefacts: list[Artefact]) -> tuple[Artefact, ...]:
