@@ -196,8 +196,12 @@ class SamplingCheck:
             e_lam[-1] = 1.0
             corr = correct(self.system, y0, e_lam, float(y0[-1]), self.corrector,
                            self.stats, hold_parameter=True)
-        if corr is None or not corr.converged or corr.evaluation is None:
-            # on the hyperplane through the point normal to its tangent: well posed at folds
+        if corr is None or (self.harmonics is None and not (
+                corr.converged and corr.evaluation is not None)):
+            # on the hyperplane through the point normal to its tangent: well posed at
+            # folds. (With more harmonics a point whose correction at its own speed, well
+            # posed away from folds, fails is not tried again: an orbit the finer
+            # truncation does not reproduce there is not resolved.)
             corr = correct(self.system, y0, border, float(border @ y0), self.corrector,
                            self.stats)
         if not corr.converged or corr.evaluation is None:
