@@ -59,6 +59,7 @@ from rotorsim.analyses.periodic.events import floquet_events, unstable_counts
 from rotorsim.analyses.periodic.refined import HARMONIC_ITER, SamplingCheck
 from rotorsim.analyses.periodic.stability import StabilityModel
 from rotorsim.elements.base import FloatArray
+from rotorsim.errors import ModelError
 from rotorsim.harmonic_balance.bifurcation import (
     BifurcationEvent,
     BifurcationOptions,
@@ -224,10 +225,20 @@ def _checked(residual: HBResidual, branch: Branch, model: StabilityModel | None,
         own[c] = "" if floquet is None else missing_crossing(c, floquet, tol)
         if not own[c]:
             if "harmonics" not in checks:
-                checks["harmonics"] = SamplingCheck(residual, branch, model, harmonics=(
-                    math.ceil(MORE_HARMONICS * residual.harmonics)), max_iter=HARMONIC_ITER)
+                checks["harmonics"] = _harmonic_check(residual, branch, model, checks)
             own[c] = checks["harmonics"].confirms(c, floquet)
     return own, checks
+
+
+def _harmonic_check(residual: HBResidual, branch: Branch, model: StabilityModel | None,
+                    checks: dict[str, SamplingCheck]) -> SamplingCheck:
+    """The finer discretisation with more harmonics, or the sampling check alone where
+    the larger problem cannot be built (Hill's pencil beyond the memory limit)."""
+    try:
+        return SamplingCheck(residual, branch, model, harmonics=math.ceil(
+            MORE_HARMONICS * residual.harmonics), max_iter=HARMONIC_ITER)
+    except ModelError:
+        return checks["sampling"]
 
 
 def merged(artefacts: list[Artefact]) -> tuple[Artefact, ...]:

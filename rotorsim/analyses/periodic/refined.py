@@ -85,7 +85,8 @@ class _FinePoint:
 
 @dataclass
 class SamplingCheck:
-    """Re-evaluates branch points on a grid of ``REFINE`` times the samples.
+    """Re-evaluates points of a branch on a grid of ``REFINE`` times the samples, and with
+    ``harmonics`` harmonics when given (module docstring).
 
     Parameters
     ----------
