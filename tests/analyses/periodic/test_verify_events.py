@@ -13,8 +13,9 @@ of the full model next to them (``rotorsim/verification/periodic_events.py``,
   rotor grows at its exact multiplier; each rule of the side verdict can fail.
 - The clearance rotor of issue 16 (``models/clearance_rotor.toml``): every event gets a
   verdict with its numbers from a short run along its critical Floquet mode on each side.
-  The folds and the axial pitchforks are confirmed; five other events are not (the strict
-  xfail below says which and why; docs/validation.md case 26 has the numbers).
+  The branch reports the two folds and the two axial pitchforks, and all four are
+  confirmed; the five events it used to report, which the integration did not confirm, are
+  unresolved with their reasons (docs/validation.md case 26 has the numbers).
 """
 
 from __future__ import annotations
@@ -242,8 +243,9 @@ def test_bad_input_raises_model_errors(linear_branches):
 def clearance():
     """The branch over the resonance region only (300 -> 360 rad/s: the events of the
     whole 100 -> 400 branch lie in 339-354 rad/s), and every event checked along its
-    critical Floquet mode with short runs: 2 x 6 free periods per side (36-40 s of CPU
-    time for the 14 sides, the branch about 18 s)."""
+    critical Floquet mode with short runs: 2 x 6 free periods per side (8 sides for the 4
+    events the branch reports; the fixture took 46 s on the shared machine, the branch
+    about 20 s of it)."""
     model = rs.load_model(MODEL)
     branch = rs.periodic(model, start=300.0, stop=360.0, harmonics=8,
                          unbalance=[(10, 1e-4, 0.0)], nodes=None)
@@ -301,16 +303,45 @@ def test_the_folds_and_the_axial_pitchforks_are_confirmed_along_their_critical_m
         assert abs(stable.measured) < 1.0
 
 
-@pytest.mark.xfail(strict=True, reason=(
-    "issue 16 finding (docs/validation.md case 26, addendum 'the critical Floquet mode'): "
-    "along their critical Floquet modes the two folds and the two axial pitchforks are "
-    "confirmed, five events are not: the Neimark-Sacker point at 339.26 rad/s and the "
-    "branch point at 341.06 rad/s show no Floquet crossing of 1 + margin next to them "
-    "(max |mu| 1.0009 -> 1.0000 and 1.0000 -> 1.0000); at the branch points at 342.13, "
-    "342.33 and 344.27 rad/s, next to the contact onsets where the H = 8 orbit is off by "
-    "~20 % at the journals, the free transients contradict the Floquet multipliers of "
-    "the harmonic-balance orbit (real 1.05, 1.08, 1.05 measured 0.36, -0.06, 0.78; a stable "
-    "0.68 measured 1.17)"))
 def test_every_event_of_the_clearance_rotor_is_confirmed(clearance):
-    _, verified = clearance
+    """Issue 16: every event the branch reports is confirmed by time integration next to
+    it. The branch reports only resolved events (``rotorsim/analyses/periodic/
+    crossings.py``): the two folds and the two axial pitchforks."""
+    branch, verified = clearance
+    assert [b.kind for b in branch.bifurcations] == ["fold", "fold", "branch_point",
+                                                     "branch_point"]
     assert verified.all_confirmed, verified.summary()
+
+
+def _reasons_at(branch, kind, speed):
+    """Reasons of the unresolved records of ``kind`` whose interval holds ``speed``."""
+    out = []
+    for u in branch.unresolved:
+        head, _, why = u.method.partition(": ")
+        lo, hi = (float(v) for v in head.removeprefix("unresolved between ").split(" and "))
+        if u.kind == kind and lo <= speed <= hi:
+            out.append(why)
+    return out
+
+
+def test_the_clearance_rotors_unresolved_crossings_say_why(clearance):
+    """The five events the branch used to report and time integration did not confirm
+    (docs/validation.md case 26) are unresolved now, each with its reason:
+
+    - branch points at 341.06, 342.13 and 344.27 rad/s: the determinant changes sign but no
+      real multiplier of the branch's Floquet model passes ``1 + tol`` next to them
+      (largest real multipliers ~0, 0.84 -> ~0, 0.97 -> ~0);
+    - the branch point at 342.33 rad/s: its bracket orbits on the upper sheet next to the
+      contact onset do not persist with 12 instead of 8 harmonics (nor does shooting
+      converge to a periodic orbit there);
+    - the Neimark-Sacker point at 339.26 rad/s: the other edge of a one-point unstable
+      window (``|mu| = 1.0009``) whose first edge crosses zero 556 times more steeply than
+      between its points.
+    """
+    branch, _ = clearance
+    for speed in (341.06, 342.13, 344.27):
+        assert any("no real Floquet multiplier crosses" in why
+                   for why in _reasons_at(branch, "branch_point", speed)), speed
+    assert any("does not converge with 12 harmonics" in why
+               for why in _reasons_at(branch, "branch_point", 342.33))
+    assert any("steeply" in why for why in _reasons_at(branch, "neimark_sacker", 339.26))
