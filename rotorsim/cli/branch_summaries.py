@@ -40,6 +40,10 @@ def quasi_periodic_summary(result: Any, units: str = "rpm") -> str:
         lines.append(f"stable tori: {int(result.stable.sum())} of {len(result)} (largest "
                      f"exponent {np.nanmax(result.exponents):.4g} 1/s; "
                      f"{result.stability_method})")
+        checked = getattr(result, "exponents_checked", None)
+        if checked is not None and not np.all(checked):
+            lines.append(f"stability box grown at {int(np.sum(checked))} of {len(result)} "
+                         "tori (the others: box (1, 1), converged between checked tori)")
         if not result.exponents_converged.all():
             lines.append(f"exponents not converged in the stability box at "
                          f"{int((~result.exponents_converged).sum())} points")

@@ -112,6 +112,11 @@ class QuasiPeriodicResult(KeptDofs):
     stability_tol : float
         A torus is stable when its growth per shaft revolution ``exponent 2 pi / W`` is
         below this (an undamped mode's exponent is zero to round-off).
+    exponents_checked : bool array (P,) or None
+        The stability box was grown at this torus. False: its exponents are those of the
+        box (1, 1), their convergence taken from the checked tori on both sides
+        (:func:`~rotorsim.analyses.quasiperiodic.branch_stability.branch_stability`).
+        None when not recorded.
     held_dofs, dof_map, nodes_pos, options, stats, status, reason, summary
         As :class:`~rotorsim.results.periodic.PeriodicResult`.
     """
@@ -136,6 +141,7 @@ class QuasiPeriodicResult(KeptDofs):
     second: str = "vc"
     approximation: str = ""
     stability_tol: float = 1e-5
+    exponents_checked: NDArray[np.bool_] | None = None
     options: dict[str, Any] = field(default_factory=dict)
     stats: dict[str, float] = field(default_factory=dict)
     status: Status = Status.OK

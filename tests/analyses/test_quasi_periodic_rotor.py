@@ -228,6 +228,9 @@ def test_a_fold_of_tori_is_reported_with_its_evidence() -> None:
     assert abs(event.index - turn) <= 1 and event.character == "fold"
     low, high = event.exponents
     assert low < 0 < high and not res.stable[event.index + 1]
+    # both tori of a change of stability get the stability box grown (branch_stability)
+    assert res.exponents_checked is not None
+    assert res.exponents_checked[event.index] and res.exponents_checked[event.index + 1]
     assert event.lyapunov > 0 and event.lyapunov == pytest.approx(high, rel=0.5)
     # what the motion is there (50 revolutions of rs.transient): chaotic, as a run of 200
     # revolutions and the separation of two trajectories confirm (docs/validation.md case 36,

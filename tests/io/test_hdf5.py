@@ -250,7 +250,8 @@ def _torus_results() -> dict[str, Any]:
         exponents_converged=np.array([True, True, False]), stability_method="hill",
         events=(event,), iterations=np.array([0, 3, 4]), residuals=rng.random(3) * 1e-10,
         held_dofs=np.array([5]), dof_map=DofMap(3), nodes_pos=np.array([0.0, 0.1, 0.2]),
-        options={"box": [6, 2]}, stats={"points": 3.0}, reason="")
+        options={"box": [6, 2]}, stats={"points": 3.0}, reason="",
+        exponents_checked=np.array([True, False, True]))
     return {"quasi_periodic": tori, "torus_event": event, "torus_motion": motion,
             "torus_event_without_motion": dataclasses.replace(event, motion=None)}
 

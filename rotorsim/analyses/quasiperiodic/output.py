@@ -133,6 +133,8 @@ def quasi_periodic_result(branch: Any, nodes: Sequence[int] | None, options: dic
         stability_method="hill" if np.isfinite(branch.exponents).any() else "none",
         events=with_evidence(stability_events(speed, branch.exponents, freq), branch),
         stability_tol=STABILITY_TOL,
+        exponents_checked=np.array([s is not None and s.checked for s in branch.stability],
+                                   dtype=bool),
         iterations=np.array([p.solution.iterations for p in branch.points], dtype=np.int64),
         residuals=np.array([p.solution.residual for p in branch.points]),
         held_dofs=system.dof_map.free[held].astype(np.int64), dof_map=system.dof_map,
