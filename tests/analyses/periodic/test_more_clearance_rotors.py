@@ -87,9 +87,9 @@ def test_the_damped_rotors_peak_and_parametric_resonance_sit_where_the_linear_ro
     axial mode: 344.0 rad/s in the window 340.9-347.1 rad/s)."""
     model, branch, _ = damped
     linear = rs.modal(model.linearized().rotor, speed=280.0, num_modes=6)
-    forward = [w for w, k, s in zip(linear.wn, linear.kind, linear.whirl)
-               if k == "lateral" and s == "forward"][0]
-    axial = [w for w, k in zip(linear.wn, linear.kind) if k == "axial"][0]
+    forward = next(w for w, k, s in zip(linear.wn, linear.kind, linear.whirl, strict=True)
+                   if k == "lateral" and s == "forward")
+    axial = next(w for w, k in zip(linear.wn, linear.kind, strict=True) if k == "axial")
     (peak,) = [p for p in branch.peaks if p.kind == "max"]
     assert peak.located and abs(peak.parameter / forward - 1.0) < 0.01
     lo, hi = sorted(b.parameter for b in branch.bifurcations)
@@ -173,7 +173,7 @@ def test_the_structural_rotors_resonance_lies_between_its_linear_critical_speeds
     model, branch, _ = structural
     linear = rs.modal(model.linearized().rotor, speed=410.0, num_modes=6)
     lateral: dict[str, float] = {}
-    for w, k, s in zip(linear.wn, linear.kind, linear.whirl):
+    for w, k, s in zip(linear.wn, linear.kind, linear.whirl, strict=True):
         if k == "lateral":
             lateral.setdefault(s, float(w))                 # the lowest of each whirl
     backward, forward = lateral["backward"], lateral["forward"]
