@@ -31,6 +31,28 @@ from rotorsim.verification.event_modes import critical_mode
 MODELS = Path(__file__).resolve().parents[3] / "models"
 
 
+def _passes(branch, stop):
+    """The branch reached ``stop`` with every point converged (within the stall tolerance
+    at contact-onset points) and passed a resonance (20x its first amplitude at the disk)."""
+    assert branch.status == rs.Status.OK and branch.parameter[-1] == stop
+    assert np.all(branch.residuals <= 1e-6)
+    amp = branch.amplitude(10, "uy", "peak_to_peak")
+    assert amp.max() > 20 * amp[0]
+
+
+def _doubling_confirmed(check):
+    """A period doubling confirmed at Floquet's numbers on both sides."""
+    assert check.confirmed, check.reason
+    stable, unstable = sorted((check.before, check.after), key=lambda s: abs(s.mode))
+    assert unstable.mode.imag == 0.0 and unstable.mode.real < -1.01
+    # the integration's rate within 1 % of Floquet's multiplier: both are the same
+    # linearised period map, measured to the scheme's ~1e-5 per period (case 26)
+    assert abs(unstable.measured.real / unstable.mode.real - 1.0) < 0.01
+    # the stable side: the same measurement, at Floquet's modulus (below 1, or 0.9995
+    # next to the structural rotor's doubling at 392.26 rad/s)
+    assert abs(abs(stable.measured) / abs(stable.mode) - 1.0) < 0.01
+
+
 # ------------------------------------------------------------------------ damped rotor
 @pytest.fixture(scope="module")
 def damped():
@@ -49,11 +71,7 @@ def damped():
 
 
 def test_the_damped_rotors_branch_reaches_its_stop(damped):
-    _, branch, _ = damped
-    assert branch.status == rs.Status.OK and branch.parameter[-1] == 360.0
-    assert np.all(branch.residuals <= 1e-6)
-    amp = branch.amplitude(10, "uy", "peak_to_peak")
-    assert amp.max() > 20 * amp[0]                 # a resonance, passed
+    _passes(damped[1], 360.0)
 
 
 def test_every_event_of_the_damped_rotor_is_confirmed(damped):
@@ -66,14 +84,7 @@ def test_every_event_of_the_damped_rotor_is_confirmed(damped):
     assert all(b.located for b in branch.bifurcations)
     assert verified.all_confirmed, verified.summary()
     for check in verified.checks:
-        stable, unstable = sorted((check.before, check.after), key=lambda s: abs(s.mode))
-        assert unstable.mode.imag == 0.0 and unstable.mode.real < -1.01
-        # the integration's rate within 1 % of Floquet's multiplier: both are the same
-        # linearised period map, measured to the scheme's ~1e-5 per period (case 26)
-        assert abs(unstable.measured.real / unstable.mode.real - 1.0) < 0.01
-        # the stable side: the same measurement, at Floquet's modulus (below 1, or at
-        # 0.9995 next to the doubling at 392.26 rad/s)
-        assert abs(abs(stable.measured) / abs(stable.mode) - 1.0) < 0.01
+        _doubling_confirmed(check)
 
 
 def test_the_damped_rotors_peak_and_parametric_resonance_sit_where_the_linear_rotor_puts_them(
@@ -109,11 +120,7 @@ def structural():
 
 
 def test_the_structural_rotors_branch_reaches_its_stop(structural):
-    _, branch, _ = structural
-    assert branch.status == rs.Status.OK and branch.parameter[-1] == 500.0
-    assert np.all(branch.residuals <= 1e-6)
-    amp = branch.amplitude(10, "uy", "peak_to_peak")
-    assert amp.max() > 20 * amp[0]
+    _passes(structural[1], 500.0)
 
 
 def test_the_structural_rotors_period_doublings_are_confirmed(structural):
@@ -124,15 +131,8 @@ def test_the_structural_rotors_period_doublings_are_confirmed(structural):
     assert [b.kind for b in branch.bifurcations] == [
         "period_doubling", "fold", "fold", "period_doubling"]
     for check in verified.checks:
-        if check.event.kind != "period_doubling":
-            continue
-        assert check.confirmed, check.reason
-        stable, unstable = sorted((check.before, check.after), key=lambda s: abs(s.mode))
-        assert unstable.mode.imag == 0.0 and unstable.mode.real < -1.01
-        assert abs(unstable.measured.real / unstable.mode.real - 1.0) < 0.01
-        # the stable side: the same measurement, at Floquet's modulus (below 1, or at
-        # 0.9995 next to the doubling at 392.26 rad/s)
-        assert abs(abs(stable.measured) / abs(stable.mode) - 1.0) < 0.01
+        if check.event.kind == "period_doubling":
+            _doubling_confirmed(check)
 
 
 def test_the_folds_are_followed_along_their_own_multiplier(structural):
