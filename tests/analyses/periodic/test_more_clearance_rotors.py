@@ -10,11 +10,11 @@ transient along the event's critical Floquet mode on each side, docs/validation.
   axial mode is excited parametrically near twice its frequency (a period-doubling pair).
 - ``models/clearance_rotor_structural.toml``: 8 um clearance, a lighter 9.4 kg disk at
   mid-span, half the unbalance, structural damping in the shaft and an axial damper, no
-  contact damping. Its resonance softens (the journals cross the clearance) and turns
+  contact damping. Its resonance, between the backward and forward whirls, turns
   twice inside a stretch made unstable by a period doubling. Both period doublings are
   confirmed; the two folds are not: along the fold's real multiplier above 1 on the middle
-  sheet (1.021 and 1.028) the free transient does not grow (1.008 and 0.991 per period,
-  the same with 10 periods). A strict xfail records it (docs/validation.md case 26,
+  sheet (1.021 and 1.028) the free transient does not grow (1.009 and 0.994 per period;
+  1.008 and 0.991 with 10 periods). A strict xfail records it (docs/validation.md case 26,
   addendum "two more clearance rotors").
 """
 
@@ -91,9 +91,9 @@ def test_the_damped_rotors_peak_and_parametric_resonance_sit_where_the_linear_ro
         damped):
     """Against the rotor with its bearings linearised at the static load (``rs.modal``,
     an eigenvalue problem that shares nothing with harmonic balance but the bearing
-    model): the disk's orbit peaks within 1 % of the first forward critical speed (the 2 um
-    clearance closes at the static load, so the bearings stay near their linearised
-    stiffness; measured 280.05 against 280.51 rad/s), and the period-doubling window
+    model): the disk's orbit peaks within 1 % of the first forward critical speed (the
+    damper keeps the response near the linear one; measured 280.05 against 280.51 rad/s),
+    and the period-doubling window
     brackets twice the axial natural frequency (the principal parametric resonance of the
     axial mode: 344.0 rad/s in the window 340.9-347.1 rad/s)."""
     model, branch, _ = damped
@@ -153,7 +153,8 @@ def test_the_folds_are_followed_along_their_own_multiplier(structural):
 @pytest.mark.xfail(strict=True, reason=(
     "the two folds at 412.21 and 411.90 rad/s are not confirmed: along the fold's real "
     "multiplier on the middle sheet (Floquet 1.021 and 1.028) the free transient does not "
-    "grow (measured 1.008 and 0.991 per period, also with 10 periods); docs/validation.md "
+    "grow (measured 1.009 and 0.994 per period; 1.008 and 0.991 with 10 periods); "
+    "docs/validation.md "
     "case 26, addendum 'two more clearance rotors'"))
 def test_every_event_of_the_structural_rotor_is_confirmed(structural):
     _, _, verified = structural
