@@ -3,7 +3,10 @@
 
 For an event whose sides show a Floquet crossing (:func:`~.periodic_events._sides`), the
 side with more multipliers outside ``1 + margin`` is the unstable one; its mode of largest
-``|mu|`` is the critical mode, and the stable side follows the mode of the same shape
+``|mu|`` among those of the event's kind outside ``1 + margin`` is the critical mode (the
+largest of all when none is of its kind: a fold inside a stretch made unstable by a period
+doubling crosses +1 with a smaller real multiplier than the doubling's, which does not
+change there), and the stable side follows the mode of the same shape
 (:meth:`~.floquet_modes.BranchModes.follow`). Each side is measured by
 :func:`~.mode_growth.mode_growth` and judged by :func:`~.mode_growth.side_verdict`; the event
 also needs the unstable side's multiplier to be of its kind (real positive for a fold or a
@@ -52,8 +55,10 @@ def retried(measure: Any, result: PeriodicResult, point: int, run: dict[str, Any
 def mode_sides(result: PeriodicResult, modes: BranchModes,
                points: tuple[int | None, int | None], crossing: bool, column: int,
                run: dict[str, Any], measured: dict[tuple[int, int], SideCheck],
-               periods_run: list[int]) -> tuple[SideCheck | None, SideCheck | None]:
-    """The sides of one event (module docstring); ``measured`` caches ``(point, mode)``."""
+               periods_run: list[int], kind: str = ""
+               ) -> tuple[SideCheck | None, SideCheck | None]:
+    """The sides of one event of ``kind`` (module docstring); ``measured`` caches
+    ``(point, mode)``."""
     before, after = points
     if before is None or after is None or not crossing:
         return (None if before is None else _unmeasured(result, before, run["margin"]),
@@ -63,7 +68,8 @@ def mode_sides(result: PeriodicResult, modes: BranchModes,
     found = {p: modes.at(p) for p in (before, after)}
     unstable = before if counts[0] > counts[1] else after
     stable = after if unstable == before else before
-    chosen = {unstable: 0, stable: modes.follow(found[unstable], 0, found[stable])}
+    j = critical_mode(found[unstable].multipliers, kind, run["margin"])
+    chosen = {unstable: j, stable: modes.follow(found[unstable], j, found[stable])}
     out = []
     for p in (before, after):
         key = (p, chosen[p])
@@ -72,6 +78,18 @@ def mode_sides(result: PeriodicResult, modes: BranchModes,
                                      periods_run)
         out.append(measured[key])
     return out[0], out[1]
+
+
+def critical_mode(multipliers: np.ndarray, kind: str, margin: float) -> int:
+    """Index of the critical mode among ``multipliers`` (by decreasing modulus) of the
+    unstable side: the first outside ``1 + margin`` of the event's ``kind``, else 0."""
+    wanted = KINDS.get(kind, kind)
+    for j, mu in enumerate(multipliers):
+        if abs(mu) <= 1.0 + margin:
+            break
+        if kind_of(complex(mu)) == wanted:
+            return j
+    return 0
 
 
 def _unmeasured(result: PeriodicResult, point: int, margin: float) -> SideCheck:

@@ -171,7 +171,7 @@ def verify_events(model: Rotor | RotorSystem | Any, result: PeriodicResult, *,
         column = _column(result, number)
         if modes is not None:
             pair = mode_sides(result, modes, (before, after), crossing, column, run,
-                              measured, periods_run)
+                              measured, periods_run, result.bifurcations[number].kind)
             checks.append(_verdict(result, number, pair[0], pair[1], crossing, margin,
                                    modes=True))
             continue
