@@ -187,3 +187,41 @@ def test_the_transient_static_start_runs_with_one_blas_thread(monkeypatch):
     rs.transient(rotor, 0.002, 1e-3, speed=100.0)
     assert seen == [1]
     assert blas_threads() == 2
+
+
+def test_the_hill_exponents_and_the_branch_of_tori_run_with_one_blas_thread(monkeypatch):
+    """The Hill matrices of a torus (378-630 rows on the default model) are small dense
+    eigenproblems: with two BLAS threads next to a busy process, the default model's tori
+    up to 1000 rpm took 59.8 s of exponents instead of 3.4 s (issue 17)."""
+    from pathlib import Path
+
+    from rotorsim.harmonic_balance.quasi import QuasiProblem, TorusAFT, TorusHarmonics, hill
+
+    seen: list[int] = []
+    original = hill.sl.eig
+
+    def recording_eig(*args, **kwargs):
+        seen.append(blas_threads())
+        return original(*args, **kwargs)
+
+    monkeypatch.setattr(hill.sl, "eig", recording_eig)
+
+    def force(q, v, t1, t2):
+        k = 0.1 * (np.cos(t1) + np.cos(t2))
+        return k[:, None] * q, k[:, None, None], None
+
+    pb = QuasiProblem(np.eye(1), 0.2 * np.eye(1), np.eye(1), nl_dofs=np.array([0]),
+                      force=force)
+    aft = TorusAFT(TorusHarmonics.box(2, 2))
+    hill.hill_exponents(pb, np.zeros((aft.harmonics.rows, 1)), aft, 3.1, 7.3)
+    assert seen == [1]
+    sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "validation"))
+    from test_rigid_rotor_vc import textbook
+
+    rotor, _ = textbook()          # the rigid rotor of validation case 36
+    rs.quasi_periodic(rotor, start=800.0, stop=810.0, step=5.0, harmonics=(4, 2),
+                      unbalance=[(0, 2e-6, 0.0)],
+                      excitation=rs.Excitation(gravity=None, loads=[(0, "uy", -50.0)]),
+                      max_points=3, beyond=None)
+    assert len(seen) > 1 and set(seen) == {1}
+    assert blas_threads() == 2

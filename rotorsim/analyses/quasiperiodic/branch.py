@@ -41,6 +41,7 @@ from rotorsim.errors import ModelError, Status
 from rotorsim.harmonic_balance.quasi import QuasiSolution, TorusAFT
 from rotorsim.options import Excitation
 from rotorsim.solvers.continuation import Continuation, continue_branch
+from rotorsim.solvers.threads import one_blas_thread
 
 FloatArray = NDArray[np.float64]
 BEYOND = (40, 60)
@@ -105,6 +106,7 @@ class QuasiPeriodicBranch:
         return len(self.points)
 
 
+@one_blas_thread()   # small dense work throughout: Jacobians, bordered LU, Hill matrices
 def quasi_periodic(model: Any, *, start: float, stop: float, step: float | None = None,
                    unbalance: Sequence[tuple[int, float, float]] = (),
                    harmonics: int | tuple[int, int] = (10, 3), truncation: str = "box",

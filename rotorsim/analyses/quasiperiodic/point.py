@@ -31,6 +31,7 @@ from rotorsim.harmonic_balance.quasi import solve_quasi as solve_torus
 from rotorsim.harmonic_balance.quasi.lyapunov import LyapunovEstimate, largest_lyapunov_exponent
 from rotorsim.options import Excitation
 from rotorsim.solvers.stats import Stats
+from rotorsim.solvers.threads import one_blas_thread
 
 FloatArray = NDArray[np.float64]
 MIN_HOMOTOPY_STEP = 1.0 / 64
@@ -111,6 +112,7 @@ class QuasiPeriodicPoint:
         return out_q, out_v
 
 
+@one_blas_thread()   # small dense work: the Newton iterations on the condensed unknowns
 def quasi_periodic_point(model: Any, speed: float, *,
                          unbalance: Sequence[tuple[int, float, float]] = (),
                          harmonics: int | tuple[int, int] = 8, truncation: str = "diamond",

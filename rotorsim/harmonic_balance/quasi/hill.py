@@ -57,6 +57,7 @@ from rotorsim.errors import ModelError
 from rotorsim.harmonic_balance.quasi.aft import TorusAFT
 from rotorsim.harmonic_balance.quasi.harmonics import TorusHarmonics
 from rotorsim.harmonic_balance.quasi.residual import QuasiProblem
+from rotorsim.solvers.threads import blas_threads_for
 
 FloatArray = NDArray[np.float64]
 ComplexArray = NDArray[np.complex128]
@@ -158,7 +159,8 @@ def hill_exponents(problem: QuasiProblem, X_nl: FloatArray, aft: TorusAFT, w1: f
         raise ModelError(f"the Hill matrix would have {2 * n * rows} rows (> {MAX_ROWS}): "
                          "reduce the model or the box", "hill_exponents")
     A = _hill_matrix(problem, X_nl, aft, stab, w1, w2)
-    lam, vec = sl.eig(A, check_finite=False, overwrite_a=True)
+    with blas_threads_for(A.shape[0]):       # threads only for a large Hill matrix
+        lam, vec = sl.eig(A, check_finite=False, overwrite_a=True)
     return _select(lam, vec, stab.harmonics.k, n)
 
 
