@@ -11,6 +11,8 @@ the CPU column.
 Run: ``OPENBLAS_NUM_THREADS=1 .venv/bin/python benchmarks/bench_quasi_branch.py``.
 
 ``--with-stability``: only the branch with stability, as the first run in its process.
+``--default-threads``: leave the BLAS thread count as the environment has it (by default
+the script sets one thread, as the target says; rotorsim caps its own hot loops anyway).
 ``--compare``: the exponents of the same 190 tori twice in one run, with the box grown at
 every torus and by :func:`~rotorsim.analyses.quasiperiodic.branch_stability.
 branch_stability`'s rules: CPU times, tori checked, the largest difference of the largest
@@ -25,8 +27,9 @@ import time
 from pathlib import Path
 from typing import Any
 
-for _var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
-    os.environ.setdefault(_var, "1")   # one core, as the target says
+if "--default-threads" not in sys.argv[1:]:    # else BLAS keeps its own thread count
+    for _var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
+        os.environ.setdefault(_var, "1")   # one core, as the target says
 
 ROOT = Path(__file__).resolve().parents[1]
 if str(ROOT) not in sys.path:
