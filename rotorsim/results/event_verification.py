@@ -57,6 +57,13 @@ class SideCheck:
     coordinates : complex array or None
         ``measure="floquet"``: the mode's coordinate ``c_k / c_0`` at ``t = k T`` (None
         otherwise or when not integrated).
+    accuracy : float
+        ``measure="shooting"``: the error allowed on ``measured``, half its change between
+        the two step sizes (NaN otherwise). With ``measure="shooting"``, ``mode`` and
+        ``measured`` are the multipliers of the event's kind of harmonic balance's Floquet
+        and of the full model's orbit, ``local`` is ``|measured|`` and ``defect`` the
+        largest distance of that orbit from the harmonic-balance state, relative to the
+        largest lateral peak-to-peak.
     """
 
     point: int
@@ -74,6 +81,7 @@ class SideCheck:
     mode: complex = float("nan")
     measured: complex = float("nan")
     coordinates: NDArray[np.complex128] | None = None
+    accuracy: float = float("nan")
 
 
 @dataclass(frozen=True, eq=False)

@@ -69,6 +69,7 @@ from rotorsim.verification.period_map import (
     linearised_growth,
     trajectory_growth,
 )
+from rotorsim.verification.shooting_sides import shooting_event
 
 WHERE = "verify_events"
 
@@ -105,12 +106,17 @@ def verify_events(model: Rotor | RotorSystem | Any, result: PeriodicResult, *,
         an unstable side.
     reach : int
         Branch points searched on each side of an event.
-    measure : {"orbit", "floquet"}
+    measure : {"orbit", "floquet", "shooting"}
         "orbit": the measurements above along the orbit's own shape; "floquet": the growth
         of each event's critical Floquet mode along ``periods`` periods of two free
         transients per side (:mod:`rotorsim.verification.mode_growth`; ``iterations`` and
         ``tolerance`` are not used, ``perturbation`` sizes the mode). An event without a
-        Floquet crossing is then reported without integration.
+        Floquet crossing is then reported without integration. "shooting": on each side
+        the full model's own periodic orbit next to the branch's, found by shooting, and
+        its multipliers from the monodromy matrix (:mod:`~.shooting_sides`; the event is
+        confirmed when its multiplier of the event's kind crosses the unit circle between
+        the sides by more than its error; ``steps_per_period`` and ``reach`` are used,
+        ``margin`` only to count ``SideCheck.unstable``).
 
     Returns
     -------
@@ -151,8 +157,9 @@ def verify_events(model: Rotor | RotorSystem | Any, result: PeriodicResult, *,
     numbers = _check_input(system, result, events)
     _check_options(steps_per_period, iterations, periods, perturbation, margin, tolerance,
                    reach)
-    if measure not in ("orbit", "floquet"):
-        raise ModelError(f"must be 'orbit' or 'floquet', got {measure!r}", f"{WHERE}.measure")
+    if measure not in ("orbit", "floquet", "shooting"):
+        raise ModelError(f"must be 'orbit', 'floquet' or 'shooting', got {measure!r}",
+                         f"{WHERE}.measure")
     if measure == "floquet" and periods < 2:
         raise ModelError(f"must be an integer >= 2 with measure='floquet', got {periods!r}",
                          f"{WHERE}.periods")
@@ -166,7 +173,12 @@ def verify_events(model: Rotor | RotorSystem | Any, result: PeriodicResult, *,
     periods_run: list[int] = []
     checks = []
     modes = BranchModes(system, result, WHERE) if measure == "floquet" else None
+    shots: dict[int, Any] = {}
     for number in numbers:
+        if measure == "shooting":
+            checks.append(shooting_event(result, number, _candidates(result, number, reach),
+                                         run, shots))
+            continue
         before, after, crossing = _sides(result, number, margin, reach)
         column = _column(result, number)
         if modes is not None:
@@ -181,7 +193,7 @@ def verify_events(model: Rotor | RotorSystem | Any, result: PeriodicResult, *,
                 measured[point, column] = _measure(result, point, column, run, periods_run)
             sides.append(None if point is None else measured[point, column])
         checks.append(_verdict(result, number, sides[0], sides[1], crossing, margin))
-    stats = {"periods": float(sum(periods_run)), "points": float(len(measured)),
+    stats = {"periods": float(sum(periods_run)), "points": float(len(measured) + len(shots)),
              "wall_time": time.perf_counter() - clock}
     return EventVerification(tuple(checks), options, stats)
 
@@ -265,11 +277,7 @@ def _sides(result: PeriodicResult, number: int, margin: float, reach: int
     """Branch points before and after event ``number``, and whether their Floquet
     multipliers cross ``1 + margin`` (module docstring)."""
     ev = result.bifurcations[number]
-    others = [b.index for k, b in enumerate(result.bifurcations) if k != number]
-    lo = max([i + 1 for i in others if i < ev.index], default=0)
-    hi = min([i for i in others if i > ev.index], default=len(result) - 1)
-    before = list(range(ev.index, max(lo, ev.index - reach + 1) - 1, -1))
-    after = list(range(ev.index + 1, min(hi, ev.index + reach) + 1))
+    before, after = _candidates(result, number, reach)
     counts = np.sum(np.abs(result.multipliers) > 1.0 + margin, axis=1)
     pairs = sorted(((a, b) for a in before for b in after),
                    key=lambda p: (ev.index - p[0]) + (p[1] - ev.index - 1))
@@ -277,6 +285,18 @@ def _sides(result: PeriodicResult, number: int, margin: float, reach: int
         if counts[a] != counts[b]:
             return a, b, True
     return (before[0] if before else None), (after[0] if after else None), False
+
+
+def _candidates(result: PeriodicResult, number: int, reach: int
+                ) -> tuple[list[int], list[int]]:
+    """Branch points before and after event ``number``, nearest first, at most ``reach``
+    on each side and never past a neighbouring event."""
+    ev = result.bifurcations[number]
+    others = [b.index for k, b in enumerate(result.bifurcations) if k != number]
+    lo = max([i + 1 for i in others if i < ev.index], default=0)
+    hi = min([i for i in others if i > ev.index], default=len(result) - 1)
+    return (list(range(ev.index, max(lo, ev.index - reach + 1) - 1, -1)),
+            list(range(ev.index + 1, min(hi, ev.index + reach) + 1)))
 
 
 def _column(result: PeriodicResult, number: int) -> int:

@@ -1,0 +1,93 @@
+"""Shooting on the period map of a second-order problem (``full_shooting``) and the events
+of a shooting branch (``full_branch``)."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from rotorsim.errors import ConvergenceError, ModelError
+from rotorsim.time_integration.local_tangent import LocalMatrix
+from rotorsim.time_integration.problem import SecondOrderProblem
+from rotorsim.verification.full_branch import FullEvent, match_events
+from rotorsim.verification.full_shooting import shoot_full_model
+from rotorsim.verification.shooting_sides import kind_multiplier
+
+
+def _forced(w0: float = 2.0, zeta: float = 0.02, omega: float = 1.5, force: float = 1.0):
+    return SecondOrderProblem(mass=np.eye(1), stiffness=np.array([[w0 * w0]]),
+                              damping=np.array([[2 * zeta * w0]]),
+                              load=lambda t: np.array([force * np.cos(omega * t)]))
+
+
+def test_shooting_finds_the_forced_response_of_a_linear_oscillator():
+    """``q'' + 2 zeta w0 q' + w0^2 q = cos(W t)``: the periodic response is ``Re(X e^{iWt})``
+    with ``X = 1 / (w0^2 - W^2 + 2i zeta w0 W)``, and the multipliers are ``exp(lambda T)``.
+    The scheme is second order: with 400 steps per period (``W h = 0.016``) its orbit is
+    within ``(W h)^2 / 12 ~ 2e-5`` of the exact one (1e-4 asserted), and each multiplier
+    lies within its own error estimate (``accuracy / 2``) of the exact one."""
+    w0, zeta, omega = 2.0, 0.02, 1.5
+    T = 2 * np.pi / omega
+    X = 1.0 / (w0 ** 2 - omega ** 2 + 2j * zeta * w0 * omega)
+    orbit = shoot_full_model(_forced(w0, zeta, omega), np.zeros(1), np.zeros(1), T, 400,
+                             scale_q=abs(X), scale_v=abs(X) * omega, max_move=2.0)
+    assert abs(orbit.q[0] - X.real) < 1e-4 * abs(X)
+    assert abs(orbit.v[0] - (1j * omega * X).real) < 1e-4 * abs(X) * omega
+    assert orbit.newton <= 3                       # linear: one correction, then the check
+    lam = -zeta * w0 + 1j * w0 * np.sqrt(1 - zeta ** 2)
+    for exact in (np.exp(lam * T), np.exp(np.conj(lam) * T)):
+        j = int(np.argmin(np.abs(orbit.multipliers - exact)))
+        assert abs(orbit.multipliers[j] - exact) <= 0.5 * orbit.accuracy[j]
+        assert orbit.accuracy[j] < 1e-3
+
+
+def test_shooting_converges_on_a_hardening_oscillator_and_stays_next_to_its_start():
+    """A forced Duffing oscillator (``q'' + 0.1 q' + q + q^3 = 0.5 cos t``, one stable
+    response at this forcing): from two rough guesses Newton ends below the tolerance on
+    the same orbit, and with the default trust region (steps of 5 % of the scale, made
+    for starting next to an orbit) a far guess is refused rather than followed."""
+    def restoring(q, v, t):
+        return (q ** 3, LocalMatrix(1, np.array([0]), np.array([[3 * q[0] ** 2]])),
+                LocalMatrix(1, np.array([0]), np.zeros((1, 1))))
+
+    p = SecondOrderProblem(mass=np.eye(1), stiffness=np.eye(1), damping=0.1 * np.eye(1),
+                           restoring=restoring, load=lambda t: np.array([0.5 * np.cos(t)]))
+    orbits = [shoot_full_model(p, np.array([a]), np.zeros(1), 2 * np.pi, 300, scale_q=1.0,
+                               scale_v=1.0, max_move=1.0) for a in (0.3, 0.9)]
+    assert all(o.residual < 1e-9 for o in orbits)
+    assert abs(orbits[0].q[0] - orbits[1].q[0]) < 1e-8
+    assert abs(orbits[0].v[0] - orbits[1].v[0]) < 1e-8
+    assert np.all(np.abs(orbits[0].multipliers) < 1.0)          # a stable, damped response
+    with pytest.raises(ConvergenceError, match="no progress"):
+        shoot_full_model(p, np.array([5.0]), np.zeros(1), 2 * np.pi, 300, scale_q=1.0,
+                         scale_v=1.0)
+
+
+def test_shooting_says_when_it_finds_no_orbit_and_checks_its_scales():
+    p = _forced()
+    with pytest.raises(ModelError, match="scales"):
+        shoot_full_model(p, np.zeros(1), np.zeros(1), 1.0, 50, scale_q=0.0, scale_v=1.0)
+    with pytest.raises(ConvergenceError, match="shooting"):
+        # two Newton periods are not enough with a trust region of 1e-3 of the scale
+        shoot_full_model(p, np.zeros(1), np.zeros(1), 2 * np.pi / 1.5, 50, scale_q=1e-3,
+                         scale_v=1e-3, max_newton=2, max_move=1e-3)
+
+
+def test_the_multiplier_of_an_events_kind():
+    mu = np.array([-1.35, 1.03, 0.9 + 0.5j, 0.9 - 0.5j, 0.5])
+    assert kind_multiplier(mu, "fold") == 1
+    assert kind_multiplier(mu, "branch_point") == 1
+    assert kind_multiplier(mu, "period_doubling") == 0
+    assert kind_multiplier(mu, "neimark_sacker") == 2
+    assert kind_multiplier(np.array([0.5, 0.2]), "period_doubling") is None
+
+
+def test_events_are_matched_in_order_and_by_kind():
+    """Harmonic balance's events against a shooting branch's: in branch order, each takes
+    the next unused event of its kind (a fold or a branch point match either)."""
+    nan = complex("nan")
+    full = (FullEvent("fold", 3, 1.0, nan), FullEvent("period_doubling", 5, 1.1, -1.2),
+            FullEvent("fold", 9, 1.2, nan), FullEvent("branch_point", 12, 1.3, 1.1))
+    assert match_events(["fold", "period_doubling", "fold", "fold"], full) == [0, 1, 2, 3]
+    assert match_events(["period_doubling", "fold", "neimark_sacker"], full) == [1, 2, None]
+    assert match_events(["neimark_sacker", "fold"], full) == [None, 0]
