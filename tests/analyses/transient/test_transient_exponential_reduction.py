@@ -78,7 +78,8 @@ def test_a_reduced_run_measures_motion_and_error_on_the_physical_dofs():
     q_full = np.linspace(0.0, 1e-6, system.n_free)
     # an a-priori motion of 0.1 mm: the estimate passes and the model is reduced
     small, basis, decision = exponential_reduction(system, problem, loads, SPEED, 1e-2,
-                                                   1e-4, weights)
+                                                   1e-4, weights, tangent=None, phase=0.0,
+                                                   duration=T_END)
     assert basis is not None and decision["reduced"]
     stepper = exponential_stepper(small, loads, profile, (0.0, T_END), 1e-2,
                                   dof_weights(system, small.n, basis), 1e-4, basis.T,
