@@ -9,7 +9,7 @@ stiff. A mode set ringing at the start then drifts in phase against the full mod
 its error grows with the length of the run,
 ``|A_m (e^{i w_m t} - e^{i (w_m + dw_m) t})| <= A_m min(2, dw_m t)``. On the ``issue14``
 rotor of ``benchmarks/bench_transient.py`` (10 ms, 1.6 revolutions) this, not the ringing,
-was most of the truncation error: 5 to 15 times the ringing estimate, at the bearings.
+was most of the truncation error: 4 to 10 times the ringing estimate, largest at the bearings.
 
 The estimate, for the reduced model's modes ``(lambda_m = w_m^2, y_m = T psi_m)`` with the
 bearings' tangent ``K_t`` at the start:
@@ -32,10 +32,9 @@ bearings' tangent ``K_t`` at the start:
   frequency, are exact in the basis).
 
 Gyroscopic and damping terms are left out of these modes (an estimate, not the motion).
-Measured against the truncation error found on the whole rotor (every node's translations
-and rotations, relative to the motion, the reduced and the full model both integrated at
-rtol 1e-7): the ringing and drift estimates together were 1.6 to 6 times the error found on
-``bench`` and ``issue14`` with 8 to 48 modes (``docs/validation.md``).
+On ``bench``, ``issue14`` and the small test rotor (every node, the reduced and the full
+model both at rtol 1e-8), the ringing and drift estimates together were 1.3 to 5 times the
+truncation error found relative to the stepper's motion scale (``docs/validation.md``).
 """
 
 from __future__ import annotations
