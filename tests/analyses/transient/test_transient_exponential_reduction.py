@@ -23,6 +23,7 @@ from rotorsim.analyses.transient.auto_exponential import exponential_stepper
 from rotorsim.analyses.transient.auto_reduction import _interior
 from rotorsim.analyses.transient.equation import rotor_problem
 from rotorsim.analyses.transient.exponential_reduction import (
+    SHARE,
     exponential_reduction,
     interior_modes,
 )
@@ -133,7 +134,7 @@ def test_tight_accuracy_keeps_the_full_model_and_says_why():
     chosen = decision["exponential"]
     assert chosen["reason"].startswith("no mode count")
     # every count tried was refused by its estimate (the a-priori truncation error)
-    assert all(t["estimate"] > 0.05 * 1e-5 for t in chosen["tried"])
+    assert all(t["estimate"] > SHARE * 1e-5 for t in chosen["tried"])
     assert res.method == "exponential"
 
 
