@@ -198,7 +198,9 @@ def auto_path(system: RotorSystem, problems: tuple[SecondOrderProblem, SecondOrd
             return AutoPath(problem, None, None, radau, decision)
         if may_reduce:
             small, new_basis, chosen = exponential_reduction(
-                system, problem, loads, top, rtol, floor, weights)
+                system, problem, loads, top, rtol, floor, weights,
+                tangent=_tangents(problem, q0, t0)[0] if q0.size == problem.n else None,
+                phase=profile.angle(t0), duration=t_end - t0)
             fast_small = None if new_basis is None else exponential_stepper(
                 small, loads, profile, span, rtol, dof_weights(system, small.n, new_basis),
                 floor, new_basis.T, weights)
