@@ -49,6 +49,9 @@ FloatArray = NDArray[np.float64]
 WHERE = "average_acceleration_flow"
 LARGEST = 2000
 """Most unknowns of a problem integrated with dense sensitivities."""
+DENSE = 48
+"""Up to this many unknowns the matrices are dense (scipy.sparse's call overhead exceeds
+the products)."""
 
 
 @dataclass(frozen=True, eq=False)
@@ -71,6 +74,12 @@ class DiscreteFlow:
     iterations: int
 
 
+def _dense(A: object, n: int) -> FloatArray:
+    if A is None:
+        return np.zeros((n, n))
+    return np.asarray(A.toarray() if sp.issparse(A) else A, dtype=float)  # type: ignore[attr-defined]
+
+
 def _sparse(A: object, n: int) -> sp.csr_matrix:
     if A is None:
         return sp.csr_matrix((n, n))
@@ -91,9 +100,12 @@ class _Stepper:
             raise ModelError("speed-dependent bearing terms are not supported here: give "
                              "the matrices at the constant speed", WHERE)
         self.problem, self.n, self.c1, self.c2 = problem, n, c1, c2
-        self.M, self.K, self.C = (_sparse(getattr(problem, name), n)
+        self.dense = n <= DENSE
+        kind = _dense if self.dense else _sparse
+        self.M, self.K, self.C = (kind(getattr(problem, name), n)
                                   for name in ("mass", "stiffness", "damping"))
-        self.G = None if problem.gyroscopic is None else _sparse(problem.gyroscopic, n)
+        self.G = None if problem.gyroscopic is None else kind(problem.gyroscopic, n)
+        self.dense_base = np.zeros(0)
         self.spin = math.nan
         self.D = self.C
         self.base: sp.csc_matrix | None = None
@@ -109,6 +121,13 @@ class _Stepper:
         entries of the tangent blocks on ``dofs`` seen so far (two bearings' blocks do
         not couple, so the band stays narrow)."""
         s = self.problem.spin(t) if self.G is not None else 0.0
+        if self.dense:
+            if s != self.spin or not self.dense_base.size:
+                self.spin, self.dofs = s, dofs
+                self.D = self.C if self.G is None else self.C + s * self.G
+                self.dense_base = self.M + self.c1 * self.D + self.c2 * self.K
+            self.dofs = dofs
+            return
         if not np.array_equal(dofs, self.dofs):
             self.dofs, self.base = dofs, None
             self.mask = np.zeros((dofs.size, dofs.size), dtype=bool)
@@ -133,6 +152,11 @@ class _Stepper:
 
     def factorize(self, kt: FloatArray | None, ct: FloatArray | None) -> Any:
         """LU of ``S`` with the tangent blocks ``kt``, ``ct`` on ``self.dofs``."""
+        if self.dense:
+            S = self.dense_base.copy()
+            if kt is not None and ct is not None:
+                S[np.ix_(self.dofs, self.dofs)] += self.c1 * ct + self.c2 * kt
+            return _DenseLU.of(S)
         assert self.base is not None
         data = self.base.data.copy()
         if kt is not None and ct is not None:
@@ -142,7 +166,7 @@ class _Stepper:
             return self.layout.factorize(data, WHERE)
         dense = sp.csc_matrix((data, self.base.indices, self.base.indptr),
                               shape=self.base.shape).toarray()
-        return _DenseLU(sla.lu_factor(dense, check_finite=False))
+        return _DenseLU.of(dense)
 
     def times(self, A: sp.csr_matrix, block: FloatArray | None, x: FloatArray) -> FloatArray:
         """``(A + block on dofs) @ x`` for ``x`` of shape (n,) or (n, k)."""
@@ -152,12 +176,27 @@ class _Stepper:
         return out
 
 
+_GETRF, _GETRS = sla.get_lapack_funcs(("getrf", "getrs"), (np.zeros((1, 1)),))
+
+
 @dataclass(frozen=True, eq=False)
 class _DenseLU:
-    factors: Any
+    """LAPACK ``getrf`` factors (called directly: the wrappers' checks cost more than the
+    factorisation of a small matrix)."""
+
+    lu: FloatArray
+    piv: NDArray[np.int32]
+
+    @classmethod
+    def of(cls, S: FloatArray) -> _DenseLU:
+        lu, piv, info = _GETRF(S)
+        if info > 0:
+            raise ConvergenceError(f"the iteration matrix is singular (column {info})", WHERE)
+        return cls(lu, piv)
 
     def solve(self, b: FloatArray) -> FloatArray:
-        return np.asarray(sla.lu_solve(self.factors, b, check_finite=False))
+        x, _ = _GETRS(self.lu, self.piv, b)
+        return np.asarray(x)
 
 
 def _positions(A: sp.csc_matrix, rows: NDArray[np.int64], cols: NDArray[np.int64]
@@ -243,7 +282,7 @@ def average_acceleration_flow(problem: SecondOrderProblem, q0: FloatArray, v0: F
     st = _Stepper(problem, c1, c2)
     r, kt, ct, dofs = _tangents(problem, q, v, t0)
     st.at(t0, dofs, kt, ct)
-    M = st.M.toarray()
+    M = st.M if isinstance(st.M, np.ndarray) else st.M.toarray()
     a = np.linalg.solve(M, problem.external(t0) - st.D @ v - st.K @ q - r)
     Q = V = A = np.zeros(0)
     if sensitivities:

@@ -28,16 +28,20 @@ continuation), 7.1-7.4 (shooting, monodromy, multipliers); seed 002 eqs 3.39-3.4
 
 from __future__ import annotations
 
+import dataclasses
 import math
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
 
-from rotorsim.errors import ModelError
+from rotorsim.errors import ModelError, Status
+from rotorsim.results.event_verification import EventCheck
 from rotorsim.results.periodic import PeriodicResult
 from rotorsim.solvers.continuation import Branch, Continuation, continue_branch
+from rotorsim.time_integration.problem import SecondOrderProblem
 from rotorsim.time_integration.sensitivity_flow import average_acceleration_flow
 from rotorsim.verification.event_modes import KINDS
 from rotorsim.verification.full_shooting import speed_problem
@@ -94,64 +98,64 @@ class FullBranch:
     branch: Branch = field(repr=False)
 
 
+ProblemAt = Callable[[float], SecondOrderProblem]
+"""``problem_at(W)``: the equation of motion at the parameter ``W`` (e.g. the speed)."""
+
+
 class _PeriodMap:
     """``R(z, W)`` with its Jacobians; keeps ``Phi`` of the last evaluations."""
 
-    def __init__(self, system: Any, result: PeriodicResult, run: dict[str, Any],
-                 ratio: float) -> None:
-        free = system.dof_map.free
-        self.held = np.flatnonzero(np.isin(free, result.held_dofs)).astype(np.int64)
-        self.system, self.run, self.ratio = system, run, ratio
-        self.phi0 = float(result.options.get("shaft_angle", 0.0))
+    def __init__(self, problem_at: ProblemAt, period_at: Callable[[float], float],
+                 steps: int) -> None:
+        self.problem_at, self.period_at, self.steps = problem_at, period_at, steps
         self.monodromy: dict[bytes, FloatArray] = {}
 
-    def problem(self, speed: float) -> Any:
-        return speed_problem(self.system, speed, self.run["excitation"], self.phi0,
-                             self.held)[0]
-
-    def __call__(self, z: FloatArray, speed: float) -> tuple[FloatArray, FloatArray, FloatArray]:
+    def __call__(self, z: FloatArray, w: float) -> tuple[FloatArray, FloatArray, FloatArray]:
         n = z.size // 2
-        steps = self.run["steps_per_period"]
-        flow = average_acceleration_flow(self.problem(speed), z[:n], z[n:], 0.0,
-                                         2.0 * np.pi / (self.ratio * speed), steps)
+        flow = average_acceleration_flow(self.problem_at(w), z[:n], z[n:], 0.0,
+                                         self.period_at(w), self.steps)
         assert flow.monodromy is not None
-        delta = 1e-7 * speed
-        moved = average_acceleration_flow(self.problem(speed + delta), z[:n], z[n:], 0.0,
-                                          2.0 * np.pi / (self.ratio * (speed + delta)),
-                                          steps, sensitivities=False)
+        delta = 1e-7 * max(abs(w), 1e-300)
+        moved = average_acceleration_flow(self.problem_at(w + delta), z[:n], z[n:], 0.0,
+                                          self.period_at(w + delta), self.steps,
+                                          sensitivities=False)
         end = np.concatenate([flow.q, flow.v])
-        d_speed = (np.concatenate([moved.q, moved.v]) - end) / delta
+        d_w = (np.concatenate([moved.q, moved.v]) - end) / delta
         if len(self.monodromy) > 64:
             self.monodromy.clear()
-        self.monodromy[_key(z, speed)] = flow.monodromy
-        return end - z, flow.monodromy - np.eye(z.size), d_speed
+        self.monodromy[_key(z, w)] = flow.monodromy
+        return end - z, flow.monodromy - np.eye(z.size), d_w
 
 
-def _key(z: FloatArray, speed: float) -> bytes:
-    return np.append(z, speed).tobytes()
+def _key(z: FloatArray, w: float) -> bytes:
+    return np.append(z, w).tobytes()
 
 
-def full_model_branch(system: Any, result: PeriodicResult, start: tuple[FloatArray, float],
-                      stop: float, run: dict[str, Any], *, max_points: int = 400,
-                      max_step: float = 0.05) -> FullBranch:
-    """Trace the full model's branch from a converged orbit up to speed ``stop``.
+def shooting_branch(problem_at: ProblemAt, period_at: Callable[[float], float],
+                    start: tuple[FloatArray, float], stop: float, *, steps: int = 200,
+                    max_points: int = 400, max_step: float = 0.05) -> FullBranch:
+    """Trace the periodic orbits of ``problem_at(W)`` with period ``period_at(W)`` from a
+    converged orbit up to the parameter ``stop`` (module docstring).
 
     Parameters
     ----------
-    system : RotorSystem
-    result : PeriodicResult
-        The harmonic-balance branch (its held DOFs, shaft angle and frequency ratio).
+    problem_at : callable
+        ``problem_at(W) -> SecondOrderProblem``, periodic in time with ``period_at(W)``.
+    period_at : callable
+        ``period_at(W) -> T`` [s].
     start : (array (2 m,), float)
-        A converged orbit ``z`` (e.g. :class:`~.full_shooting.FullOrbit`) and its speed
-        [rad/s].
+        A converged orbit ``z = (q, v)`` at ``t = 0`` (e.g. of
+        :func:`~.full_shooting.shoot_full_model`) and its parameter ``W``.
     stop : float
-        The speed where the branch ends [rad/s] (> the start).
-    run : dict
-        ``system``, ``excitation``, ``steps_per_period`` of :func:`rotorsim.verify_events`.
+        Where the branch ends (above the start): it ends when ``W`` reaches it, or below
+        the start.
+    steps : int
+        Average-acceleration steps per period.
     max_points : int
         Most points.
     max_step : float
-        Largest scaled arclength step (unknowns scaled by the start orbit's size).
+        Largest arclength step, the unknowns scaled by the start orbit's largest
+        displacement and velocity, ``W`` by ``stop - W0``.
 
     Returns
     -------
@@ -160,14 +164,13 @@ def full_model_branch(system: Any, result: PeriodicResult, start: tuple[FloatArr
     z0, w0 = np.asarray(start[0], dtype=float), float(start[1])
     if not stop > w0:
         raise ModelError(f"stop {stop!r} must lie above the start {w0!r}", WHERE)
-    ratio = float(result.fundamental[0] / result.speed[0])
-    residual = _PeriodMap(system, result, run, ratio)
+    residual = _PeriodMap(problem_at, period_at, int(steps))
     n = z0.size // 2
-    scale_q = max(float(np.ptp(z0[:n])), 1e-30)
-    scale_v = max(float(np.ptp(z0[n:])), 1e-30)
+    scale_q = max(float(np.max(np.abs(z0[:n]))), 1e-30)
+    scale_v = max(float(np.max(np.abs(z0[n:]))), 1e-30)
     x_scale = tuple([scale_q] * n + [scale_v] * n)
     options = Continuation(initial_step=0.2 * max_step, max_step=max_step, min_step=1e-5,
-                           lam_min=w0 - 1e-9 * w0, lam_max=stop, max_points=max_points,
+                           lam_min=w0 - 1e-9 * abs(w0), lam_max=stop, max_points=max_points,
                            tol=1e-9, x_scale=x_scale, r_scale=x_scale,
                            lam_scale=stop - w0, detect_loops=False)
     branch = continue_branch(residual, z0, w0, options)
@@ -182,25 +185,77 @@ def full_model_branch(system: Any, result: PeriodicResult, start: tuple[FloatArr
                       _events(branch, multipliers), branch)
 
 
+def full_model_branch(system: Any, result: PeriodicResult, start: tuple[FloatArray, float],
+                      stop: float, run: dict[str, Any], *, max_points: int = 400,
+                      max_step: float = 0.05) -> FullBranch:
+    """:func:`shooting_branch` of the full rotor model in speed: the equation of motion of
+    :func:`~.full_shooting.speed_problem` without the branch's held DOFs, with the branch's
+    excitation and shaft angle, period ``2 pi / (r W)`` (``r`` the branch's fundamental
+    per unit speed); ``run`` holds ``excitation`` and ``steps_per_period``."""
+    held = np.flatnonzero(np.isin(system.dof_map.free, result.held_dofs)).astype(np.int64)
+    phi0 = float(result.options.get("shaft_angle", 0.0))
+    ratio = float(result.fundamental[0] / result.speed[0])
+
+    def problem_at(w: float) -> SecondOrderProblem:
+        return speed_problem(system, w, run["excitation"], phi0, held)[0]
+
+    return shooting_branch(problem_at, lambda w: 2.0 * np.pi / (ratio * w), start, stop,
+                           steps=run["steps_per_period"], max_points=max_points,
+                           max_step=max_step)
+
+
+_KIND_CLASSES = ("fold or branch point", "period_doubling", "neimark_sacker")
+
+
+def _outside(mu: NDArray[np.complex128]) -> NDArray[np.int64]:
+    """Multipliers outside the unit circle per kind class (real positive, real negative,
+    complex)."""
+    out = mu[np.abs(mu) > 1.0]
+    real = out.imag == 0.0
+    return np.array([np.sum(real & (out.real > 0)), np.sum(real & (out.real < 0)),
+                     np.sum(~real)], dtype=np.int64)
+
+
 def _events(branch: Branch, multipliers: NDArray[np.complex128]) -> tuple[FullEvent, ...]:
-    """Turns of the branch and changes of the number of multipliers outside the circle."""
-    events = []
-    outside = np.sum(np.abs(multipliers) > 1.0, axis=1)
+    """Turns of the branch and changes of the number of multipliers outside the circle.
+
+    Turns in consecutive intervals are one turn when their number is odd and none when it
+    is even (the corrector's jitter at a turning point). A change of the count is an event
+    of the kind class whose count changed with the total (a complex pair splitting into two
+    real multipliers outside the circle changes no total: no event)."""
+    counts = np.array([_outside(mu) for mu in multipliers])
     direction = np.sign(branch.tangents[:, -1])
+    turns = [i for i in range(len(branch.lam) - 1) if direction[i] * direction[i + 1] < 0]
+    folds: list[int] = []
+    run: list[int] = []
+    for i in [*turns, -10]:
+        if run and i != run[-1] + 1:
+            if len(run) % 2:
+                folds.append(run[len(run) // 2])
+            run = []
+        run.append(i)
+    events = []
     for i in range(len(branch.lam) - 1):
         mid = 0.5 * float(branch.lam[i] + branch.lam[i + 1])
-        turned = direction[i] * direction[i + 1] < 0
-        crossed = outside[i] != outside[i + 1]
+        change = counts[i + 1] - counts[i]
+        total = int(change.sum())
         mu = complex("nan")
-        if crossed:
-            side = i if outside[i] > outside[i + 1] else i + 1
+        kind = ""
+        if total:
+            k = int(np.argmax(change * np.sign(total)))
+            kind = _KIND_CLASSES[k]
+            side = i if total < 0 else i + 1
             out = multipliers[side][np.abs(multipliers[side]) > 1.0]
-            mu = complex(out[np.argmin(np.abs(out))])
-        if turned:
-            events.append(FullEvent("fold", i, mid, mu))
-        elif crossed:
-            kind = {"fold or branch point": "branch_point"}.get(kind_of(mu), kind_of(mu))
-            events.append(FullEvent(kind, i, mid, mu))
+            of_kind = [m for m in out if kind_of(complex(m)) == kind]
+            mu = complex(min(of_kind, key=abs)) if of_kind else mu
+        if i in folds:
+            events.append(FullEvent("fold", i, mid, mu if kind == _KIND_CLASSES[0] else
+                                    complex("nan")))
+        elif kind == _KIND_CLASSES[0] and any(abs(i - f) <= 2 for f in folds):
+            continue       # the fold's own real multiplier through +1, next to its turn
+        elif kind:
+            events.append(FullEvent({"fold or branch point": "branch_point"}.get(kind, kind),
+                                    i, mid, mu))
     return tuple(events)
 
 
@@ -231,3 +286,78 @@ def describe(full: FullBranch) -> str:
         mu = "" if not math.isfinite(abs(e.multiplier)) else f", multiplier {e.multiplier:.5g}"
         lines.append(f"{e.kind} at {e.speed:.6g} rad/s (points {e.index}-{e.index + 1}{mu})")
     return "\n".join(lines)
+
+
+def trace_unconfirmed(result: PeriodicResult, checks: list[EventCheck], run: dict[str, Any],
+                      shots: dict[int, Any], max_points: int = 600) -> list[EventCheck]:
+    """The events ``checks`` leaves unconfirmed, checked against the full model's branch
+    traced from a converged orbit before the first of them to beyond the last
+    (``verify_events(..., measure="shooting", trace=True)``).
+
+    The stretch starts at the nearest branch point before the first unconfirmed event
+    whose orbit shooting found (``shots``, or shot now), and ends past the last one at the
+    first point faster than every point of the stretch. Harmonic balance's events of the
+    stretch are matched in order with the full branch's (:func:`match_events`); an
+    unconfirmed event with a match of its kind is confirmed, with both speeds in its
+    reason."""
+    from rotorsim.verification.shooting_sides import shoot_point
+
+    open_ = [c for c in checks if not c.confirmed]
+    if not open_:
+        return checks
+    marks = [result.bifurcations[c.number].index for c in open_]
+    start = None
+    for p in range(min(marks), max(-1, min(marks) - 4 * run["reach"]), -1):
+        if p not in shots:
+            shots[p] = shoot_point(result, p, run)
+        if not isinstance(shots[p], str):
+            start = p
+            break
+    speeds = np.asarray(result.speed, dtype=float)
+    end = next((p for p in range(max(marks) + 1, len(result))
+                if start is not None and speeds[p] > speeds[start:p].max()), None)
+    if start is None or end is None:
+        where = "before the first" if start is None else "after the last"
+        return _with_note(checks, f"no branch point {where} unconfirmed event to trace the "
+                          "full model's branch from or to")
+    orbit = shots[start]
+    full = full_model_branch(run["system"], result,
+                             (np.concatenate([orbit.q, orbit.v]), float(speeds[start])),
+                             float(speeds[end]), run, max_points=max_points)
+    stretch = sorted((k for k, b in enumerate(result.bifurcations)
+                      if start <= b.index < end), key=lambda k: result.bifurcations[k].index)
+    span = (f"the full model's branch traced by shooting from {speeds[start]:.6g} to "
+            f"{speeds[end]:.6g} rad/s ({len(full.speed)} points)")
+    if full.branch.status != Status.OK or not full.speed[-1] >= speeds[end] * (1 - 1e-12):
+        return _with_note(checks, f"{span} stopped: {full.branch.reason}")
+    found = dict(zip(stretch, match_events([result.bifurcations[k].kind for k in stretch],
+                                           full.events), strict=True))
+    out = []
+    for c in checks:
+        j = found.get(c.number)
+        if c.confirmed or c.number not in found:
+            out.append(c)
+        elif j is None:
+            out.append(dataclasses.replace(c, reason=f"{c.reason}; {span} has no "
+                                           f"{c.event.kind.replace('_', ' ')} in its place "
+                                           f"(events: {_listing(full)})"))
+        else:
+            e = full.events[j]
+            mu = "" if not math.isfinite(abs(e.multiplier)) else \
+                f", multiplier {e.multiplier.real:.5g}" if e.multiplier.imag == 0 else \
+                f", |multiplier| {abs(e.multiplier):.5g}"
+            out.append(dataclasses.replace(
+                c, confirmed=True,
+                reason=f"{span} has its {e.kind.replace('_', ' ')} in the same place of the "
+                       f"sequence at {e.speed:.6g} rad/s ({e.speed - c.event.parameter:+.3g} "
+                       f"rad/s from harmonic balance's{mu}); point-wise: {c.reason}"))
+    return out
+
+
+def _with_note(checks: list[EventCheck], note: str) -> list[EventCheck]:
+    return [c if c.confirmed else dataclasses.replace(c, reason=f"{c.reason}; {note}")
+            for c in checks]
+
+
+def _listing(full: FullBranch) -> str:
+    return ", ".join(f"{e.kind} {e.speed:.6g}" for e in full.events) or "none"

@@ -64,6 +64,7 @@ from rotorsim.results.event_verification import EventCheck, EventVerification, S
 from rotorsim.results.periodic import PeriodicResult
 from rotorsim.verification.event_modes import mode_problems, mode_sides, mode_text, retried
 from rotorsim.verification.floquet_modes import BranchModes
+from rotorsim.verification.full_branch import trace_unconfirmed
 from rotorsim.verification.period_map import (
     FloatArray,
     linearised_growth,
@@ -78,7 +79,7 @@ def verify_events(model: Rotor | RotorSystem | Any, result: PeriodicResult, *,
                   events: Sequence[int] | None = None, steps_per_period: int = 200,
                   iterations: int = 12, periods: int = 12, perturbation: float = 1e-3,
                   margin: float = 0.02, tolerance: float = 0.5, reach: int = 8,
-                  measure: str = "orbit") -> EventVerification:
+                  measure: str = "orbit", trace: bool = False) -> EventVerification:
     """Check the bifurcations of a periodic branch by time integration next to them.
 
     Parameters
@@ -117,6 +118,12 @@ def verify_events(model: Rotor | RotorSystem | Any, result: PeriodicResult, *,
         confirmed when its multiplier of the event's kind crosses the unit circle between
         the sides by more than its error; ``steps_per_period`` and ``reach`` are used,
         ``margin`` only to count ``SideCheck.unstable``).
+    trace : bool
+        With ``measure="shooting"``: trace the full model's own branch by shooting
+        continuation through the events the point-wise check leaves unconfirmed (a cluster
+        of folds whose sheets the truncated series shifts), and confirm each that the full
+        branch has in the same place of its sequence of events
+        (:func:`~.full_branch.trace_unconfirmed`; minutes on a 150-DOF rotor).
 
     Returns
     -------
@@ -193,6 +200,8 @@ def verify_events(model: Rotor | RotorSystem | Any, result: PeriodicResult, *,
                 measured[point, column] = _measure(result, point, column, run, periods_run)
             sides.append(None if point is None else measured[point, column])
         checks.append(_verdict(result, number, sides[0], sides[1], crossing, margin))
+    if trace and measure == "shooting":
+        checks = trace_unconfirmed(result, checks, run, shots)
     stats = {"periods": float(sum(periods_run)), "points": float(len(measured) + len(shots)),
              "wall_time": time.perf_counter() - clock}
     return EventVerification(tuple(checks), options, stats)

@@ -9,7 +9,7 @@ import pytest
 from rotorsim.errors import ConvergenceError, ModelError
 from rotorsim.time_integration.local_tangent import LocalMatrix
 from rotorsim.time_integration.problem import SecondOrderProblem
-from rotorsim.verification.full_branch import FullEvent, match_events
+from rotorsim.verification.full_branch import FullEvent, match_events, shooting_branch
 from rotorsim.verification.full_shooting import shoot_full_model
 from rotorsim.verification.shooting_sides import kind_multiplier
 
@@ -91,3 +91,46 @@ def test_events_are_matched_in_order_and_by_kind():
     assert match_events(["fold", "period_doubling", "fold", "fold"], full) == [0, 1, 2, 3]
     assert match_events(["period_doubling", "fold", "neimark_sacker"], full) == [1, 2, None]
     assert match_events(["neimark_sacker", "fold"], full) == [None, 0]
+
+
+DOF = np.array([0])
+
+
+def _nlvib_duffing(omega: float) -> SecondOrderProblem:
+    """NLvib's example 01, ``q'' + 0.05 q' + q + 0.1 q^3 = 0.18 cos(Omega t)``."""
+    def restoring(q, v, t):
+        return (0.1 * q ** 3, LocalMatrix.trusted(1, DOF, np.array([[0.3 * q[0] ** 2]])),
+                LocalMatrix.trusted(1, DOF, np.zeros((1, 1))))
+
+    return SecondOrderProblem(mass=np.eye(1), stiffness=np.eye(1), damping=0.05 * np.eye(1),
+                              restoring=restoring,
+                              load=lambda t: np.array([0.18 * np.cos(omega * t)]))
+
+
+def test_a_shooting_branch_turns_at_the_folds_of_the_duffing_oscillator():
+    """NLvib's Duffing oscillator traced by shooting continuation in the forcing frequency
+    (100 steps per period) from 1.0 to 1.3 rad/s: its two turning points lie at 1.269602
+    and 1.115719 rad/s in NLvib's own shooting (docs/harmonic_balance_guide.md; 1.269602
+    and 1.115700 with ``rs.hb``, H = 7). The scheme's period error is second order,
+    ``(W h)^2 / 12 = 3.3e-4`` of the period here (about 4e-4 rad/s), and a turn is placed
+    midway between the two points it lies between: asserted within 1e-3 rad/s plus half
+    that gap (measured 5.4e-4 and 4.6e-4 with gaps of 1e-4 and 1.5e-3). Between the turns
+    the real multiplier is above 1 (the saddle); at both ends every multiplier is inside
+    the circle. About 5 s."""
+    T = lambda w: 2 * np.pi / w                                    # noqa: E731
+    start = shoot_full_model(_nlvib_duffing(1.0), np.array([0.3]), np.zeros(1), T(1.0), 100,
+                             scale_q=1.0, scale_v=1.0, max_move=1.0)
+    full = shooting_branch(_nlvib_duffing, T, (np.concatenate([start.q, start.v]), 1.0),
+                           1.3, steps=100, max_step=0.3)
+    assert full.branch.status.name == "OK" and full.speed[-1] == 1.3
+    assert [e.kind for e in full.events] == ["fold", "fold"]
+    for e, reference in zip(full.events, (1.269602, 1.115719), strict=True):
+        gap = abs(full.speed[e.index + 1] - full.speed[e.index])
+        assert abs(e.speed - reference) < 1e-3 + 0.5 * gap
+        # the saddle's real multiplier at the point next to the turn (1.14 at the lower
+        # turn, whose neighbours lie 1.5e-3 rad/s apart): real and above 1
+        assert e.multiplier.imag == 0.0 and e.multiplier.real > 1.0
+    middle = (full.events[0].index + full.events[1].index) // 2
+    assert np.max(np.abs(full.multipliers[middle])) > 1.0
+    assert np.max(np.abs(full.multipliers[0])) < 1.0
+    assert np.max(np.abs(full.multipliers[-1])) < 1.0
