@@ -137,8 +137,8 @@ class _Stepper:
                 self.mask, self.base = self.mask | seen, None
         if s != self.spin or self.base is None:
             self.spin = s
-            self.D = self.C if self.G is None else (self.C + s * self.G).tocsr()
-            base = (self.M + self.c1 * self.D + self.c2 * self.K).tocoo()
+            self.D = self.C if self.G is None else sp.csr_matrix(self.C + s * self.G)
+            base = sp.coo_matrix(self.M + self.c1 * self.D + self.c2 * self.K)
             i, j = np.nonzero(self.mask)
             base = sp.coo_matrix((np.concatenate([base.data, np.zeros(i.size)]),
                                   (np.concatenate([base.row, dofs[i]]),
