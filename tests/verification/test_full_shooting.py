@@ -3,10 +3,12 @@ of a shooting branch (``full_branch``)."""
 
 from __future__ import annotations
 
+from types import SimpleNamespace
+
 import numpy as np
 import pytest
 
-from rotorsim.errors import ConvergenceError, ModelError
+from rotorsim.errors import ConvergenceError, ModelError, Status
 from rotorsim.time_integration.local_tangent import LocalMatrix
 from rotorsim.time_integration.problem import SecondOrderProblem
 from rotorsim.verification.full_branch import FullEvent, match_events, shooting_branch
@@ -134,3 +136,51 @@ def test_a_shooting_branch_turns_at_the_folds_of_the_duffing_oscillator():
     assert np.max(np.abs(full.multipliers[middle])) > 1.0
     assert np.max(np.abs(full.multipliers[0])) < 1.0
     assert np.max(np.abs(full.multipliers[-1])) < 1.0
+
+
+class _Branch:
+    """What ``trace_unconfirmed`` reads of a periodic result."""
+
+    def __init__(self, speeds, events):
+        self.speed = np.asarray(speeds, dtype=float)
+        self.bifurcations = [SimpleNamespace(kind=k, index=i, parameter=float(speeds[i]))
+                             for k, i in events]
+
+    def __len__(self):
+        return self.speed.size
+
+
+def test_trace_confirms_the_unconfirmed_events_that_the_full_branch_has_in_order(monkeypatch):
+    """The glue of ``verify_events(..., trace=True)``: the trace starts at the nearest
+    point before the first unconfirmed event whose orbit shooting finds, ends at the first
+    point past the last one faster than the whole stretch, and an unconfirmed event is
+    confirmed by the full branch's event of its kind in the same place of the sequence;
+    one without a match keeps its verdict, with the full branch's events in the reason."""
+    from rotorsim.results.event_verification import EventCheck
+    from rotorsim.verification import full_branch as fb
+
+    speeds = [10, 11, 12, 12.5, 12.2, 11.8, 12.1, 12.6, 13, 14]
+    result = _Branch(speeds, [("fold", 3), ("fold", 5), ("period_doubling", 6)])
+    checks = [EventCheck(b, k, None, None, k == 2, "point-wise")
+              for k, b in enumerate(result.bifurcations)]
+    shots = {3: "no orbit"}                     # point 3 failed: the trace starts at 2
+    seen = {}
+
+    def shoot(res, p, run):
+        seen.setdefault("shot", []).append(p)
+        return SimpleNamespace(q=np.zeros(1), v=np.zeros(1))
+
+    def branch(system, res, start, stop, run, max_points):
+        seen["span"] = (start[1], stop)
+        events = (fb.FullEvent("fold", 4, 12.45, complex(1.01)),
+                  fb.FullEvent("period_doubling", 6, 12.05, complex(-1.02)))
+        return fb.FullBranch(np.array([11.0, 12.7]), np.zeros((2, 2)), np.zeros((2, 2)),
+                             events, SimpleNamespace(status=Status.OK, reason="done"))
+
+    monkeypatch.setattr("rotorsim.verification.shooting_sides.shoot_point", shoot)
+    monkeypatch.setattr(fb, "full_model_branch", branch)
+    out = fb.trace_unconfirmed(result, checks, {"system": None, "reach": 2}, shots)
+    assert seen["shot"] == [2] and seen["span"] == (12.0, 12.6)
+    assert out[0].confirmed and "12.45" in out[0].reason and "point-wise" in out[0].reason
+    assert not out[1].confirmed and "has no fold in its place" in out[1].reason
+    assert out[2] is checks[2]                  # confirmed before: untouched
