@@ -129,11 +129,15 @@ class EventVerification:
         Options used (steps per period, iterations, margin, tolerance...).
     stats : dict
         Periods integrated and wall time [s].
+    notes : tuple of str
+        What else was found: with ``trace=True``, the full model's branch traced (its span,
+        points and every event on it).
     """
 
     checks: tuple[EventCheck, ...]
     options: dict[str, Any] = field(default_factory=dict)
     stats: dict[str, float] = field(default_factory=dict)
+    notes: tuple[str, ...] = ()
 
     def __len__(self) -> int:
         return len(self.checks)
@@ -150,4 +154,4 @@ class EventVerification:
             verdict = "confirmed" if c.confirmed else "NOT confirmed"
             lines.append(f"{c.number}: {c.event.kind} at {c.event.parameter:.6g} rad/s: "
                          f"{verdict}: {c.reason}")
-        return "\n".join(lines)
+        return "\n".join([*lines, *self.notes])

@@ -289,7 +289,8 @@ def describe(full: FullBranch) -> str:
 
 
 def trace_unconfirmed(result: PeriodicResult, checks: list[EventCheck], run: dict[str, Any],
-                      shots: dict[int, Any], max_points: int = 600) -> list[EventCheck]:
+                      shots: dict[int, Any], max_points: int = 600,
+                      notes: list[str] | None = None) -> list[EventCheck]:
     """The events ``checks`` leaves unconfirmed, checked against the full model's branch
     traced from a converged orbit before the first of them to beyond the last
     (``verify_events(..., measure="shooting", trace=True)``).
@@ -299,7 +300,7 @@ def trace_unconfirmed(result: PeriodicResult, checks: list[EventCheck], run: dic
     first point faster than every point of the stretch. Harmonic balance's events of the
     stretch are matched in order with the full branch's (:func:`match_events`); an
     unconfirmed event with a match of its kind is confirmed, with both speeds in its
-    reason."""
+    reason. ``notes`` receives the trace's span and every event of the full branch."""
     from rotorsim.verification.shooting_sides import shoot_point
 
     open_ = [c for c in checks if not c.confirmed]
@@ -328,6 +329,8 @@ def trace_unconfirmed(result: PeriodicResult, checks: list[EventCheck], run: dic
                       if start <= b.index < end), key=lambda k: result.bifurcations[k].index)
     span = (f"the full model's branch traced by shooting from {speeds[start]:.6g} to "
             f"{speeds[end]:.6g} rad/s ({len(full.speed)} points)")
+    if notes is not None:
+        notes.append(f"{span}: {_listing(full)}")
     if full.branch.status != Status.OK or not full.speed[-1] >= speeds[end] * (1 - 1e-12):
         return _with_note(checks, f"{span} stopped: {full.branch.reason}")
     found = dict(zip(stretch, match_events([result.bifurcations[k].kind for k in stretch],

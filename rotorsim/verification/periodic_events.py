@@ -200,11 +200,12 @@ def verify_events(model: Rotor | RotorSystem | Any, result: PeriodicResult, *,
                 measured[point, column] = _measure(result, point, column, run, periods_run)
             sides.append(None if point is None else measured[point, column])
         checks.append(_verdict(result, number, sides[0], sides[1], crossing, margin))
+    notes: list[str] = []
     if trace and measure == "shooting":
-        checks = trace_unconfirmed(result, checks, run, shots)
+        checks = trace_unconfirmed(result, checks, run, shots, notes=notes)
     stats = {"periods": float(sum(periods_run)), "points": float(len(measured) + len(shots)),
              "wall_time": time.perf_counter() - clock}
-    return EventVerification(tuple(checks), options, stats)
+    return EventVerification(tuple(checks), options, stats, tuple(notes))
 
 
 # ------------------------------------------------------------------------------ input
