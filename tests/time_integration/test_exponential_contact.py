@@ -8,6 +8,7 @@ import dataclasses
 
 import numpy as np
 import pytest
+from test_exponential import LocalSpring
 
 from rotorsim.time_integration.exponential import Exponential
 from rotorsim.time_integration.exponential_modes import HarmonicLoad
@@ -26,10 +27,11 @@ hits a Hertz contact ``STIFFNESS (|q0| - GAP)^1.5`` on either side of a clearanc
 derivative wherever the contact closes or opens."""
 
 
-class ClearanceContact:
+class ClearanceContact(LocalSpring):
     """The Hertz contact on DOF 0, evaluated in batches as a rotor's bearings are."""
 
-    dofs = np.array([0])
+    def __init__(self) -> None:
+        super().__init__(0.0, 0.0)
 
     def batch(self, q, v, t):
         x = q[:, :1]
@@ -37,12 +39,6 @@ class ClearanceContact:
         r = STIFFNESS * pen**1.5 * np.sign(x)
         kt = (1.5 * STIFFNESS * np.sqrt(pen))[:, :, None]
         return self.dofs, r, kt, np.zeros_like(kt)
-
-    def __call__(self, q, v, t):
-        _, r, kt, _ = self.batch(q[None, :], v[None, :], np.array([t]))
-        full = np.zeros(2)
-        full[0] = r[0, 0]
-        return full, np.pad(kt[0], ((0, 1), (0, 1))), None
 
 
 def steps_checked(rtol: float, t_end: float = 2.0) -> list[tuple[float, float, float]]:
