@@ -54,7 +54,6 @@ from rotorsim.time_integration.exponential_modes import (
 )
 
 
-
 @functools.lru_cache(maxsize=8)
 def defect_tables(nodes: tuple[float, ...]) -> tuple[FloatArray, FloatArray, FloatArray]:
     """For the nodes ``c_0 .. c_s``: the midpoints ``x`` (s,) between them, the values
