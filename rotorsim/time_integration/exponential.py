@@ -14,9 +14,14 @@ eigenbasis.
 
 Order: the interpolant of degree ``s`` has a local error ``O(h^{s+2})`` (global order
 ``s + 1``, 4 by default; ``tests/time_integration/test_exponential.py`` measures it). The
-error estimate is the difference to the interpolant of degree ``s - 1`` through the stage
-nodes only (the error of the lower-order interpolant, so the estimate is conservative),
-measured per unknown against ``rtol`` times the motion (:mod:`~.motion_scale`), with the
+error estimate is the larger of two: the difference to the interpolant of degree ``s - 1``
+through the stage nodes only (the error of the lower-order interpolant, so the estimate is
+conservative where ``rho`` is smooth), and, for a step that passes the first, the response
+to the *defect* of the step, the bearing forces evaluated on the step's dense output at the
+midpoints between the nodes minus the interpolant (:mod:`~.exponential_defect`; one more
+batch evaluation of the bearings): it sees a ball's contact closing or opening inside the
+step, which the interpolant through the nodes alone cannot. Both are measured per unknown
+against ``rtol`` times the motion (:mod:`~.motion_scale`), with the
 step-size ladder of :mod:`~.radau`.
 
 References

@@ -22,6 +22,11 @@ import scipy.linalg.lapack as lapack
 
 from rotorsim.errors import ModelError
 from rotorsim.time_integration.base import Counters, FloatArray, State
+from rotorsim.time_integration.exponential_defect import (
+    DefectOps,
+    bearing_maps,
+    defect_response,
+)
 from rotorsim.time_integration.exponential_modes import (
     LinearModes,
     StepWeights,
@@ -80,12 +85,14 @@ def meta(history: FloatArray, stages: int) -> FloatArray:
 class StepOps:
     """What a step of size ``h`` needs: the weights at the stage nodes, the maps ``Hq``,
     ``Hv`` (s k, s k) of the stage values of ``rho`` (nodes 1..s) to the bearing
-    displacements and velocities at the stages, and the error weights ``D`` (s + 1, N)."""
+    displacements and velocities at the stages, the error weights ``D`` (s + 1, N) and
+    what the defect check needs (:mod:`~.exponential_defect`)."""
 
     weights: StepWeights
     Hq: FloatArray
     Hv: FloatArray
     D: Any
+    defect: DefectOps
 
 
 @dataclass(eq=False)
@@ -199,17 +206,13 @@ class StepCache:
             return found
         m = self.modes
         w = StepWeights.of(m, h, self.nodes[1:], self.L)
-        s, k = self.nodes.size - 1, m.dofs.size
-        # block (i, j) = Re(C diag(W_ij) Bp): stage i's bearing motion (C: the rows of V
-        # on the bearing displacements, then velocities) per unit rho_j; one product
-        # W_ij Bp shared by both
-        B = np.matmul(self.bearing_rows, w.W[:, 1:, :, None] * m.Bp[None, None]).real
-        Hq, Hv = (B[:, :, rows].transpose(0, 2, 1, 3).reshape(s * k, s * k)
-                  for rows in (slice(0, k), slice(k, 2 * k)))
+        # stage i's bearing motion per unit rho_j
+        Hq, Hv = bearing_maps(self.bearing_rows, w.W, m.Bp, m.dofs.size)
         D = self.L_error @ w.mono[-1]  # the error weights at the end node (c_s = 1)
         if len(self.ops) >= CACHED_STEPS:
             self.ops.pop(next(iter(self.ops)))
-        self.ops[h] = StepOps(w, Hq, Hv, D)
+        self.ops[h] = StepOps(w, Hq, Hv, D, DefectOps.of(m, h, self.nodes, self.L,
+                                                         self.bearing_rows))
         return self.ops[h]
 
     @property
@@ -369,10 +372,21 @@ class Attempt:
         y = (modes.V @ z_end).real
         q, v = y[:n], y[n:]
         force = cache.net_force(q, v, r, self.s.t + self.h)
-        dz = (ops.D * loads).sum(axis=0)
-        eq = (cache.error_map @ dz).real
         sc = cache.scales
         peak = np.maximum(self.s.peak, cache.moved(q, self.s.history[-2]))
-        scale = sc.scale(peak)
-        err = float((sc.weights * np.abs(eq)).max()) / (self.m.local_tol * scale)
+        unit = self.m.local_tol * sc.scale(peak)
+        # two estimates of the error, the larger kept: the difference to the interpolant
+        # of degree s - 1, and (for a step it would accept) the response to the defect
+        # between the nodes, which sees a contact closing or opening inside the step
+        err = self._norm((ops.D * loads).sum(axis=0), unit)
+        if err <= 1.0 and not self.m.fixed:
+            self.count["residual_evaluations"] += 1
+            err = max(err, self._norm(defect_response(
+                ops.defect, modes, cache.bearing_rows, cache.problem.restoring,
+                cache.modal(self.s), self.s.t, self.h, all_rho), unit))
         return q, v, all_rho, force, z_end, peak, err
+
+    def _norm(self, dz: Any, unit: float) -> float:
+        """The largest weighted displacement of the modal error ``dz``, in ``unit``."""
+        sc = self.cache.scales
+        return float((sc.weights * np.abs((self.cache.error_map @ dz).real)).max()) / unit
