@@ -43,9 +43,11 @@ from rotorsim.results.periodic import PeriodicResult
 from rotorsim.solvers.continuation import Branch, Continuation, continue_branch
 from rotorsim.time_integration.problem import SecondOrderProblem
 from rotorsim.time_integration.sensitivity_flow import average_acceleration_flow
+from rotorsim.verification import shooting_sides
 from rotorsim.verification.event_modes import KINDS
 from rotorsim.verification.full_shooting import speed_problem
 from rotorsim.verification.mode_growth import kind_of
+from rotorsim.verification.shooting_sides import NEUTRAL
 
 FloatArray = NDArray[np.float64]
 WHERE = "full_model_branch"
@@ -209,8 +211,8 @@ _KIND_CLASSES = ("fold or branch point", "period_doubling", "neimark_sacker")
 
 def _outside(mu: NDArray[np.complex128]) -> NDArray[np.int64]:
     """Multipliers outside the unit circle per kind class (real positive, real negative,
-    complex)."""
-    out = mu[np.abs(mu) > 1.0]
+    complex); neutral ones (within ``NEUTRAL`` of the circle) do not count."""
+    out = mu[np.abs(mu) > 1.0 + NEUTRAL]
     real = out.imag == 0.0
     return np.array([np.sum(real & (out.real > 0)), np.sum(real & (out.real < 0)),
                      np.sum(~real)], dtype=np.int64)
@@ -245,7 +247,7 @@ def _events(branch: Branch, multipliers: NDArray[np.complex128]) -> tuple[FullEv
             k = int(np.argmax(change * np.sign(total)))
             kind = _KIND_CLASSES[k]
             side = i if total < 0 else i + 1
-            out = multipliers[side][np.abs(multipliers[side]) > 1.0]
+            out = multipliers[side][np.abs(multipliers[side]) > 1.0 + NEUTRAL]
             of_kind = [m for m in out if kind_of(complex(m)) == kind]
             mu = complex(min(of_kind, key=abs)) if of_kind else mu
         if i in folds:
@@ -301,7 +303,6 @@ def trace_unconfirmed(result: PeriodicResult, checks: list[EventCheck], run: dic
     stretch are matched in order with the full branch's (:func:`match_events`); an
     unconfirmed event with a match of its kind is confirmed, with both speeds in its
     reason. ``notes`` receives the trace's span and every event of the full branch."""
-    from rotorsim.verification.shooting_sides import shoot_point
 
     open_ = [c for c in checks if not c.confirmed]
     if not open_:
@@ -310,7 +311,7 @@ def trace_unconfirmed(result: PeriodicResult, checks: list[EventCheck], run: dic
     start = None
     for p in range(min(marks), max(-1, min(marks) - 4 * run["reach"]), -1):
         if p not in shots:
-            shots[p] = shoot_point(result, p, run)
+            shots[p] = shooting_sides.shoot_point(result, p, run)
         if not isinstance(shots[p], str):
             start = p
             break

@@ -44,12 +44,19 @@ from rotorsim.verification.mode_growth import kind_of
 Shot = FullOrbit | str
 
 
+NEUTRAL = 1e-6
+"""Multipliers within this of the unit circle are neutral modes, not crossings: undamped
+modes (the torsion of a shaft without material damping), whose moduli the
+average-acceleration scheme keeps at 1 to round-off."""
+
+
 def kind_multiplier(multipliers: np.ndarray, kind: str) -> int | None:
     """Index of the multiplier of the event's ``kind`` with the largest modulus among
-    ``multipliers`` (by decreasing modulus), None when there is none."""
+    ``multipliers`` (by decreasing modulus), neutral ones (:data:`NEUTRAL`) left out; None
+    when there is none."""
     wanted = KINDS.get(kind, kind)
     for j, mu in enumerate(multipliers):
-        if kind_of(complex(mu)) == wanted:
+        if abs(abs(mu) - 1.0) > NEUTRAL and kind_of(complex(mu)) == wanted:
             return j
     return None
 
