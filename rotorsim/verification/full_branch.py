@@ -224,7 +224,9 @@ def _events(branch: Branch, multipliers: NDArray[np.complex128]) -> tuple[FullEv
     Turns in consecutive intervals are one turn when their number is odd and none when it
     is even (the corrector's jitter at a turning point). A change of the count is an event
     of the kind class whose count changed with the total (a complex pair splitting into two
-    real multipliers outside the circle changes no total: no event)."""
+    real multipliers outside the circle changes no total: no event); a real crossing within
+    :data:`NEAR` intervals of a turn is the fold's own, and two crossings of one kind that
+    undo each other within :data:`NEAR` intervals are none."""
     counts = np.array([_outside(mu) for mu in multipliers])
     direction = np.sign(branch.tangents[:, -1])
     turns = [i for i in range(len(branch.lam) - 1) if direction[i] * direction[i + 1] < 0]
@@ -236,7 +238,7 @@ def _events(branch: Branch, multipliers: NDArray[np.complex128]) -> tuple[FullEv
                 folds.append(run[len(run) // 2])
             run = []
         run.append(i)
-    events = []
+    events: list[tuple[FullEvent, int]] = []      # with the sign of the count's change
     for i in range(len(branch.lam) - 1):
         mid = 0.5 * float(branch.lam[i] + branch.lam[i + 1])
         change = counts[i + 1] - counts[i]
@@ -251,14 +253,33 @@ def _events(branch: Branch, multipliers: NDArray[np.complex128]) -> tuple[FullEv
             of_kind = [m for m in out if kind_of(complex(m)) == kind]
             mu = complex(min(of_kind, key=abs)) if of_kind else mu
         if i in folds:
-            events.append(FullEvent("fold", i, mid, mu if kind == _KIND_CLASSES[0] else
-                                    complex("nan")))
-        elif kind == _KIND_CLASSES[0] and any(abs(i - f) <= 2 for f in folds):
+            events.append((FullEvent("fold", i, mid, mu if kind == _KIND_CLASSES[0] else
+                                     complex("nan")), 0))
+        elif kind == _KIND_CLASSES[0] and any(abs(i - f) <= NEAR for f in folds):
             continue       # the fold's own real multiplier through +1, next to its turn
         elif kind:
-            events.append(FullEvent({"fold or branch point": "branch_point"}.get(kind, kind),
-                                    i, mid, mu))
-    return tuple(events)
+            events.append((FullEvent({"fold or branch point": "branch_point"}.get(kind, kind),
+                                     i, mid, mu), int(np.sign(total))))
+    return tuple(e for e, _ in _without_returns(events))
+
+
+NEAR = 3
+"""Intervals within which a crossing next to a turn is the fold's own, and a crossing
+undone by the opposite one of the same kind is a multiplier grazing the circle."""
+
+
+def _without_returns(events: list[tuple[FullEvent, int]]) -> list[tuple[FullEvent, int]]:
+    """Drop pairs of consecutive crossings of the same kind that undo each other within
+    :data:`NEAR` intervals (a multiplier at the circle to the precision of the point
+    spacing, e.g. next to a turn), repeatedly."""
+    out: list[tuple[FullEvent, int]] = []
+    for e, sign in events:
+        if out and sign and out[-1][1] == -sign and out[-1][0].kind == e.kind \
+                and e.index - out[-1][0].index <= NEAR:
+            out.pop()
+            continue
+        out.append((e, sign))
+    return out
 
 
 def match_events(kinds: list[str], full: tuple[FullEvent, ...]) -> list[int | None]:

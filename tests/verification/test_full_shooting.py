@@ -184,3 +184,25 @@ def test_trace_confirms_the_unconfirmed_events_that_the_full_branch_has_in_order
     assert out[0].confirmed and "12.45" in out[0].reason and "point-wise" in out[0].reason
     assert not out[1].confirmed and "has no fold in its place" in out[1].reason
     assert out[2] is checks[2]                  # confirmed before: untouched
+
+
+def test_the_events_of_a_shooting_branch_turns_crossings_and_grazes():
+    """``full_branch._events`` on a stand-in branch: three turns in consecutive intervals
+    are one fold (the corrector's jitter), a real multiplier through +1 next to it is the
+    fold's own, a complex pair that leaves and re-enters the circle within 3 intervals is
+    no event, and an isolated real crossing below -1 is a period doubling."""
+    from rotorsim.verification.full_branch import _events
+
+    lam_sign = [1, 1, 1, -1, 1, -1, -1, -1, -1, -1, -1, -1, -1, -1]
+    P = len(lam_sign)
+    tangents = np.zeros((P, 2))
+    tangents[:, -1] = lam_sign
+    base = np.array([0.5, 0.9 + 0.1j, 0.9 - 0.1j, -0.5], dtype=complex)
+    mu = np.tile(base, (P, 1))
+    mu[4:, 0] = 1.01                             # the saddle's real multiplier, from point 4
+    mu[8:10, 1:3] = [1.001 + 0.1j, 1.001 - 0.1j]  # a pair grazing out and back in
+    mu[12:, 3] = -1.02                           # a doubling between points 11 and 12
+    branch = SimpleNamespace(lam=np.linspace(1.0, 2.0, P), tangents=tangents)
+    events = _events(branch, mu)
+    assert [(e.kind, e.index) for e in events] == [("fold", 3), ("period_doubling", 11)]
+    assert events[1].multiplier == -1.02
