@@ -49,10 +49,6 @@ FloatArray = NDArray[np.float64]
 WHERE = "average_acceleration_flow"
 LARGEST = 2000
 """Most unknowns of a problem integrated with dense sensitivities."""
-STALLED, ROUNDOFF = 8, 1e-9
-"""After this many Newton iterations of a step, a correction below ``ROUNDOFF`` of the
-displacements is accepted: where a Hertz contact sits at its onset, the iterates can
-circle at round-off level above the tolerance (the tangent vanishes on one side)."""
 DENSE = 48
 """Up to this many unknowns the matrices are dense (scipy.sparse's call overhead exceeds
 the products)."""
@@ -250,8 +246,7 @@ def average_acceleration_flow(problem: SecondOrderProblem, q0: FloatArray, v0: F
         Also propagate the monodromy matrix.
     tolerance : float
         Newton stops when the correction of ``h^2/4 a1`` (the displacement) is below
-        ``tolerance`` times the largest ``|q|`` of the step (and 1e-30 m), or below
-        :data:`ROUNDOFF` times it after :data:`STALLED` iterations.
+        ``tolerance`` times the largest ``|q|`` of the step (and 1e-30 m).
     max_iterations : int
         Newton iterations per step.
 
@@ -321,8 +316,7 @@ def average_acceleration_flow(problem: SecondOrderProblem, q0: FloatArray, v0: F
                     residual=float(np.linalg.norm(residual)))
             a1 += da
             total += 1
-            moved = c2 * float(np.max(np.abs(da)))
-            if moved <= tolerance * scale or (iteration >= STALLED and moved <= ROUNDOFF * scale):
+            if c2 * float(np.max(np.abs(da))) <= tolerance * scale:
                 break
         q1, v1 = qp + c2 * a1, vp + c1 * a1
         if sensitivities:
