@@ -134,9 +134,9 @@ def _side(result: PeriodicResult, point: int, orbit: FullOrbit, kind: str, margi
           ) -> SideCheck:
     nan = float("nan")
     floquet = result.multipliers[point]
-    jf = kind_multiplier(floquet[np.argsort(-np.abs(floquet), kind="stable")], kind)
-    mode = complex(nan) if jf is None else complex(
-        floquet[np.argsort(-np.abs(floquet), kind="stable")][jf])
+    ordered = floquet[np.argsort(-np.abs(floquet), kind="stable")]
+    jf = kind_multiplier(ordered, kind)
+    mode = complex(nan) if jf is None else complex(ordered[jf])
     j = kind_multiplier(orbit.multipliers, kind)
     measured = complex(nan) if j is None else complex(orbit.multipliers[j])
     error = nan if j is None else 0.5 * float(orbit.accuracy[j]) + 1e-9
