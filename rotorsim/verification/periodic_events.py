@@ -172,6 +172,11 @@ def verify_events(model: Rotor | RotorSystem | Any, result: PeriodicResult, *,
     if measure not in ("orbit", "floquet", "shooting"):
         raise ModelError(f"must be 'orbit', 'floquet' or 'shooting', got {measure!r}",
                          f"{WHERE}.measure")
+    if not isinstance(trace, bool):
+        raise ModelError(f"must be True or False, got {trace!r}", f"{WHERE}.trace")
+    if trace and measure != "shooting":
+        raise ModelError(f"trace=True follows the full model's branch by shooting: it needs "
+                         f"measure='shooting', got {measure!r}", f"{WHERE}.trace")
     if measure == "floquet" and periods < 2:
         raise ModelError(f"must be an integer >= 2 with measure='floquet', got {periods!r}",
                          f"{WHERE}.periods")

@@ -206,3 +206,19 @@ def test_the_events_of_a_shooting_branch_turns_crossings_and_grazes():
     events = _events(branch, mu)
     assert [(e.kind, e.index) for e in events] == [("fold", 3), ("period_doubling", 11)]
     assert events[1].multiplier == -1.02
+
+
+def test_verify_events_refuses_a_trace_without_shooting():
+    import rotorsim as rs
+
+    steel = rs.Material(name="steel", E=211e9, G_s=81.2e9, rho=7810)
+    rotor = rs.Rotor([rs.ShaftElement(L=0.25, idl=0.0, odl=0.05, material=steel)] * 2,
+                     bearing_elements=[rs.BearingElement(n=0, kxx=1e7, cxx=1e3),
+                                       rs.BearingElement(n=2, kxx=1e7, cxx=1e3)])
+    branch = rs.periodic(rotor, start=100.0, stop=110.0, harmonics=1,
+                         unbalance=[(1, 1e-4, 0.0)], nodes=None)
+    with pytest.raises(ModelError, match="measure='shooting'"):
+        rs.verify_events(rotor, branch, trace=True)
+    with pytest.raises(ModelError, match="trace"):
+        rs.verify_events(rotor, branch, measure="shooting", trace="yes")
+    assert len(rs.verify_events(rotor, branch, measure="shooting", trace=True)) == 0
