@@ -41,6 +41,7 @@ from rotorsim.errors import ModelError, Status
 from rotorsim.results.event_verification import EventCheck
 from rotorsim.results.periodic import PeriodicResult
 from rotorsim.solvers.continuation import Branch, Continuation, continue_branch
+from rotorsim.solvers.threads import one_blas_thread
 from rotorsim.time_integration.problem import SecondOrderProblem
 from rotorsim.time_integration.sensitivity_flow import average_acceleration_flow
 from rotorsim.verification import shooting_sides
@@ -133,6 +134,7 @@ def _key(z: FloatArray, w: float) -> bytes:
     return np.append(z, w).tobytes()
 
 
+@one_blas_thread()   # small dense and banded work per time step: no BLAS threads
 def shooting_branch(problem_at: ProblemAt, period_at: Callable[[float], float],
                     start: tuple[FloatArray, float], stop: float, *, steps: int = 200,
                     max_points: int = 400, max_step: float = 0.05) -> FullBranch:

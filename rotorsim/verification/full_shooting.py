@@ -33,6 +33,7 @@ from rotorsim.analyses.transient.speed_profile import ConstantSpeed
 from rotorsim.assembly.system import RotorSystem
 from rotorsim.errors import ConvergenceError, ModelError
 from rotorsim.options import Excitation
+from rotorsim.solvers.threads import one_blas_thread
 from rotorsim.time_integration.local_tangent import LocalMatrix
 from rotorsim.time_integration.problem import SecondOrderProblem
 from rotorsim.time_integration.sensitivity_flow import DiscreteFlow, average_acceleration_flow
@@ -146,6 +147,7 @@ def _weighted(dz: FloatArray, n: int, scale_q: float, scale_v: float) -> float:
     return max(float(np.max(np.abs(dz[:n]))) / scale_q, float(np.max(np.abs(dz[n:]))) / scale_v)
 
 
+@one_blas_thread()   # small dense and banded work per time step: no BLAS threads
 def shoot_full_model(problem: SecondOrderProblem, q0: FloatArray, v0: FloatArray,
                      period: float, steps: int = 200, *, scale_q: float, scale_v: float,
                      tolerance: float = 1e-9, max_newton: int = 12, max_move: float = 0.05
