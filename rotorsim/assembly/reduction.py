@@ -80,7 +80,8 @@ class ReducedBasis:
 def craig_bampton(system: RotorSystem, boundary: ArrayLike, num_modes: int, *,
                   static_loads: Sequence[ArrayLike] = (), speed: float = 0.0,
                   modes: tuple[FloatArray, FloatArray] | None = None,
-                  interior: tuple[Any, Any, Any] | None = None) -> ReducedBasis:
+                  interior: tuple[Any, Any, Any] | None = None,
+                  parts: ConstraintParts | None = None) -> ReducedBasis:
     """Build the Craig-Bampton basis of ``system`` (module docstring).
 
     Parameters
@@ -103,6 +104,10 @@ def craig_bampton(system: RotorSystem, boundary: ArrayLike, num_modes: int, *,
         The interior blocks of the matrices at ``speed`` on this boundary and the LU of
         ``K_ii`` (:func:`~rotorsim.solvers.linear.factorize`), already computed by the
         caller: not extracted and factorised again.
+    parts : ConstraintParts, optional
+        The constraint modes and interior static responses of this boundary, loads and
+        speed (:func:`constraint_parts`), shared by bases of several mode counts
+        (``static_loads`` and ``interior`` are then not used).
 
     Raises
     ------
@@ -110,15 +115,52 @@ def craig_bampton(system: RotorSystem, boundary: ArrayLike, num_modes: int, *,
         Bad boundary or mode count, or an interior that moves freely with the boundary held
         (add its DOFs to the boundary).
     """
+    if parts is None:
+        parts = constraint_parts(system, boundary, static_loads=static_loads, speed=speed,
+                                 interior=interior)
+    b, inner = parts.boundary, parts.inner
+    if not 0 <= int(num_modes) <= inner.size:
+        raise ModelError(f"num_modes must lie in 0..{inner.size} (interior DOFs), got {num_modes}",
+                         "craig_bampton")
+    freqs, phi = fixed_interface_modes(parts.K_ii, parts.M_ii, int(num_modes)) \
+        if modes is None else modes
+    statics = _independent(list(parts.statics), phi, parts.M_ii)
+    T = np.zeros((system.n_free, b.size + phi.shape[1] + statics.shape[1]))
+    T[b, np.arange(b.size)] = 1.0
+    T[inner] = np.hstack([parts.psi, phi, statics])
+    return ReducedBasis(T, b, freqs, int(statics.shape[1]))
+
+
+@dataclass(frozen=True, eq=False)
+class ConstraintParts:
+    """What every Craig-Bampton basis of one boundary shares whatever its mode count: the
+    boundary and interior DOFs, the interior blocks ``K_ii``, ``M_ii``, the constraint
+    modes ``Psi`` (n_i, b) and the interior static responses to the load shapes."""
+
+    boundary: IntArray
+    inner: IntArray
+    K_ii: Any
+    M_ii: Any
+    psi: FloatArray
+    statics: tuple[FloatArray, ...]
+
+
+def constraint_parts(system: RotorSystem, boundary: ArrayLike, *,
+                     static_loads: Sequence[ArrayLike] = (), speed: float = 0.0,
+                     interior: tuple[Any, Any, Any] | None = None) -> ConstraintParts:
+    """The shared parts of :func:`craig_bampton` (same arguments), computed once.
+
+    Raises
+    ------
+    ModelError
+        Bad boundary, or an interior that moves freely with the boundary held.
+    """
     n = system.n_free
     b = np.unique(np.asarray(boundary, dtype=np.int64))
     if b.size == 0 or b.min() < 0 or b.max() >= n:
         raise ModelError(f"boundary DOFs must be free-DOF indices in 0..{n - 1}",
                          "craig_bampton")
     inner = np.setdiff1d(np.arange(n), b)
-    if not 0 <= int(num_modes) <= inner.size:
-        raise ModelError(f"num_modes must lie in 0..{inner.size} (interior DOFs), got {num_modes}",
-                         "craig_bampton")
     mats = system.matrices(speed)
     K_i = sp.csr_matrix(mats.K)[inner]
     if interior is not None:
@@ -133,15 +175,9 @@ def craig_bampton(system: RotorSystem, boundary: ArrayLike, num_modes: int, *,
                              "held; add DOFs of that part to the boundary",
                              "craig_bampton") from None
     psi = -np.asarray(lu.solve(K_i[:, b].toarray())).reshape(inner.size, b.size)
-    freqs, phi = fixed_interface_modes(K_ii, M_ii, int(num_modes)) if modes is None \
-        else modes
-    extra = [np.asarray(lu.solve(np.asarray(f, dtype=float)[inner])).reshape(-1)
-             for f in static_loads]
-    statics = _independent(extra, phi, M_ii)
-    T = np.zeros((n, b.size + phi.shape[1] + statics.shape[1]))
-    T[b, np.arange(b.size)] = 1.0
-    T[inner] = np.hstack([psi, phi, statics])
-    return ReducedBasis(T, b, freqs, int(statics.shape[1]))
+    statics = tuple(np.asarray(lu.solve(np.asarray(f, dtype=float)[inner])).reshape(-1)
+                    for f in static_loads)
+    return ConstraintParts(b, inner, K_ii, M_ii, psi, statics)
 
 
 CLUSTER_RTOL = 1e-6

@@ -61,6 +61,10 @@ from rotorsim.time_integration.problem import SecondOrderProblem
 
 LOCAL_FRACTION = 0.1
 """The local error per step is held to this fraction of ``rtol`` (as in :mod:`~.radau`)."""
+FIRST_GROWTH = 1e4
+"""Largest growth of the step size after the first step (which starts blind, a thousandth
+of the span): the error estimate of that step sets the next (as CVODE's first-step
+bound, 1e4)."""
 
 
 @dataclass(frozen=True)
@@ -184,7 +188,8 @@ class Exponential:
             if out is not None and out[-1] <= 1.0:
                 factor = 0.9 * out[-1] ** (-1.0 / (self.stages + 1)) if out[-1] > 0 \
                     else self.max_growth
-                grow = min(self.max_growth, factor) if not rejected else min(1.0, factor)
+                cap = FIRST_GROWTH if state.step == 0 else self.max_growth
+                grow = min(cap, factor) if not rejected else min(1.0, factor)
                 return self._accepted(state, attempt, out, grow, tally)
             err = math.inf if out is None else out[-1]
             factor = 0.5 if out is None else 0.9 * err ** (-1.0 / (self.stages + 1))

@@ -58,9 +58,14 @@ from rotorsim.analyses.transient.auto_reduction import (
     split_dofs,
 )
 from rotorsim.analyses.transient.loads import RestoringForce, TransientLoads
-from rotorsim.analyses.transient.reduction import reduce_problem
+from rotorsim.analyses.transient.reduction import load_shapes, reduce_problem
 from rotorsim.analyses.transient.reduction_drift import frequency_drift
-from rotorsim.assembly.reduction import fixed_interface_modes
+from rotorsim.assembly.reduction import (
+    ReducedBasis,
+    constraint_parts,
+    craig_bampton,
+    fixed_interface_modes,
+)
 from rotorsim.assembly.system import RotorSystem
 from rotorsim.elements.base import FloatArray
 from rotorsim.time_integration.problem import SecondOrderProblem
@@ -136,12 +141,16 @@ def exponential_reduction(system: RotorSystem, problem: SecondOrderProblem,
         if record["ringing"] <= SHARE * rtol and record["cutoff"] >= CUTOFF * abs(speed):
             candidates.append((record, ringing))
 
-    def passes(record: dict[str, Any], ringing: FloatArray) -> Reduced | None:
-        """The reduction to ``record``'s count when its size and estimate pass."""
+    # the constraint modes and static responses, shared by the bases of every count
+    parts = constraint_parts(system, system.nonlinear.dofs,  # type: ignore[union-attr]
+                             static_loads=load_shapes(loads), speed=speed,
+                             interior=(K_ii, M_ii, lu))
+
+    def passes(record: dict[str, Any], ringing: FloatArray) -> ReducedBasis | None:
+        """The basis of ``record``'s count when its size and estimate pass."""
         count = record["modes"]
-        reduced, basis, report = reduce_problem(
-            system, problem, loads, count, speed, modes=(freqs[:count], phi[:, :count]),
-            check=False, interior=(K_ii, M_ii, lu))
+        basis = craig_bampton(system, parts.boundary, count,
+                              modes=(freqs[:count], phi[:, :count]), parts=parts)
         if basis.size > MAX_FRACTION * n:
             record["size"] = basis.size
             return None
@@ -150,9 +159,10 @@ def exponential_reduction(system: RotorSystem, problem: SecondOrderProblem,
         record["drift"] = float(drift.max()) / motion
         drift[inner] += ringing
         record["estimate"] = float(drift.max()) / motion
-        return (reduced, basis, report) if record["estimate"] <= SHARE * rtol else None
+        return basis if record["estimate"] <= SHARE * rtol else None
 
-    # bisection over the candidates (module docstring), each step a basis and a drift
+    # bisection over the candidates (module docstring), each step a basis and a drift;
+    # the reduced problem is formed for the count chosen only
     lo, hi, best = 0, len(candidates) - 1, None
     while lo <= hi:
         mid = (lo + hi) // 2
@@ -164,7 +174,8 @@ def exponential_reduction(system: RotorSystem, problem: SecondOrderProblem,
         else:
             lo = mid + 1
     if best is not None:
-        reduced, basis, report = best
+        reduced, basis, report = reduce_problem(system, problem, loads, best.frequencies.size,
+                                                speed, check=False, basis=best)
         return reduced, basis, {"reduced": True, "reason": "checks passed", "tried": tried,
                                 **report}
     return problem, None, {"reduced": False, "tried": tried,

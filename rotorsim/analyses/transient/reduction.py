@@ -28,25 +28,23 @@ from rotorsim.time_integration.problem import SecondOrderProblem
 def reduce_problem(system: RotorSystem, problem: SecondOrderProblem, loads: TransientLoads,
                    num_modes: int, speed: float,
                    modes: tuple[FloatArray, FloatArray] | None = None,
-                   check: bool = True, interior: tuple[Any, Any, Any] | None = None
+                   check: bool = True, interior: tuple[Any, Any, Any] | None = None,
+                   basis: ReducedBasis | None = None
                    ) -> tuple[SecondOrderProblem, ReducedBasis, dict[str, Any]]:
     """The reduced problem, its basis and the accuracy report (``modes``: the
     fixed-interface modes when already computed; ``check`` False leaves out the frequency
     check, for a caller that checks the basis otherwise; ``interior``: ``K_ii``, ``M_ii``
     and the factorisation of ``K_ii`` when already computed, as for
-    :func:`~rotorsim.assembly.reduction.craig_bampton`)."""
+    :func:`~rotorsim.assembly.reduction.craig_bampton`; ``basis``: the basis itself when
+    already built on the nonlinear DOFs with :func:`load_shapes`, the other arguments
+    but ``num_modes`` then unused)."""
     nl = system.nonlinear
     if nl is None or not isinstance(problem.restoring, RestoringForce):
         raise ModelError("reduction keeps the nonlinear DOFs physical: the model has none",
                          "transient.reduction")
-    shapes = [loads.constant]
-    if loads.unbalance is not None:
-        shapes += [loads.unbalance.real, loads.unbalance.imag]
-    if loads.base is not None:
-        shapes.append(loads.base)
-    basis = craig_bampton(system, nl.dofs, num_modes,
-                          static_loads=[s for s in shapes if np.any(s)], speed=speed,
-                          modes=modes, interior=interior)
+    if basis is None:
+        basis = craig_bampton(system, nl.dofs, num_modes, static_loads=load_shapes(loads),
+                              speed=speed, modes=modes, interior=interior)
     freq = accuracy(system, basis, nominal_tangent(system), speed=speed) if check else None
     T = basis.T
     reduced = {name: None if getattr(problem, name) is None else basis.reduce(
@@ -67,6 +65,17 @@ def reduce_problem(system: RotorSystem, problem: SecondOrderProblem, loads: Tran
                    "check_frequencies_full": np.asarray(freq["full"]).tolist(),
                    "check_frequencies_reduced": np.asarray(freq["reduced"]).tolist()}
     return new, basis, report
+
+
+def load_shapes(loads: TransientLoads) -> list[FloatArray]:
+    """The load shapes whose static responses a transient's basis holds: the constant
+    loads, both phases of the unbalance and the base excitation (the non-zero ones)."""
+    shapes = [loads.constant]
+    if loads.unbalance is not None:
+        shapes += [loads.unbalance.real, loads.unbalance.imag]
+    if loads.base is not None:
+        shapes.append(loads.base)
+    return [s for s in shapes if np.any(s)]
 
 
 def expand_run(run: IntegrationResult, basis: ReducedBasis, kept: FloatArray
