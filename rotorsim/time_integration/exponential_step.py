@@ -81,18 +81,20 @@ def meta(history: FloatArray, stages: int) -> FloatArray:
     return np.asarray(history[stages + 1:-2].reshape(-1)[:3])
 
 
-@dataclass(frozen=True, eq=False)
+@dataclass(eq=False)
 class StepOps:
     """What a step of size ``h`` needs: the weights at the stage nodes, the maps ``Hq``,
     ``Hv`` (s k, s k) of the stage values of ``rho`` (nodes 1..s) to the bearing
     displacements and velocities at the stages, the error weights ``D`` (s + 1, N) and
-    what the defect check needs (:mod:`~.exponential_defect`)."""
+    what the defect check needs (:mod:`~.exponential_defect`; built at its first use: an
+    attempt that the interpolant's estimate already rejects never needs it, and it costs
+    more than the rest, two sets of weights and maps)."""
 
     weights: StepWeights
     Hq: FloatArray
     Hv: FloatArray
     D: Any
-    defect: DefectOps
+    defect: DefectOps | None = None
 
 
 @dataclass(eq=False)
@@ -211,9 +213,15 @@ class StepCache:
         D = self.L_error @ w.mono[-1]  # the error weights at the end node (c_s = 1)
         if len(self.ops) >= CACHED_STEPS:
             self.ops.pop(next(iter(self.ops)))
-        self.ops[h] = StepOps(w, Hq, Hv, D, DefectOps.of(m, h, self.nodes, self.L,
-                                                         self.bearing_rows))
+        self.ops[h] = StepOps(w, Hq, Hv, D)
         return self.ops[h]
+
+    def defect_ops(self, h: float) -> DefectOps:
+        """What the defect check of a step of size ``h`` needs (kept with its weights)."""
+        ops = self.step_ops(h)
+        if ops.defect is None:
+            ops.defect = DefectOps.of(self.modes, h, self.nodes, self.L, self.bearing_rows)
+        return ops.defect
 
     @property
     def bearing_rows(self) -> Any:
@@ -382,7 +390,7 @@ class Attempt:
         if err <= 1.0 and not self.m.fixed:
             self.count["residual_evaluations"] += 1
             err = max(err, self._norm(defect_response(
-                ops.defect, modes, cache.bearing_rows, cache.problem.restoring,
+                cache.defect_ops(self.h), modes, cache.bearing_rows, cache.problem.restoring,
                 cache.modal(self.s), self.s.t, self.h, all_rho), unit))
         return q, v, all_rho, force, z_end, peak, err
 
