@@ -253,7 +253,7 @@ class _Block:
         sub = np.ix_(idx, idx)
         mi = np.linalg.inv(M[sub])
         minv[sub] = mi
-        # diagonalised in y_s = (q, v / s) (module docstring: ``velocity_scale``)
+        # diagonalised in y_s = (q, v / s), s from :func:`velocity_scale` (its docstring)
         s = velocity_scale(np.diag(Ks)[idx], np.diag(M)[idx])
         A = np.zeros((2 * m, 2 * m))
         A[:m, m:] = s * np.eye(m)
