@@ -147,8 +147,12 @@ class ConstraintParts:
 
 def constraint_parts(system: RotorSystem, boundary: ArrayLike, *,
                      static_loads: Sequence[ArrayLike] = (), speed: float = 0.0,
-                     interior: tuple[Any, Any, Any] | None = None) -> ConstraintParts:
-    """The shared parts of :func:`craig_bampton` (same arguments), computed once.
+                     interior: tuple[Any, Any, Any] | None = None,
+                     stiffness: Any = None) -> ConstraintParts:
+    """The shared parts of :func:`craig_bampton` (same arguments), computed once;
+    ``stiffness``: the system's stiffness at ``speed`` (n_free, n_free) when the caller
+    holds it, dense or sparse (with ``interior``, nothing is then taken from ``system``'s
+    matrices again).
 
     Raises
     ------
@@ -161,12 +165,15 @@ def constraint_parts(system: RotorSystem, boundary: ArrayLike, *,
         raise ModelError(f"boundary DOFs must be free-DOF indices in 0..{n - 1}",
                          "craig_bampton")
     inner = np.setdiff1d(np.arange(n), b)
-    mats = system.matrices(speed)
-    K_i = sp.csr_matrix(mats.K)[inner]
+    mats = None if stiffness is not None and interior is not None else system.matrices(speed)
+    K = mats.K if mats is not None and stiffness is None else stiffness
+    K_i: Any = sp.csr_matrix(K)[inner] if sp.issparse(K) else np.asarray(K)[inner]
+    K_ib = K_i[:, b].toarray() if sp.issparse(K_i) else K_i[:, b]
     if interior is not None:
         K_ii, M_ii, lu = interior
     else:
-        K_ii, M_ii = K_i[:, inner], sp.csr_matrix(mats.M)[inner][:, inner]
+        assert mats is not None
+        K_ii, M_ii = sp.csr_matrix(K_i[:, inner]), sp.csr_matrix(mats.M)[inner][:, inner]
         try:
             lu = factorize(K_ii, where="craig_bampton: interior stiffness")
         except ConvergenceError:
@@ -174,7 +181,7 @@ def constraint_parts(system: RotorSystem, boundary: ArrayLike, *,
                              "a part of the rotor moves freely when the bearing DOFs are "
                              "held; add DOFs of that part to the boundary",
                              "craig_bampton") from None
-    psi = -np.asarray(lu.solve(K_i[:, b].toarray())).reshape(inner.size, b.size)
+    psi = -np.asarray(lu.solve(K_ib)).reshape(inner.size, b.size)
     statics = tuple(np.asarray(lu.solve(np.asarray(f, dtype=float)[inner])).reshape(-1)
                     for f in static_loads)
     return ConstraintParts(b, inner, K_ii, M_ii, psi, statics)

@@ -150,7 +150,7 @@ class Exponential:
         if not (math.isfinite(dt) and dt > 0):
             raise ModelError(f"dt must be positive and finite, got {dt!r}", "init")
         cache = StepCache.build(self, problem, q, v, float(t0), float(dt))
-        rho0, r0 = cache.rho_at(q, v, float(t0))
+        rho0, r0 = cache.start_rho(q, v)
         state = State(float(t0), q, v, np.zeros(n), np.zeros(n), dt=min(float(dt),
                                                                         self.dt_max),
                       peak=np.zeros(cache.scales.weights.size), cache=cache,

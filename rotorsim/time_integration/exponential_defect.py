@@ -98,12 +98,27 @@ class DefectOps:
 
     @classmethod
     def of(cls, modes: LinearModes, h: float, nodes: FloatArray, L: FloatArray,
-           bearing_rows: Any) -> DefectOps:
+           bearing_rows: Any, shared: StepWeights | None = None) -> DefectOps:
+        """The defect check's operators of a step of size ``h``; ``shared``: the weights
+        :func:`shared_weights` computed (else computed here)."""
         x, values, every = defect_tables(tuple(float(c) for c in nodes))
-        w = StepWeights.of(modes, h, x, L)
+        s = x.size
+        both = shared_weights(modes, h, nodes, L) if shared is None else shared
+        w = both.select(slice(s, 2 * s), L)
         Hq, Hv = bearing_maps(bearing_rows, w.W, modes.Bp, modes.dofs.size)
-        end = StepWeights.of(modes, h, np.ones(1), every)
+        # the end weights of the midpoints' basis functions, at the end node c_s = 1
+        end = both.select(slice(s - 1, s), every)
         return cls(x, w, Hq, Hv, values, end.W[0])
+
+
+def shared_weights(modes: LinearModes, h: float, nodes: FloatArray, L: FloatArray
+                   ) -> StepWeights:
+    """The weights of a step of size ``h`` at the stage nodes ``c_1 .. c_s`` and then at
+    the defect's midpoints, with the monomials of the midpoints' basis (degree ``2 s``): one
+    call of the ``phi`` functions for the step and its defect check."""
+    x, _, every = defect_tables(tuple(float(c) for c in nodes))
+    return StepWeights.of(modes, h, np.concatenate([nodes[1:], x]), L,
+                          monomials=every.shape[1])
 
 
 def defect_response(ops: DefectOps, modes: LinearModes, bearing_rows: Any, restoring: Any,

@@ -328,10 +328,13 @@ class StepWeights:
     mono: ComplexArray
 
     @classmethod
-    def of(cls, modes: LinearModes, h: float, x: FloatArray, L: FloatArray) -> StepWeights:
-        """Weights at the fractions ``x`` for the basis coefficients ``L`` (p_basis, m)."""
+    def of(cls, modes: LinearModes, h: float, x: FloatArray, L: FloatArray,
+           monomials: int = 0) -> StepWeights:
+        """Weights at the fractions ``x`` for the basis coefficients ``L`` (p_basis, m);
+        ``mono`` holds ``max(m, monomials)`` monomials (for :meth:`select` with a basis of
+        a higher degree)."""
         lam, w = modes.lam, modes.frequency
-        degree = L.shape[1]
+        degree = max(L.shape[1], monomials)
         x = np.asarray(x, dtype=float)
         tau = x[:, None] * h  # (p, 1)
         p, N = tau.size, lam.size
@@ -350,5 +353,13 @@ class StepWeights:
         m = np.arange(degree)
         coef = h * _FACTORIALS[:degree] * x[:, None] ** (m + 1)  # (p, m)
         mono = coef[:, :, None] * phis[1:].transpose(1, 0, 2)  # (p, m, N)
-        W = np.matmul(L[None, :, :], mono)  # (p, j, N)
+        W = np.matmul(L[None, :, :], mono[:, :L.shape[1]])  # (p, j, N)
         return cls(E, const, plus, minus, W, mono)
+
+    def select(self, rows: slice, L: FloatArray) -> StepWeights:
+        """The weights of the fractions ``rows`` for another basis ``L`` (p_basis, m),
+        from the monomials already integrated (one call of the ``phi`` functions for the
+        fractions of several uses: each call costs tens of microseconds at any size)."""
+        mono = self.mono[rows, :L.shape[1]]
+        return StepWeights(self.E[rows], self.const[rows], self.plus[rows], self.minus[rows],
+                           np.matmul(L[None, :, :], mono), mono)

@@ -26,6 +26,7 @@ from rotorsim.time_integration.exponential_defect import (
     DefectOps,
     bearing_maps,
     defect_response,
+    shared_weights,
 )
 from rotorsim.time_integration.exponential_modes import (
     LinearModes,
@@ -85,15 +86,16 @@ def meta(history: FloatArray, stages: int) -> FloatArray:
 class StepOps:
     """What a step of size ``h`` needs: the weights at the stage nodes, the maps ``Hq``,
     ``Hv`` (s k, s k) of the stage values of ``rho`` (nodes 1..s) to the bearing
-    displacements and velocities at the stages, the error weights ``D`` (s + 1, N) and
-    what the defect check needs (:mod:`~.exponential_defect`; built at its first use: an
-    attempt that the interpolant's estimate already rejects never needs it, and it costs
-    more than the rest, two sets of weights and maps)."""
+    displacements and velocities at the stages, the error weights ``D`` (s + 1, N), the
+    weights at the nodes and the defect's midpoints together (``shared``, one call) and
+    the rest of the defect check (:mod:`~.exponential_defect`; built at its first use: an
+    attempt that the interpolant's estimate rejects never needs its maps)."""
 
     weights: StepWeights
     Hq: FloatArray
     Hv: FloatArray
     D: Any
+    shared: StepWeights
     defect: DefectOps | None = None
 
 
@@ -121,6 +123,8 @@ class StepCache:
     """``V`` on the bearing displacements and velocities (transposed), the weights of the
     stage displacements, the identity of the Newton matrix and ``V`` on the bearing
     displacements and velocities (2 k, N)."""
+    start_force: Any = None
+    """The restoring force on the nonlinear DOFs at the state the modes were built about."""
 
     @classmethod
     def build(cls, method: Exponential, problem: SecondOrderProblem, q: FloatArray,
@@ -141,7 +145,7 @@ class StepCache:
         if not np.allclose(method.load(t0), f0, rtol=1e-10,
                            atol=1e-12 * float(np.max(np.abs(f0), initial=1.0))):
             raise ModelError("load does not match the problem's load", method.name)
-        dofs, _, K0, C0 = batch(q[None, :], v[None, :], np.array([t0]))
+        dofs, r0, K0, C0 = batch(q[None, :], v[None, :], np.array([t0]))
         modes = LinearModes.build(dense(problem.mass), dense(problem.stiffness), D,
                                   np.asarray(dofs, dtype=np.int64), K0[0], C0[0],
                                   method.load, where)
@@ -160,7 +164,7 @@ class StepCache:
             T @ q, method.motion)
         emap = modes.V[:n] if T is None else T @ modes.V[:n]
         return cls(method, problem, modes, scales, h0, nodes, L, L_error, D, T,
-                   error_map=np.ascontiguousarray(emap), at_bearings=at)
+                   error_map=np.ascontiguousarray(emap), at_bearings=at, start_force=r0[0])
 
     def moved(self, q: FloatArray, q0: FloatArray) -> FloatArray:
         """``|q - q0|`` per unknown, or per physical DOF (``|T (q - q0)|``) when reduced."""
@@ -207,20 +211,22 @@ class StepCache:
             self.ops[h] = found  # most recently used last: the first is evicted
             return found
         m = self.modes
-        w = StepWeights.of(m, h, self.nodes[1:], self.L)
+        shared = shared_weights(m, h, self.nodes, self.L)
+        w = shared.select(slice(0, self.nodes.size - 1), self.L)
         # stage i's bearing motion per unit rho_j
         Hq, Hv = bearing_maps(self.bearing_rows, w.W, m.Bp, m.dofs.size)
         D = self.L_error @ w.mono[-1]  # the error weights at the end node (c_s = 1)
         if len(self.ops) >= CACHED_STEPS:
             self.ops.pop(next(iter(self.ops)))
-        self.ops[h] = StepOps(w, Hq, Hv, D)
+        self.ops[h] = StepOps(w, Hq, Hv, D, shared)
         return self.ops[h]
 
     def defect_ops(self, h: float) -> DefectOps:
         """What the defect check of a step of size ``h`` needs (kept with its weights)."""
         ops = self.step_ops(h)
         if ops.defect is None:
-            ops.defect = DefectOps.of(self.modes, h, self.nodes, self.L, self.bearing_rows)
+            ops.defect = DefectOps.of(self.modes, h, self.nodes, self.L, self.bearing_rows,
+                                      ops.shared)
         return ops.defect
 
     @property
@@ -240,13 +246,11 @@ class StepCache:
                          np.ascontiguousarray(V[n + at].T))
         return self.rows[1], self.rows[2]
 
-    def rho_at(self, q: FloatArray, v: FloatArray, t: float) -> tuple[FloatArray, FloatArray]:
-        """``rho`` and ``r`` on the nonlinear DOFs at one point."""
-        m = self.modes
-        _, r, _, _ = self.problem.restoring.batch(  # type: ignore[union-attr]
-            q[None, :], v[None, :], np.array([t]))
-        qb, vb = q[m.dofs], v[m.dofs]
-        return m.K0 @ qb + m.C0 @ vb - r[0], r[0]
+    def start_rho(self, q: FloatArray, v: FloatArray) -> tuple[FloatArray, FloatArray]:
+        """``rho`` and ``r`` on the nonlinear DOFs at the state ``(q, v)`` the modes were
+        built about (its force kept from :meth:`build`)."""
+        m, r = self.modes, self.start_force
+        return m.K0 @ q[m.dofs] + m.C0 @ v[m.dofs] - r, r
 
     def net_force(self, q: FloatArray, v: FloatArray, r: FloatArray, t: float) -> FloatArray:
         """``K q + D v + r - f`` [N]."""

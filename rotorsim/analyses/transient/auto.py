@@ -30,7 +30,7 @@ from rotorsim.assembly.reduction import ReducedBasis
 from rotorsim.assembly.system import RotorSystem
 from rotorsim.elements.base import DOFS_PER_NODE, FloatArray
 from rotorsim.errors import ConvergenceError, ModelError
-from rotorsim.solvers.linear import factorize
+from rotorsim.solvers.linear import DENSE_THRESHOLD, factorize
 from rotorsim.time_integration.exponential import Exponential
 from rotorsim.time_integration.local_tangent import LocalMatrix
 from rotorsim.time_integration.problem import SecondOrderProblem
@@ -86,25 +86,26 @@ def auto_stepper(system: RotorSystem, problem: SecondOrderProblem, loads: Transi
 
 
 def motion_floor(problem: SecondOrderProblem, loads: TransientLoads, profile: BoundSpeed,
-                 t0: float, t_end: float, q0: FloatArray, weights: tuple[float, ...]
-                 ) -> float | None:
+                 t0: float, t_end: float, q0: FloatArray, weights: tuple[float, ...],
+                 tangents: tuple[Any, Any] | None = None) -> float | None:
     """The largest weighted amplitude of :func:`unbalance_amplitude` (None without)."""
-    amp = unbalance_amplitude(problem, loads, profile, t0, t_end, q0)
+    amp = unbalance_amplitude(problem, loads, profile, t0, t_end, q0, tangents)
     return None if amp is None else float(np.max(np.asarray(weights) * amp))
 
 
 def unbalance_amplitude(problem: SecondOrderProblem, loads: TransientLoads,
-                        profile: BoundSpeed, t0: float, t_end: float, q0: FloatArray
-                        ) -> FloatArray | None:
+                        profile: BoundSpeed, t0: float, t_end: float, q0: FloatArray,
+                        tangents: tuple[Any, Any] | None = None) -> FloatArray | None:
     """Amplitude (n,) of the linear unbalance response about ``q0`` at the starting speed
-    (the final one when the run starts at rest); None without unbalance or speed."""
+    (the final one when the run starts at rest); None without unbalance or speed.
+    ``tangents``: :func:`start_tangents` when the caller has them."""
     if loads.unbalance is None:
         return None
     speed = profile.speed(t0) or profile.speed(t_end)
     if speed <= 0.0:
         return None
     n = problem.n
-    stiff, damp = _tangents(problem, q0, t0)
+    stiff, damp = start_tangents(problem, q0, t0) if tangents is None else tangents
     D: Any = problem.damping_at(speed)
     terms = [(1.0, problem.stiffness), (-speed * speed, problem.mass), (1.0, stiff),
              (1j * speed, D), (1j * speed, damp)]
@@ -122,7 +123,10 @@ def unbalance_amplitude(problem: SecondOrderProblem, loads: TransientLoads,
                 A += c * (M.toarray() if sp.issparse(M) else np.asarray(M))
     try:
         ratio = 1.0 if loads.unbalance_ratio is None else loads.unbalance_ratio
-        x = factorize(A, where="transient: motion estimate").solve(  # each spool's r W
+        # dense LU for a dense sum (SuperLU of its sparse copy cost 0.5 ms at n = 126)
+        x = factorize(A, where="transient: motion estimate",
+                      dense_threshold=n if isinstance(A, np.ndarray) else DENSE_THRESHOLD
+                      ).solve(  # each spool's r W
             (ratio * speed) ** 2 * loads.unbalance)
     except ConvergenceError:  # exactly at a resonance of the linearised rotor
         return None
@@ -130,7 +134,8 @@ def unbalance_amplitude(problem: SecondOrderProblem, loads: TransientLoads,
     return amp if np.all(np.isfinite(amp)) else None
 
 
-def _tangents(problem: SecondOrderProblem, q0: FloatArray, t0: float) -> tuple[Any, Any]:
+def start_tangents(problem: SecondOrderProblem, q0: FloatArray, t0: float
+                   ) -> tuple[Any, Any]:
     """Tangents of the restoring force at the start (None without one; a
     :class:`~rotorsim.time_integration.local_tangent.LocalMatrix` as the force gives it)."""
     if problem.restoring is None:
@@ -177,8 +182,10 @@ def auto_path(system: RotorSystem, problems: tuple[SecondOrderProblem, SecondOrd
     t0, t_end = span
     problem, given = problems
     weights = dof_weights(system, problem.n)
-    floor = None if weights is None or q0.size != problem.n else motion_floor(
-        problem, loads, profile, t0, t_end, q0, weights)
+    # the bearings' tangents at the start, shared by the motion estimate and the reduction
+    start = start_tangents(problem, q0, t0) if q0.size == problem.n else None
+    floor = None if weights is None or start is None else motion_floor(
+        problem, loads, profile, t0, t_end, q0, weights, start)
     if basis is not None:  # reduction given: weights through the basis
         radau = auto_stepper(system, given, loads, profile, t0, t_end, q0, rtol, basis,
                              floor)
@@ -199,7 +206,7 @@ def auto_path(system: RotorSystem, problems: tuple[SecondOrderProblem, SecondOrd
         if may_reduce:
             small, new_basis, chosen = exponential_reduction(
                 system, problem, loads, top, rtol, floor, weights,
-                tangent=_tangents(problem, q0, t0)[0] if q0.size == problem.n else None,
+                tangent=None if start is None else start[0],
                 phase=profile.angle(t0), duration=t_end - t0)
             fast_small = None if new_basis is None else exponential_stepper(
                 small, loads, profile, span, rtol, dof_weights(system, small.n, new_basis),

@@ -54,7 +54,6 @@ from scipy.sparse.csgraph import connected_components
 from rotorsim.analyses.transient.auto_reduction import (
     Reduced,
     _cluster_end,
-    _interior,
     split_dofs,
 )
 from rotorsim.analyses.transient.loads import RestoringForce, TransientLoads
@@ -68,6 +67,8 @@ from rotorsim.assembly.reduction import (
 )
 from rotorsim.assembly.system import RotorSystem
 from rotorsim.elements.base import FloatArray
+from rotorsim.solvers.linear import factorize
+from rotorsim.time_integration.base import IntArray
 from rotorsim.time_integration.problem import SecondOrderProblem
 
 MODE_COUNTS = (8, 16, 24, 32, 48)
@@ -118,7 +119,8 @@ def exponential_reduction(system: RotorSystem, problem: SecondOrderProblem,
                   inner.size - 2)
     if largest < MODE_COUNTS[0]:
         return problem, None, {"reduced": False, "reason": "too few interior DOFs"}
-    K_ii, M_ii, S, lu = _interior(system, loads, inner, (speed, speed))
+    stiffness, mass = _dense(problem.stiffness), _dense(problem.mass)
+    K_ii, M_ii, S, lu = _dense_interior(stiffness, mass, loads, inner, speed)
     freqs, phi = interior_modes(K_ii, M_ii, largest + 1)
     all_weights = np.asarray(weights)
     w = all_weights[inner]
@@ -144,7 +146,7 @@ def exponential_reduction(system: RotorSystem, problem: SecondOrderProblem,
     # the constraint modes and static responses, shared by the bases of every count
     parts = constraint_parts(system, system.nonlinear.dofs,  # type: ignore[union-attr]
                              static_loads=load_shapes(loads), speed=speed,
-                             interior=(K_ii, M_ii, lu))
+                             interior=(K_ii, M_ii, lu), stiffness=stiffness)
 
     def passes(record: dict[str, Any], ringing: FloatArray) -> ReducedBasis | None:
         """The basis of ``record``'s count when its size and estimate pass."""
@@ -154,7 +156,7 @@ def exponential_reduction(system: RotorSystem, problem: SecondOrderProblem,
         if basis.size > MAX_FRACTION * n:
             record["size"] = basis.size
             return None
-        drift = frequency_drift(basis, problem.stiffness, problem.mass, tangent, inner, lu,
+        drift = frequency_drift(basis, stiffness, mass, tangent, inner, lu,
                                 load, speed, duration, all_weights)
         record["drift"] = float(drift.max()) / motion
         drift[inner] += ringing
@@ -194,15 +196,15 @@ def interior_modes(K_ii: Any, M_ii: Any, count: int) -> tuple[FloatArray, FloatA
     -------
     frequencies : array (m,) [rad/s], ascending; modes : array (n_i, m), mass-normalised.
     """
-    K, M = sp.csr_matrix(K_ii), sp.csr_matrix(M_ii)
-    groups, labels = connected_components((abs(K) + abs(M)) != 0, directed=False)
+    # dense: scipy's fancy indexing of a sparse matrix costs about 0.3 ms per block, more
+    # than copying the whole matrix at the sizes integrated by exponential collocation
+    # (at most EXPONENTIAL_LIMIT unknowns)
+    Kd, Md = _dense(K_ii), _dense(M_ii)
+    groups, labels = connected_components(sp.csr_matrix((Kd != 0.0) | (Md != 0.0)),
+                                          directed=False)
     if groups == 1:
-        return fixed_interface_modes(K, M, count)
-    n = K.shape[0]
-    # the blocks from dense copies: scipy's fancy indexing of a sparse matrix costs about
-    # 0.3 ms per block, more than copying the whole matrix at the sizes integrated by
-    # exponential collocation (at most EXPONENTIAL_LIMIT unknowns)
-    Kd, Md = K.toarray(), M.toarray()
+        return fixed_interface_modes(sp.csr_matrix(Kd), sp.csr_matrix(Md), count)
+    n = Kd.shape[0]
     lams, cols = [], []
     for g in range(groups):
         idx = np.flatnonzero(labels == g)
@@ -221,6 +223,31 @@ def interior_modes(K_ii: Any, M_ii: Any, count: int) -> tuple[FloatArray, FloatA
     phi = np.hstack(cols)[:, order]
     keep = min(_cluster_end(w, min(count, w.size)), w.size)
     return w[:keep], phi[:, :keep]
+
+
+def _dense(A: Any) -> FloatArray:
+    """``A`` as a dense float array (the problem's matrices are dense up to
+    :data:`~.equation.DENSE_STEPPING` unknowns already)."""
+    return np.asarray(A.toarray() if sp.issparse(A) else A, dtype=float)
+
+
+def _dense_interior(stiffness: FloatArray, mass: FloatArray, loads: TransientLoads,
+                    inner: IntArray, speed: float) -> tuple[FloatArray, FloatArray,
+                                                            FloatArray, Any]:
+    """As :func:`~.auto_reduction._interior`, from the problem's dense ``stiffness`` and
+    ``mass`` [N/m, kg] (equal to the system's at ``speed``: no speed-dependent linear
+    bearings here): ``K_ii``, ``M_ii``, the interior static responses (n_i, 2) to both
+    phases of the unbalance at ``speed`` [rad/s] and the dense LU of ``K_ii``. Slices of
+    dense arrays cost microseconds where scipy.sparse's row and column indexing cost about
+    0.3 ms each at these sizes."""
+    block = np.ix_(inner, inner)
+    K_ii, M_ii = stiffness[block], mass[block]
+    assert loads.unbalance is not None
+    ratio = 1.0 if loads.unbalance_ratio is None else loads.unbalance_ratio
+    f = (np.asarray(ratio * speed) ** 2 * loads.unbalance)[inner]
+    lu = factorize(K_ii, where="transient: reduction estimate", dense_threshold=inner.size)
+    S = np.asarray(lu.solve(np.column_stack([f.real, f.imag]))).reshape(inner.size, 2)
+    return K_ii, M_ii, S, lu
 
 
 def _ineligible(system: RotorSystem, problem: SecondOrderProblem, loads: TransientLoads,
