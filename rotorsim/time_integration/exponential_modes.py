@@ -38,10 +38,9 @@ from typing import Any
 
 import numpy as np
 import scipy.linalg as sl
-import scipy.sparse as sp
-from scipy.sparse.csgraph import connected_components
 
 from rotorsim.errors import ConvergenceError
+from rotorsim.solvers.dense_groups import coupled_groups
 from rotorsim.time_integration.base import FloatArray, IntArray
 from rotorsim.time_integration.phi_functions import cexp as cexp
 from rotorsim.time_integration.phi_functions import phi_functions as phi_functions
@@ -212,9 +211,7 @@ class LinearModes:
 
 def _groups(M: FloatArray, K: FloatArray, D: FloatArray) -> list[IntArray]:
     """DOF groups that no matrix couples (connected components of the pattern)."""
-    pattern = sp.csr_matrix((M != 0) | (K != 0) | (D != 0))
-    count, labels = connected_components(pattern, directed=False)
-    return [np.flatnonzero(labels == c) for c in range(count)]
+    return coupled_groups((M != 0) | (K != 0) | (D != 0))
 
 
 @dataclass(frozen=True, eq=False)

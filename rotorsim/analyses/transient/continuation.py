@@ -36,7 +36,7 @@ from rotorsim.results.transient import TransientResult
 from rotorsim.results.transient_state import TransientState
 from rotorsim.time_integration.base import State, TimeStepper
 from rotorsim.time_integration.integrate import IntegrationResult
-from rotorsim.time_integration.problem import SecondOrderProblem
+from rotorsim.time_integration.problem import FINGERPRINT_VERSION, SecondOrderProblem
 
 WHERE = "transient.initial"
 SPEED_RTOL = 1e-9
@@ -108,6 +108,9 @@ def start_state(previous: TransientState, full: Any,
     if stepper.name != previous.method:
         raise ModelError(f"the previous run used {previous.method!r}, not "
                          f"{stepper.name!r}: continue with the same method", "transient.method")
+    if not previous.problem.startswith(FINGERPRINT_VERSION):
+        raise ModelError("the previous state was stored by an older rotorsim, whose model "
+                         "fingerprint cannot be compared: run it again", WHERE)
     if full.fingerprint != previous.problem:
         raise ModelError("the model differs from the previous run's (its mass, stiffness, "
                          "damping or gyroscopic matrices, or which loads and nonlinear "

@@ -49,7 +49,6 @@ from typing import Any
 import numpy as np
 import scipy.linalg as sl
 import scipy.sparse as sp
-from scipy.sparse.csgraph import connected_components
 
 from rotorsim.analyses.transient.auto_reduction import (
     Reduced,
@@ -67,6 +66,7 @@ from rotorsim.assembly.reduction import (
 )
 from rotorsim.assembly.system import RotorSystem
 from rotorsim.elements.base import FloatArray
+from rotorsim.solvers.dense_groups import coupled_groups
 from rotorsim.solvers.linear import factorize
 from rotorsim.time_integration.base import IntArray
 from rotorsim.time_integration.problem import SecondOrderProblem
@@ -200,14 +200,12 @@ def interior_modes(K_ii: Any, M_ii: Any, count: int) -> tuple[FloatArray, FloatA
     # than copying the whole matrix at the sizes integrated by exponential collocation
     # (at most EXPONENTIAL_LIMIT unknowns)
     Kd, Md = _dense(K_ii), _dense(M_ii)
-    groups, labels = connected_components(sp.csr_matrix((Kd != 0.0) | (Md != 0.0)),
-                                          directed=False)
-    if groups == 1:
+    groups = coupled_groups((Kd != 0.0) | (Md != 0.0))
+    if len(groups) == 1:
         return fixed_interface_modes(sp.csr_matrix(Kd), sp.csr_matrix(Md), count)
     n = Kd.shape[0]
     lams, cols = [], []
-    for g in range(groups):
-        idx = np.flatnonzero(labels == g)
+    for idx in groups:
         sub = np.ix_(idx, idx)
         top = min(count + 2, idx.size)
         # all pairs and a slice: at these sizes LAPACK's full solver is faster than the

@@ -38,7 +38,11 @@ from rotorsim.assembly.system import RotorSystem, bearing_matrices, relative_spe
 from rotorsim.elements.base import DOFS_PER_NODE, FloatArray
 from rotorsim.elements.linear_bearing import BearingElement
 from rotorsim.errors import ModelError
-from rotorsim.time_integration.problem import SecondOrderProblem, matrix_digest
+from rotorsim.time_integration.problem import (
+    FINGERPRINT_VERSION,
+    SecondOrderProblem,
+    matrix_digest,
+)
 
 IntArray = NDArray[np.int64]
 
@@ -178,7 +182,7 @@ def model_identity(system: RotorSystem, problem: SecondOrderProblem) -> Any:
         digest.update(np.ascontiguousarray(array).tobytes())
     for name in ("restoring", "load"):
         digest.update(f"{name}:{getattr(problem, name) is not None}".encode())
-    return SimpleNamespace(fingerprint=digest.hexdigest())
+    return SimpleNamespace(fingerprint=FINGERPRINT_VERSION + digest.hexdigest())
 
 
 def _element_dofs(bearing: BearingElement) -> IntArray:

@@ -143,3 +143,22 @@ def test_a_result_without_final_state_cannot_be_continued(rotor):
     with pytest.raises(ModelError, match=r"transient\.initial: .*no final state"):
         rs.transient(rotor, T_END, DT, speed=300.0, initial=dataclasses.replace(
             half, final=None))
+
+
+def test_a_state_from_an_older_fingerprint_is_refused_by_name(rotor):
+    half = rs.transient(rotor, T_END / 4, DT, speed=300.0, nodes=[5])
+    assert half.final is not None
+    older = dataclasses.replace(half.final, problem=half.final.problem[2:])  # no "2-"
+    with pytest.raises(ModelError, match=r"transient\.initial: .*older rotorsim"):
+        rs.transient(rotor, T_END, DT, speed=300.0, initial=older)
+
+
+def test_the_fingerprint_tells_dense_matrices_apart_by_any_entry():
+    from rotorsim.time_integration.problem import content_digest
+    A = np.diag([1.0, 2.0, 3.0])
+    B = A.copy()
+    B[0, 2] = 1e-300  # a new non-zero entry, however small
+    C = A.copy()
+    C[1, 1] = np.nextafter(2.0, 3.0)  # one value one ulp off
+    digests = {content_digest(X) for X in (A, B, C, A.reshape(3, 3)[:, ::-1])}
+    assert len(digests) == 4 and content_digest(A.copy()) == content_digest(A)
