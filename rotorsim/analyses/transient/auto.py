@@ -30,7 +30,7 @@ from rotorsim.assembly.reduction import ReducedBasis
 from rotorsim.assembly.system import RotorSystem
 from rotorsim.elements.base import DOFS_PER_NODE, FloatArray
 from rotorsim.errors import ConvergenceError, ModelError
-from rotorsim.solvers.linear import DENSE_THRESHOLD, factorize
+from rotorsim.solvers.linear import factorize
 from rotorsim.time_integration.exponential import Exponential
 from rotorsim.time_integration.local_tangent import LocalMatrix
 from rotorsim.time_integration.problem import SecondOrderProblem
@@ -123,10 +123,7 @@ def unbalance_amplitude(problem: SecondOrderProblem, loads: TransientLoads,
                 A += c * (M.toarray() if sp.issparse(M) else np.asarray(M))
     try:
         ratio = 1.0 if loads.unbalance_ratio is None else loads.unbalance_ratio
-        # dense LU for a dense sum (SuperLU of its sparse copy cost 0.5 ms at n = 126)
-        x = factorize(A, where="transient: motion estimate",
-                      dense_threshold=n if isinstance(A, np.ndarray) else DENSE_THRESHOLD
-                      ).solve(  # each spool's r W
+        x = factorize(A, where="transient: motion estimate").solve(  # each spool's r W
             (ratio * speed) ** 2 * loads.unbalance)
     except ConvergenceError:  # exactly at a resonance of the linearised rotor
         return None
