@@ -73,6 +73,18 @@ def lagrange_coefficients(nodes: FloatArray) -> FloatArray:
     return np.asarray(np.linalg.inv(vander).T)
 
 
+def lobatto_nodes(s: int) -> FloatArray:
+    """The ``s + 1`` Gauss-Lobatto nodes on [0, 1].
+
+    Examples
+    --------
+    >>> [round(float(x), 6) for x in lobatto_nodes(2)]
+    [0.0, 0.5, 1.0]
+    """
+    inner = np.polynomial.legendre.Legendre.basis(s).deriv().roots()
+    return np.concatenate([[0.0], np.sort((inner.real + 1.0) / 2.0), [1.0]])
+
+
 class HarmonicLoad:
     """``f(t) = constant + Re(amplitude e^{i frequency t})`` [N]: gravity, point loads and
     an unbalance at constant speed. Its ``repr`` is a digest of the numbers (it enters the

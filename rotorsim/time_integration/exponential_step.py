@@ -32,6 +32,7 @@ from rotorsim.time_integration.exponential_modes import (
     LinearModes,
     StepWeights,
     lagrange_coefficients,
+    lobatto_nodes,
 )
 from rotorsim.time_integration.motion_scale import MotionScale
 from rotorsim.time_integration.problem import SecondOrderProblem
@@ -48,18 +49,6 @@ the ladder span a factor 64; at most about 0.3 MB each at the 400 unknowns of
 NEWTON_KAPPA = 0.03
 """Newton stops when its correction of the bearing displacements is below this fraction of
 the local tolerance."""
-
-
-def lobatto_nodes(s: int) -> FloatArray:
-    """The ``s + 1`` Gauss-Lobatto nodes on [0, 1].
-
-    Examples
-    --------
-    >>> [round(float(x), 6) for x in lobatto_nodes(2)]
-    [0.0, 0.5, 1.0]
-    """
-    inner = np.polynomial.legendre.Legendre.basis(s).deriv().roots()
-    return np.concatenate([[0.0], np.sort((inner.real + 1.0) / 2.0), [1.0]])
 
 
 @functools.lru_cache(maxsize=8)

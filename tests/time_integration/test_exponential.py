@@ -13,8 +13,12 @@ from scipy.integrate import quad, solve_ivp
 
 from rotorsim.errors import ConvergenceError, ModelError
 from rotorsim.time_integration.exponential import Exponential
-from rotorsim.time_integration.exponential_modes import HarmonicLoad, LinearModes, phi_functions
-from rotorsim.time_integration.exponential_step import lobatto_nodes
+from rotorsim.time_integration.exponential_modes import (
+    HarmonicLoad,
+    LinearModes,
+    lobatto_nodes,
+    phi_functions,
+)
 from rotorsim.time_integration.integrate import integrate
 from rotorsim.time_integration.output import OutputSpec
 from rotorsim.time_integration.problem import SecondOrderProblem
