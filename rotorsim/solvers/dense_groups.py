@@ -17,11 +17,18 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import NDArray
 
+from rotorsim.errors import ModelError
+
 
 def coupled_groups(pattern: NDArray[np.bool_]) -> list[NDArray[np.int64]]:
     """The groups of unknowns connected by ``pattern`` (n, n) (``pattern[i, j]``: ``i``
     and ``j`` are coupled; taken symmetric), each ascending, ordered by their smallest
     unknown (the order of scipy's ``connected_components``).
+
+    Raises
+    ------
+    ModelError
+        When ``pattern`` is not a square matrix.
 
     Examples
     --------
@@ -31,6 +38,9 @@ def coupled_groups(pattern: NDArray[np.bool_]) -> list[NDArray[np.int64]]:
     [[0, 2], [1, 3]]
     """
     pattern = np.asarray(pattern, dtype=bool)
+    if pattern.ndim != 2 or pattern.shape[0] != pattern.shape[1]:
+        raise ModelError(f"the coupling pattern must be a square matrix, got shape "
+                         f"{pattern.shape}", "coupled_groups")
     n = pattern.shape[0]
     i, j = np.nonzero(pattern | pattern.T)
     label = np.arange(n)

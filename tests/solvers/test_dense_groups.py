@@ -5,6 +5,7 @@ import pytest
 import scipy.sparse as sp
 from scipy.sparse.csgraph import connected_components
 
+from rotorsim.errors import ModelError
 from rotorsim.solvers.dense_groups import coupled_groups
 
 
@@ -29,3 +30,9 @@ def test_a_long_chain_is_one_group():
     pattern[order[:-1], order[1:]] = True
     (group,) = coupled_groups(pattern)
     assert np.array_equal(group, np.arange(n))
+
+
+@pytest.mark.parametrize("shape", [(3, 4), (5,), (2, 2, 2)])
+def test_a_pattern_that_is_not_square_is_refused_by_name(shape):
+    with pytest.raises(ModelError, match=r"coupled_groups: .*square matrix, got shape"):
+        coupled_groups(np.ones(shape, dtype=bool))
